@@ -1,0 +1,96 @@
+# sphfsi — build, test, run.  `make run` and `make check` install missing dependencies first.
+#
+# PETSc is taken from PETSC_DIR/PETSC_ARCH when PETSC_DIR is set (PETSc's own conf/variables),
+# else from pkg-config (PETSc).  METIS: METIS_DIR (include/, lib/) or the system paths.
+
+.DEFAULT_GOAL := all
+SHELL := /bin/bash
+
+ifeq ($(shell id -u),0)
+export OMPI_ALLOW_RUN_AS_ROOT := 1
+export OMPI_ALLOW_RUN_AS_ROOT_CONFIRM := 1
+endif
+
+ifdef PETSC_DIR
+  include $(PETSC_DIR)/lib/petsc/conf/variables
+  PETSC_CFLAGS := $(PETSC_CC_INCLUDES)
+  PETSC_LIBS   := $(PETSC_WITH_EXTERNAL_LIB)
+  CC           := $(PCC)
+else
+  PETSC_CFLAGS := $(shell pkg-config --cflags PETSc 2>/dev/null) $(shell pkg-config --cflags hdf5-mpi 2>/dev/null || pkg-config --cflags hdf5 2>/dev/null)
+  PETSC_LIBS   := $(shell pkg-config --libs PETSc 2>/dev/null)
+  CC           := mpicc
+endif
+ifdef METIS_DIR
+  METIS_CFLAGS := -I$(METIS_DIR)/include
+  METIS_LIBS   := -L$(METIS_DIR)/lib -Wl,-rpath,$(METIS_DIR)/lib -lmetis
+else
+  METIS_LIBS   := -lmetis
+endif
+
+OPT     ?= -O3 -march=native
+SAN     ?=
+ifeq ($(SAN),1)
+  SANFLAGS := -fsanitize=address,undefined
+  OPT      := -O1 -g -fno-omit-frame-pointer $(SANFLAGS)
+  BUILD    := build-san
+else
+  SANFLAGS :=
+  BUILD    := build
+endif
+CFLAGS  := $(OPT) -std=gnu11 -Wall -Wextra -Wno-unused-parameter -Iinclude $(PETSC_CFLAGS) $(METIS_CFLAGS)
+LDLIBS  := $(PETSC_LIBS) $(METIS_LIBS) -lm
+LDFLAGS := $(SANFLAGS)
+
+LIB_SRC  := $(wildcard src/*.c src/scenes/*.c)
+LIB_SRC  := $(filter-out src/main.c,$(LIB_SRC))
+LIB_OBJ  := $(LIB_SRC:%.c=$(BUILD)/%.o)
+TEST_SRC := $(wildcard tests/test_*.c)
+TEST_BIN := $(TEST_SRC:tests/%.c=bin/%)
+BIN      := bin/sphfsi$(if $(filter 1,$(SAN)),-san,)
+
+NP      ?= $(shell nproc 2>/dev/null || echo 2)
+MPIEXEC ?= mpiexec
+MPIEXEC_FLAGS ?= $(shell $(MPIEXEC) --version 2>/dev/null | grep -q "Open MPI" && echo --oversubscribe)
+export MPIEXEC MPIEXEC_FLAGS
+
+.PHONY: all deps run check check-unit bench clean tests
+all: $(BIN) $(TEST_BIN)
+
+$(BUILD)/%.o: %.c $(wildcard include/sphfsi/*.h)
+	@mkdir -p $(dir $@)
+	$(CC) $(CFLAGS) -c $< -o $@
+
+$(BUILD)/libsphfsi.a: $(LIB_OBJ)
+	@rm -f $@; ar rcs $@ $^
+
+$(BIN): $(BUILD)/src/main.o $(BUILD)/libsphfsi.a
+	@mkdir -p bin
+	$(CC) $(LDFLAGS) -o $@ $^ $(LDLIBS)
+
+bin/test_%: $(BUILD)/tests/test_%.o $(BUILD)/libsphfsi.a
+	@mkdir -p bin
+	$(CC) $(LDFLAGS) -o $@ $^ $(LDLIBS)
+
+tests: $(BIN) $(TEST_BIN)
+
+# Installs the Debian packages when PETSc (or METIS) cannot be found; does nothing otherwise.
+deps:
+	@bash tools/install-deps.sh
+
+CASE ?= dam_break
+run: deps
+	@$(MAKE) --no-print-directory all
+	$(MPIEXEC) $(MPIEXEC_FLAGS) -n $(NP) $(BIN) -options_file cases/$(CASE).opts $(ARGS)
+
+# The test suite on 2 MPI ranks; ends with 'N passed, N failed'.
+check: deps
+	@$(MAKE) --no-print-directory all
+	@bash tests/run_tests.sh $(if $(filter 1,$(SAN)),--unit-only,)
+
+bench: deps
+	@$(MAKE) --no-print-directory all
+	@bash tools/bench.sh
+
+clean:
+	rm -rf build build-san bin out

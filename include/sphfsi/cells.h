@@ -1,0 +1,25 @@
+/* Cell-linked lists over owned + ghost particles and the neighbour list of owned particles.
+ * Within a cell particles are ordered by global id and cells are visited in a fixed stencil
+ * order, so every neighbour sum is evaluated in the same order whatever the number of ranks. */
+#pragma once
+#include <sphfsi/grid.h>
+#include <sphfsi/particles.h>
+
+typedef struct _p_Cells *Cells;
+struct _p_Cells {
+  const Grid *grid;
+  PetscInt    lo[2], n[2];     /* local box of cells (global cell coordinates) */
+  PetscInt   *start, cap_cell; /* particles of local cell c: list[start[c] .. start[c+1]) */
+  PetscInt   *list, *cell, cap_part;
+  PetscInt   *nstart, *nbr, cap_nbr; /* neighbours of owned a: nbr[nstart[a] .. nstart[a+1]) */
+  PetscReal  *w, *f;                  /* per pair: W_ab and F_ab = (dW/dr)/r, so grad_a W_ab = F_ab (x_a - x_b) */
+  PetscInt    max_nbr;
+};
+
+PetscErrorCode CellsCreate(const Grid *g, Cells *c);
+PetscErrorCode CellsDestroy(Cells *c);
+/* Bin owned + ghost particles and build the neighbour list (r < 2 h_ab) of owned particles. */
+PetscErrorCode CellsBuild(Cells c, Particles P);
+/* Neighbour list and pair kernel values only, for the same binning but new positions (e.g. ISPH
+ * predictor); particles must not have left their cell's stencil. */
+PetscErrorCode CellsBuildNeighbours(Cells c, Particles P);

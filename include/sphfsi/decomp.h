@@ -1,0 +1,34 @@
+/* Domain decomposition by cells: METIS k-way partition of the cell graph weighted by particle
+ * counts; migration of particles whose cell changed owner; rebalancing past a threshold. */
+#pragma once
+#include <sphfsi/grid.h>
+#include <sphfsi/particles.h>
+#include <petscviewer.h>
+
+typedef struct _p_Decomp *Decomp;
+struct _p_Decomp {
+  MPI_Comm    comm;
+  PetscMPIInt rank, size;
+  const Grid *grid;
+  PetscMPIInt *owner;       /* owner rank of each global cell */
+  PetscReal   threshold;    /* repartition when max/mean owned particles exceeds it */
+  PetscInt    check_every;  /* steps between imbalance checks */
+  PetscInt    nrepartition; /* repartitions after the first */
+  PetscReal   imbalance;    /* at the last check */
+  PetscInt    *wcount;      /* per-cell particle counts (work) */
+};
+
+PetscErrorCode DecompCreate(MPI_Comm comm, Decomp *d);
+PetscErrorCode DecompSetFromOptions(Decomp d);
+PetscErrorCode DecompSetUp(Decomp d, const Grid *g);
+PetscErrorCode DecompDestroy(Decomp *d);
+/* New cell ownership from the current particle distribution (collective). */
+PetscErrorCode DecompPartition(Decomp d, Particles P);
+/* Send every owned particle to the owner of its cell; positions are wrapped in periodic directions.
+ * A particle outside the domain is an error naming it. Drops ghosts. */
+PetscErrorCode DecompMigrate(Decomp d, Particles P);
+/* Reorder owned particles by (cell, id): neighbours close in memory, order independent of ranks. */
+PetscErrorCode DecompSortOwned(Decomp d, Particles P);
+/* Every check_every steps: measure imbalance, repartition + migrate past the threshold. */
+PetscErrorCode DecompBalance(Decomp d, Particles P, PetscInt step, PetscBool *repartitioned);
+PetscErrorCode DecompView(Decomp d, PetscViewer v);

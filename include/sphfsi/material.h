@@ -1,0 +1,16 @@
+/* Material constants of each medium. */
+#pragma once
+#include <sphfsi/base.h>
+
+typedef struct {
+  PetscReal rho0;     /* reference density */
+  PetscReal c0;       /* artificial sound speed, Eq. 20 (WCSPH) */
+  PetscReal mu;       /* dynamic viscosity, Eq. 16 */
+  PetscReal alpha;    /* artificial viscosity, Eq. 24 (WCSPH) */
+  PetscReal delta;    /* density diffusion (delta-SPH), 0 = off */
+  PetscReal xsph;     /* XSPH epsilon, Eq. 44, 0 = off */
+} FluidMaterial;
+
+/* EOS, Eq. 20 */
+static inline PetscReal EOSPressure(const FluidMaterial *m, PetscReal rho) { return m->c0 * m->c0 * (rho - m->rho0); }
+static inline PetscReal EOSDensity(const FluidMaterial *m, PetscReal p) { return m->rho0 + p / (m->c0 * m->c0); }

@@ -1,0 +1,67 @@
+/* Particles: structure-of-arrays storage with stable global ids and a kind.
+ * Owned particles occupy [0, n); ghosts (copies of neighbours owned elsewhere or periodic images)
+ * occupy [n, n + ng).  A field exists only when a module enabled it before ParticlesSetUp. */
+#pragma once
+#include <sphfsi/base.h>
+
+typedef enum { KIND_FLUID = 0, KIND_WALL, KIND_DUMMY, KIND_SOLID, KIND_CLAMP, KIND_COUNT } ParticleKind;
+extern const char *const ParticleKindNames[];
+
+static inline PetscBool KindIsFluid(PetscInt k) { return (PetscBool)(k == KIND_FLUID); }
+static inline PetscBool KindIsWall(PetscInt k) { return (PetscBool)(k == KIND_WALL || k == KIND_DUMMY); }
+static inline PetscBool KindIsSolid(PetscInt k) { return (PetscBool)(k == KIND_SOLID || k == KIND_CLAMP); }
+
+typedef enum {
+  FIELD_X = 0, /* position (2) */
+  FIELD_V,     /* velocity (2) */
+  FIELD_RHO,   /* density */
+  FIELD_P,     /* pressure */
+  FIELD_M,     /* mass */
+  FIELD_H,     /* smoothing length */
+  FIELD_X0,    /* initial position (2): displacement probes */
+  FIELD_ACC,   /* acceleration (2) */
+  FIELD_DRHO,  /* density rate */
+  FIELD_XSPH,  /* XSPH velocity correction (2), Eq. 44 */
+  FIELD_VWALL, /* wall velocity seen by the viscous term (2) */
+  FIELD_VSTAR, /* ISPH: intermediate velocity (2) */
+  FIELD_RHOSTAR, /* ISPH: density by summation at r* */
+  FIELD_FS,    /* free-surface flag (0/1) */
+  FIELD_S,     /* solid deviatoric stress (3: xx, xy, yy) */
+  FIELD_NORMAL,  /* interface normal (2) */
+  FIELD_COUNT
+} FieldId;
+
+typedef struct {
+  const char *name;
+  PetscInt    width;
+  PetscBool   on;   /* allocated */
+  PetscBool   halo; /* sent to ghosts when the halo is built */
+  PetscReal  *a;
+} Field;
+
+typedef struct _p_Particles *Particles;
+struct _p_Particles {
+  MPI_Comm  comm;
+  PetscInt  n, ng, cap; /* owned, ghosts, capacity of every array */
+  PetscInt *id, *kind;
+  Field     f[FIELD_COUNT];
+  PetscBool setup;
+};
+
+PetscErrorCode ParticlesCreate(MPI_Comm comm, Particles *P);
+PetscErrorCode ParticlesDestroy(Particles *P);
+/* Before ParticlesSetUp: allocate this field; `halo` says whether ghosts need it. */
+PetscErrorCode ParticlesEnableField(Particles P, FieldId f, PetscBool halo);
+PetscErrorCode ParticlesSetUp(Particles P);
+/* Make room for at least `cap` particles (owned + ghosts), keeping the contents. */
+PetscErrorCode ParticlesReserve(Particles P, PetscInt cap);
+/* Append an owned particle (ghosts must be absent); other fields start at zero. */
+PetscErrorCode ParticlesAdd(Particles P, PetscInt id, ParticleKind kind, PetscReal x, PetscReal y, PetscReal m, PetscReal h, PetscReal rho);
+/* Reorder owned particles: new[i] = old[perm[i]]; drops ghosts. */
+PetscErrorCode ParticlesPermute(Particles P, const PetscInt *perm);
+/* Bytes per particle of all allocated fields (id and kind included). */
+PetscInt ParticlesBytesPerParticle(Particles P);
+PetscErrorCode ParticlesGlobalCount(Particles P, PetscInt *N);
+PetscErrorCode ParticlesView(Particles P, PetscViewer v);
+
+static inline PetscReal *PField(Particles P, FieldId f) { return P->f[f].a; }

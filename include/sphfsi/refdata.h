@@ -1,0 +1,22 @@
+/* Reference curves from ../shared/refdata (CSV with '#' comments) and time series of probes,
+ * for the errors a scene reports in summary.json. */
+#pragma once
+#include <sphfsi/sim.h>
+
+typedef struct {
+  PetscInt   n, cap;
+  PetscReal *t, *y;
+} Series;
+
+PetscErrorCode SeriesAppend(Series *s, PetscReal t, PetscReal y);
+PetscErrorCode SeriesDestroy(Series *s);
+/* Linear interpolation (clamped to the ends). */
+PetscReal SeriesAt(const Series *s, PetscReal t);
+
+/* Load columns xcol, ycol of FILE in the reference directory (-refdata_dir, $SPHFSI_REFDATA, or
+ * ../shared/refdata). On rank 0 only; *found says whether the file was there. */
+PetscErrorCode RefDataLoad(Sim sim, const char *file, const char *xcol, const char *ycol, Series *ref, PetscBool *found);
+
+/* Relative errors |sim - ref| / |ref| at the reference points with ref.t in [t0, t1], where the
+ * simulated series is sampled at ref.t * tscale and its values divided by yscale. */
+PetscErrorCode SeriesCompare(const Series *sim, const Series *ref, PetscReal tscale, PetscReal yscale, PetscReal t0, PetscReal t1, PetscBool relative, PetscReal *rms, PetscReal *max, PetscInt *npts);

@@ -1,0 +1,41 @@
+/* Scenes: the geometry and physics of each case.  A scene reads its options, sets the domain and
+ * materials, and adds particles; sim does the rest. */
+#pragma once
+#include <sphfsi/sim.h>
+
+#define SCENE_MAX_PROBES 8
+
+struct _SceneOps {
+  const char *name;
+  const char *help;
+  /* Read the scene's options; set sim->dx, t_end (unless given), dom_lo/hi, periodic, g,
+   * material defaults and v_ref. */
+  PetscErrorCode (*create)(Sim sim);
+  /* Add the particles (fields are allocated by then). */
+  PetscErrorCode (*populate)(Sim sim);
+  PetscInt    nprobes;
+  const char *probe_names[SCENE_MAX_PROBES];
+  /* Probe values (collective; every rank gets them). */
+  PetscErrorCode (*probe)(Sim sim, PetscReal *vals);
+  /* Errors against the scene's reference, as JSON members ("name": value, ...) (rank 0 writes). */
+  PetscErrorCode (*errors)(Sim sim, FILE *json);
+  PetscErrorCode (*destroy)(Sim sim);
+};
+
+PetscErrorCode SceneFind(const char *name, const SceneOps **ops);
+PetscErrorCode SceneListNames(char *buf, size_t len);
+
+/* Helpers for scenes */
+/* Add an nx x ny lattice of spacing dx starting at cell centre (x0, y0), ids from sim->next_id;
+ * each rank keeps every size-th particle (migration sorts them out later). */
+PetscErrorCode SceneAddLattice(Sim sim, ParticleKind kind, PetscReal x0, PetscReal y0, PetscInt nx, PetscInt ny, PetscReal dx, PetscReal rho0);
+/* Walls of `rows` rows (first row KIND_WALL, the rest KIND_DUMMY) around the rectangle
+ * [x0, x1] x [y0, ...): floor below y0, side walls left of x0 and right of x1 up to y1. */
+PetscErrorCode SceneAddTank(Sim sim, PetscReal x0, PetscReal x1, PetscReal y0, PetscReal y1, PetscReal dx, PetscInt rows, PetscBool left, PetscBool right);
+/* Fluid density of a hydrostatic column with free surface at y_surface (WCSPH EOS, Eq. 20). */
+PetscErrorCode SceneHydrostaticDensity(Sim sim, PetscReal y_surface);
+/* Shepard interpolation of the fluid pressure at a point, each neighbour's value carried to the
+ * point hydrostatically: p(x0) = sum (p_b + rho_b g.(x0 - x_b)) W / sum W (collective). */
+PetscErrorCode SceneProbePressure(Sim sim, const PetscReal x0[2], PetscReal *p);
+/* Largest fluid speed (collective). */
+PetscErrorCode SceneMaxSpeed(Sim sim, PetscReal *vmax);

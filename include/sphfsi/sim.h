@@ -1,0 +1,66 @@
+/* The simulation: owns the particles and every module, and is the only place that knows the order
+ * of a time step. */
+#pragma once
+#include <sphfsi/grid.h>
+#include <sphfsi/particles.h>
+#include <sphfsi/cells.h>
+#include <sphfsi/decomp.h>
+#include <sphfsi/halo.h>
+#include <sphfsi/material.h>
+#include <petscviewer.h>
+
+typedef enum { FLUID_WCSPH = 0, FLUID_ISPH } FluidScheme;
+extern const char *const FluidSchemes[];
+
+typedef enum { STAGE_NEIGHBOUR, STAGE_HALO, STAGE_PHYSICS, STAGE_OUTPUT, STAGE_COUNT } SimStage;
+
+typedef struct _p_Sim *Sim;
+typedef struct _SceneOps SceneOps;
+
+struct _p_Sim {
+  MPI_Comm    comm;
+  PetscMPIInt rank, size;
+  /* scene and scheme */
+  const SceneOps *scene;
+  void           *scene_ctx;
+  FluidScheme     fluid;
+  /* machinery */
+  Grid      grid;
+  Particles P;
+  Cells     cells;
+  Decomp    decomp;
+  Halo      halo;
+  /* physics */
+  PetscReal     g[2];
+  FluidMaterial fl;
+  PetscReal     v_ref;      /* expected maximum speed: c0 = 10 v_ref when -c0 is not given */
+  PetscReal     dx, h_max;  /* finest spacing, largest smoothing length */
+  PetscReal     dom_lo[2], dom_hi[2];
+  PetscBool     periodic[2];
+  /* time */
+  PetscReal t, t_end, dt, dt_fixed, cfl, dt_min;
+  PetscInt  step, max_steps;
+  /* output */
+  char      outdir[PETSC_MAX_PATH_LEN];
+  PetscReal out_interval, next_out, probe_interval, next_probe;
+  PetscInt  snap, progress_every;
+  FILE     *probes;
+  PetscReal *snap_times;
+  PetscInt   snap_cap;
+  /* statistics */
+  PetscLogDouble wall_start, wall_loop;
+  PetscReal      particle_steps, mass0, mass;
+  PetscInt       nparticles;
+  PetscLogStage  stage[STAGE_COUNT];
+  PetscInt       next_id; /* global ids handed out by the scene */
+};
+
+PetscErrorCode SimCreate(MPI_Comm comm, Sim *sim);
+PetscErrorCode SimSetFromOptions(Sim sim);
+PetscErrorCode SimSetUp(Sim sim);
+PetscErrorCode SimRun(Sim sim);
+PetscErrorCode SimDestroy(Sim *sim);
+/* Migrate, rebalance, sort, build ghosts, cells and neighbour lists: after particles moved. */
+PetscErrorCode SimRebuild(Sim sim);
+/* Total mass of owned particles of one kind (collective). */
+PetscErrorCode SimTotalMass(Sim sim, PetscInt kind, PetscReal *M);

@@ -1,0 +1,43 @@
+#include <sphfsi/boundary.h>
+
+PetscErrorCode BoundaryWallState(Sim sim)
+{
+  Particles        P = sim->P;
+  Cells            C = sim->cells;
+  const PetscReal *x = PField(P, FIELD_X), *v = PField(P, FIELD_V);
+  PetscReal       *p = PField(P, FIELD_P), *rho = PField(P, FIELD_RHO), *vw = PField(P, FIELD_VWALL);
+  const FieldId    refresh[] = {FIELD_P, FIELD_RHO, FIELD_VWALL};
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscLogStagePush(sim->stage[STAGE_PHYSICS]));
+  for (PetscInt a = 0; a < P->n; a++) {
+    PetscReal sw = 0, sp = 0, sgx = 0, sgy = 0, svx = 0, svy = 0;
+    if (!KindIsWall(P->kind[a])) continue;
+    for (PetscInt k = C->nstart[a]; k < C->nstart[a + 1]; k++) {
+      PetscInt  b = C->nbr[k];
+      PetscReal dx, dy, w = C->w[k];
+      if (!KindIsFluid(P->kind[b])) continue;
+      dx = x[2 * a] - x[2 * b]; dy = x[2 * a + 1] - x[2 * b + 1];
+      sw += w;
+      sp += p[b] * w;
+      sgx += rho[b] * dx * w; sgy += rho[b] * dy * w;
+      svx += v[2 * b] * w; svy += v[2 * b + 1] * w;
+    }
+    if (sw > 0) {
+      /* Adami et al. 2012, Eq. 27 (static wall): p_w = (sum p_f W + g . sum rho_f r_wf W) / sum W */
+      p[a]          = (sp + sim->g[0] * sgx + sim->g[1] * sgy) / sw;
+      vw[2 * a]     = 2.0 * v[2 * a] - svx / sw;
+      vw[2 * a + 1] = 2.0 * v[2 * a + 1] - svy / sw;
+    } else {
+      p[a]          = 0;
+      vw[2 * a]     = v[2 * a];
+      vw[2 * a + 1] = v[2 * a + 1];
+    }
+    rho[a] = EOSDensity(&sim->fl, p[a]);
+  }
+  PetscCall(PetscLogStagePop());
+  PetscCall(PetscLogStagePush(sim->stage[STAGE_HALO]));
+  PetscCall(HaloRefresh(sim->halo, P, 3, refresh));
+  PetscCall(PetscLogStagePop());
+  PetscFunctionReturn(PETSC_SUCCESS);
+}

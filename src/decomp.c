@@ -1,0 +1,276 @@
+#include <sphfsi/decomp.h>
+#include <metis.h>
+
+PetscErrorCode DecompCreate(MPI_Comm comm, Decomp *d)
+{
+  PetscFunctionBeginUser;
+  PetscCall(PetscNew(d));
+  (*d)->comm        = comm;
+  (*d)->threshold   = 1.1;
+  (*d)->check_every = 20;
+  PetscCallMPI(MPI_Comm_rank(comm, &(*d)->rank));
+  PetscCallMPI(MPI_Comm_size(comm, &(*d)->size));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode DecompSetFromOptions(Decomp d)
+{
+  PetscFunctionBeginUser;
+  PetscOptionsBegin(d->comm, NULL, "Domain decomposition", "Decomp");
+  PetscCall(PetscOptionsReal("-rebalance_threshold", "Repartition when max/mean owned particles exceeds this (>= 1)", "", d->threshold, &d->threshold, NULL));
+  PetscCall(PetscOptionsInt("-rebalance_every", "Steps between load-imbalance checks (> 0)", "", d->check_every, &d->check_every, NULL));
+  PetscOptionsEnd();
+  PetscCheck(d->threshold >= 1.0, d->comm, PETSC_ERR_ARG_OUTOFRANGE, "-rebalance_threshold %g must be >= 1", (double)d->threshold);
+  PetscCheck(d->check_every > 0, d->comm, PETSC_ERR_ARG_OUTOFRANGE, "-rebalance_every %" PetscInt_FMT " must be > 0", d->check_every);
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode DecompSetUp(Decomp d, const Grid *g)
+{
+  PetscFunctionBeginUser;
+  d->grid = g;
+  PetscCall(PetscFree2(d->owner, d->wcount));
+  PetscCall(PetscCalloc2(GridNumCells(g), &d->owner, GridNumCells(g), &d->wcount));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode DecompDestroy(Decomp *d)
+{
+  PetscFunctionBeginUser;
+  if (!*d) PetscFunctionReturn(PETSC_SUCCESS);
+  PetscCall(PetscFree2((*d)->owner, (*d)->wcount));
+  PetscCall(PetscFree(*d));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* k-way partition of the cell graph (8 neighbours, periodic wrap) on rank 0.
+ * Vertex weight 8 count + 1 (empty cells nearly free); edge weight count_i + count_j + 1, a proxy
+ * for the ghosts a cut edge creates. */
+static PetscErrorCode PartitionCells(Decomp d, const PetscInt *count, PetscMPIInt *owner)
+{
+  const Grid *g = d->grid;
+  idx_t       nv = GridNumCells(g), ncon = 1, nparts = d->size, objval, *xadj, *adj, *vw, *ew, *part, ne = 0;
+  idx_t       opts[METIS_NOPTIONS];
+  int         status;
+
+  PetscFunctionBeginUser;
+  PetscCheck(nv >= d->size, PETSC_COMM_SELF, PETSC_ERR_ARG_OUTOFRANGE, "Only %d cells for %d ranks: use fewer ranks or a smaller -dx", (int)nv, d->size);
+  PetscCall(PetscMalloc5(nv + 1, &xadj, 8 * nv, &adj, nv, &vw, 8 * nv, &ew, nv, &part));
+  for (PetscInt j = 0; j < g->n[1]; j++)
+    for (PetscInt i = 0; i < g->n[0]; i++) {
+      PetscInt c = j * g->n[0] + i;
+      xadj[c] = ne;
+      vw[c]   = 8 * count[c] + 1;
+      for (PetscInt dj = -1; dj <= 1; dj++)
+        for (PetscInt di = -1; di <= 1; di++) {
+          PetscInt ii = i + di, jj = j + dj;
+          if (!di && !dj) continue;
+          if (g->periodic[0]) ii = (ii + g->n[0]) % g->n[0];
+          if (g->periodic[1]) jj = (jj + g->n[1]) % g->n[1];
+          if (ii < 0 || jj < 0 || ii >= g->n[0] || jj >= g->n[1]) continue;
+          adj[ne] = jj * g->n[0] + ii;
+          ew[ne]  = count[c] + count[adj[ne]] + 1;
+          ne++;
+        }
+    }
+  xadj[nv] = ne;
+  METIS_SetDefaultOptions(opts);
+  opts[METIS_OPTION_SEED]    = 1;
+  opts[METIS_OPTION_NUMBERING] = 0;
+  status = METIS_PartGraphKway(&nv, &ncon, xadj, adj, vw, NULL, ew, &nparts, NULL, NULL, opts, &objval, part);
+  PetscCheck(status == METIS_OK, PETSC_COMM_SELF, PETSC_ERR_LIB, "METIS_PartGraphKway failed with status %d", status);
+  for (PetscInt c = 0; c < nv; c++) owner[c] = (PetscMPIInt)part[c];
+  PetscCall(PetscFree5(xadj, adj, vw, ew, part));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode DecompPartition(Decomp d, Particles P)
+{
+  const Grid *g  = d->grid;
+  PetscInt    nc = GridNumCells(g), *gcount = NULL;
+  PetscReal  *x  = PField(P, FIELD_X);
+  PetscErrorCode ierr = PETSC_SUCCESS;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscArrayzero(d->wcount, nc));
+  for (PetscInt a = 0; a < P->n; a++) {
+    PetscReal xa[2] = {x[2 * a], x[2 * a + 1]};
+    PetscInt  c;
+    GridWrap(g, xa);
+    c = GridCellOf(g, xa);
+    if (c >= 0) d->wcount[c]++;
+  }
+  if (d->size == 1) {
+    PetscCall(PetscArrayzero(d->owner, nc));
+    PetscFunctionReturn(PETSC_SUCCESS);
+  }
+  if (!d->rank) PetscCall(PetscMalloc1(nc, &gcount));
+  PetscCallMPI(MPI_Reduce(d->wcount, gcount, (PetscMPIInt)nc, MPIU_INT, MPI_SUM, 0, d->comm));
+  if (!d->rank) {
+    ierr = PartitionCells(d, gcount, d->owner);
+    PetscCall(PetscFree(gcount));
+  }
+  PetscCallMPI(MPI_Bcast(&ierr, 1, MPI_INT, 0, d->comm));
+  PetscCheck(!ierr, d->comm, PETSC_ERR_LIB, "Partitioning the cell graph failed (see the message from rank 0)");
+  PetscCallMPI(MPI_Bcast(d->owner, (PetscMPIInt)nc, MPI_INT, 0, d->comm));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* Pack the owned particle a as a record of reals: id, kind, then every allocated field. */
+static PetscInt RecordSize(Particles P)
+{
+  PetscInt s = 2;
+  for (PetscInt f = 0; f < FIELD_COUNT; f++)
+    if (P->f[f].on) s += P->f[f].width;
+  return s;
+}
+
+static void PackRecord(Particles P, PetscInt a, PetscReal *r)
+{
+  PetscInt k = 0;
+  r[k++] = (PetscReal)P->id[a];
+  r[k++] = (PetscReal)P->kind[a];
+  for (PetscInt f = 0; f < FIELD_COUNT; f++) {
+    if (!P->f[f].on) continue;
+    for (PetscInt w = 0; w < P->f[f].width; w++) r[k++] = P->f[f].a[a * P->f[f].width + w];
+  }
+}
+
+static void UnpackRecord(Particles P, PetscInt a, const PetscReal *r)
+{
+  PetscInt k = 0;
+  P->id[a]   = (PetscInt)r[k++];
+  P->kind[a] = (PetscInt)r[k++];
+  for (PetscInt f = 0; f < FIELD_COUNT; f++) {
+    if (!P->f[f].on) continue;
+    for (PetscInt w = 0; w < P->f[f].width; w++) P->f[f].a[a * P->f[f].width + w] = r[k++];
+  }
+}
+
+static void CopyParticle(Particles P, PetscInt to, PetscInt from)
+{
+  P->id[to] = P->id[from]; P->kind[to] = P->kind[from];
+  for (PetscInt f = 0; f < FIELD_COUNT; f++) {
+    PetscInt w = P->f[f].width;
+    if (!P->f[f].on) continue;
+    for (PetscInt k = 0; k < w; k++) P->f[f].a[to * w + k] = P->f[f].a[from * w + k];
+  }
+}
+
+PetscErrorCode DecompMigrate(Decomp d, Particles P)
+{
+  const Grid  *g = d->grid;
+  PetscMPIInt  size = d->size, *scnt, *rcnt, *sdisp, *rdisp;
+  PetscInt     rs = RecordSize(P), nsend = 0, nrecv = 0, nkeep = 0, nbad = 0, gbad;
+  PetscInt    *dest;
+  PetscReal   *sbuf, *rbuf, *x = PField(P, FIELD_X);
+  MPI_Datatype rec;
+
+  PetscFunctionBeginUser;
+  P->ng = 0;
+  PetscCall(PetscMalloc1(P->n, &dest));
+  PetscCall(PetscCalloc4(size, &scnt, size, &rcnt, size + 1, &sdisp, size + 1, &rdisp));
+  for (PetscInt a = 0; a < P->n; a++) {
+    PetscInt c;
+    GridWrap(g, x + 2 * a);
+    c = GridCellOf(g, x + 2 * a);
+    if (c < 0) {
+      if (!nbad) PetscCall(PetscPrintf(PETSC_COMM_SELF, "[%d] particle id %" PetscInt_FMT " (%s) at (%g, %g) is outside the domain [%g, %g] x [%g, %g]\n", d->rank, P->id[a], ParticleKindNames[P->kind[a]], (double)x[2 * a], (double)x[2 * a + 1], (double)g->lo[0], (double)g->hi[0], (double)g->lo[1], (double)g->hi[1]));
+      nbad++;
+      dest[a] = d->rank;
+      continue;
+    }
+    dest[a] = d->owner[c];
+    if (dest[a] != d->rank) { scnt[dest[a]]++; nsend++; }
+  }
+  PetscCall(MPIU_Allreduce(&nbad, &gbad, 1, MPIU_INT, MPI_SUM, d->comm));
+  if (gbad) {
+    PetscCall(PetscFree(dest));
+    PetscCall(PetscFree4(scnt, rcnt, sdisp, rdisp));
+    SETERRQ(d->comm, PETSC_ERR_NOT_CONVERGED, "%" PetscInt_FMT " particle(s) left the domain: the run is unstable (try a smaller -dt or -cfl) or the geometry lets particles escape", gbad);
+  }
+  if (size == 1) { PetscCall(PetscFree(dest)); PetscCall(PetscFree4(scnt, rcnt, sdisp, rdisp)); PetscFunctionReturn(PETSC_SUCCESS); }
+  PetscCallMPI(MPI_Alltoall(scnt, 1, MPI_INT, rcnt, 1, MPI_INT, d->comm));
+  for (PetscMPIInt r = 0; r < size; r++) { sdisp[r + 1] = sdisp[r] + scnt[r]; rdisp[r + 1] = rdisp[r] + rcnt[r]; }
+  nrecv = rdisp[size];
+  PetscCall(PetscMalloc2(nsend * rs + 1, &sbuf, nrecv * rs + 1, &rbuf));
+  {
+    PetscMPIInt *fill;
+    PetscCall(PetscMalloc1(size, &fill));
+    for (PetscMPIInt r = 0; r < size; r++) fill[r] = sdisp[r];
+    for (PetscInt a = 0; a < P->n; a++) {
+      if (dest[a] == d->rank) { if (nkeep != a) CopyParticle(P, nkeep, a); nkeep++; continue; }
+      PackRecord(P, a, sbuf + (fill[dest[a]]++) * rs);
+    }
+    PetscCall(PetscFree(fill));
+  }
+  PetscCallMPI(MPI_Type_contiguous((PetscMPIInt)rs, MPIU_REAL, &rec));
+  PetscCallMPI(MPI_Type_commit(&rec));
+  PetscCallMPI(MPI_Alltoallv(sbuf, scnt, sdisp, rec, rbuf, rcnt, rdisp, rec, d->comm));
+  PetscCallMPI(MPI_Type_free(&rec));
+  P->n = nkeep;
+  PetscCall(ParticlesReserve(P, nkeep + nrecv));
+  for (PetscInt k = 0; k < nrecv; k++) UnpackRecord(P, nkeep + k, rbuf + k * rs);
+  P->n = nkeep + nrecv;
+  PetscCall(PetscFree2(sbuf, rbuf));
+  PetscCall(PetscFree(dest));
+  PetscCall(PetscFree4(scnt, rcnt, sdisp, rdisp));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+static int CompareKeys(const void *a, const void *b, void *ctx)
+{
+  PetscInt64 ka = *(const PetscInt64 *)a, kb = *(const PetscInt64 *)b;
+  return ka < kb ? -1 : (ka > kb ? 1 : 0);
+}
+
+PetscErrorCode DecompSortOwned(Decomp d, Particles P)
+{
+  PetscInt64 *key, stride;
+  PetscInt   *perm, maxid = 0, n = P->n;
+  PetscBool   sorted = PETSC_TRUE;
+
+  PetscFunctionBeginUser;
+  for (PetscInt a = 0; a < n; a++) maxid = PetscMax(maxid, P->id[a]);
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &maxid, 1, MPIU_INT, MPI_MAX, d->comm));
+  stride = (PetscInt64)maxid + 1;
+  PetscCall(PetscMalloc2(n, &key, n, &perm));
+  for (PetscInt a = 0; a < n; a++) {
+    key[a]  = (PetscInt64)GridCellOf(d->grid, PField(P, FIELD_X) + 2 * a) * stride + P->id[a];
+    perm[a] = a;
+    if (a && key[a] < key[a - 1]) sorted = PETSC_FALSE;
+  }
+  if (!sorted) {
+    /* timsort: nearly sorted input (the usual case between steps) costs O(n) */
+    PetscCall(PetscTimSortWithArray(n, key, sizeof(PetscInt64), perm, sizeof(PetscInt), CompareKeys, NULL));
+    PetscCall(ParticlesPermute(P, perm));
+  }
+  PetscCall(PetscFree2(key, perm));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode DecompBalance(Decomp d, Particles P, PetscInt step, PetscBool *repartitioned)
+{
+  PetscInt nmax, nsum;
+
+  PetscFunctionBeginUser;
+  *repartitioned = PETSC_FALSE;
+  if (d->size == 1 || step % d->check_every) PetscFunctionReturn(PETSC_SUCCESS);
+  PetscCall(MPIU_Allreduce(&P->n, &nmax, 1, MPIU_INT, MPI_MAX, d->comm));
+  PetscCall(MPIU_Allreduce(&P->n, &nsum, 1, MPIU_INT, MPI_SUM, d->comm));
+  d->imbalance = nsum ? (PetscReal)nmax * d->size / nsum : 1.0;
+  if (d->imbalance <= d->threshold) PetscFunctionReturn(PETSC_SUCCESS);
+  PetscCall(PetscInfo(NULL, "Step %" PetscInt_FMT ": imbalance %.3f > %.3f, repartitioning\n", step, (double)d->imbalance, (double)d->threshold));
+  PetscCall(DecompPartition(d, P));
+  PetscCall(DecompMigrate(d, P));
+  d->nrepartition++;
+  *repartitioned = PETSC_TRUE;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode DecompView(Decomp d, PetscViewer v)
+{
+  PetscFunctionBeginUser;
+  PetscCall(PetscViewerASCIIPrintf(v, "Decomposition: %d rank(s), %" PetscInt_FMT " x %" PetscInt_FMT " cells of %g m, rebalance past %.2f (checked every %" PetscInt_FMT " steps), %" PetscInt_FMT " repartition(s)\n", d->size, d->grid->n[0], d->grid->n[1], (double)d->grid->cs, (double)d->threshold, d->check_every, d->nrepartition));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}

@@ -1,0 +1,213 @@
+#include <sphfsi/io.h>
+#include <sphfsi/scene.h>
+#include <sphfsi/wcsph.h>
+#include <petscviewerhdf5.h>
+#include <sys/stat.h>
+#include <errno.h>
+
+/* mkdir -p on rank 0; every rank learns whether it worked */
+static PetscErrorCode MakeDir(Sim sim, const char *dir)
+{
+  int err = 0;
+  PetscFunctionBeginUser;
+  if (!sim->rank) {
+    char path[PETSC_MAX_PATH_LEN];
+    PetscCall(PetscStrncpy(path, dir, sizeof(path)));
+    for (char *p = path + 1; *p; p++)
+      if (*p == '/') { *p = 0; if (mkdir(path, 0775) && errno != EEXIST) err = errno; *p = '/'; }
+    if (mkdir(path, 0775) && errno != EEXIST) err = errno;
+    if (!err) {
+      char probe[PETSC_MAX_PATH_LEN];
+      FILE *f;
+      PetscCall(PetscSNPrintf(probe, sizeof(probe), "%s/.write_test", path));
+      if (!(f = fopen(probe, "w"))) err = errno;
+      else { fclose(f); remove(probe); }
+    }
+  }
+  PetscCallMPI(MPI_Bcast(&err, 1, MPI_INT, 0, sim->comm));
+  PetscCheck(!err, sim->comm, PETSC_ERR_FILE_OPEN, "Cannot create or write the output directory %s (%s): choose another -output_dir", dir, strerror(err));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode IOSetUp(Sim sim)
+{
+  PetscFunctionBeginUser;
+  PetscCall(MakeDir(sim, sim->outdir));
+  if (!sim->rank) {
+    char path[PETSC_MAX_PATH_LEN];
+    PetscCall(PetscSNPrintf(path, sizeof(path), "%s/probes.csv", sim->outdir));
+    sim->probes = fopen(path, "w");
+    PetscCheck(sim->probes, PETSC_COMM_SELF, PETSC_ERR_FILE_OPEN, "Cannot open %s for writing", path);
+    fprintf(sim->probes, "t");
+    for (PetscInt k = 0; k < sim->scene->nprobes; k++) fprintf(sim->probes, ",%s", sim->scene->probe_names[k]);
+    fprintf(sim->probes, "\n");
+  }
+  sim->next_probe = 0;
+  sim->next_out   = 0;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode IOFinalize(Sim sim)
+{
+  PetscFunctionBeginUser;
+  if (sim->probes) fclose(sim->probes);
+  sim->probes = NULL;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+static PetscErrorCode WriteField(PetscViewer v, Sim sim, const char *name, PetscReal *a, PetscInt width)
+{
+  Vec vec;
+  PetscFunctionBeginUser;
+  PetscCall(VecCreateMPIWithArray(sim->comm, width, width * sim->P->n, PETSC_DECIDE, a, &vec));
+  PetscCall(PetscObjectSetName((PetscObject)vec, name));
+  PetscCall(VecView(vec, v));
+  PetscCall(VecDestroy(&vec));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+static PetscErrorCode WriteInts(PetscViewer v, Sim sim, const char *name, PetscInt *a)
+{
+  IS is;
+  PetscFunctionBeginUser;
+  PetscCall(ISCreateGeneral(sim->comm, sim->P->n, a, PETSC_USE_POINTER, &is));
+  PetscCall(PetscObjectSetName((PetscObject)is, name));
+  PetscCall(ISView(is, v));
+  PetscCall(ISDestroy(&is));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* Collective: one file, every owned particle's id, kind and fields; written under a temporary
+ * name and renamed when complete. */
+PetscErrorCode IOWriteParticles(Sim sim, const char *path)
+{
+  PetscViewer v;
+  char        tmp[PETSC_MAX_PATH_LEN];
+  Particles   P = sim->P;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscSNPrintf(tmp, sizeof(tmp), "%s.part", path));
+  PetscCall(PetscViewerHDF5Open(sim->comm, tmp, FILE_MODE_WRITE, &v));
+  PetscCall(WriteInts(v, sim, "id", P->id));
+  PetscCall(WriteInts(v, sim, "kind", P->kind));
+  {
+    const FieldId out[] = {FIELD_X, FIELD_V, FIELD_P, FIELD_RHO, FIELD_M, FIELD_H, FIELD_S};
+    for (size_t k = 0; k < sizeof(out) / sizeof(out[0]); k++)
+      if (P->f[out[k]].on) PetscCall(WriteField(v, sim, P->f[out[k]].name, P->f[out[k]].a, P->f[out[k]].width));
+  }
+  PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "time", PETSC_REAL, &sim->t));
+  PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "step", PETSC_INT, &sim->step));
+  PetscCall(PetscViewerDestroy(&v));
+  if (!sim->rank) PetscCheck(!rename(tmp, path), PETSC_COMM_SELF, PETSC_ERR_FILE_WRITE, "Cannot rename %s to %s", tmp, path);
+  PetscCallMPI(MPI_Barrier(sim->comm));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* particles.xmf: a temporal collection of every snapshot so far (rewritten each time). */
+static PetscErrorCode WriteXDMF(Sim sim)
+{
+  char  path[PETSC_MAX_PATH_LEN], tmp[PETSC_MAX_PATH_LEN];
+  FILE *f;
+  const PetscInt N = sim->nparticles;
+
+  PetscFunctionBeginUser;
+  if (sim->rank) PetscFunctionReturn(PETSC_SUCCESS);
+  PetscCall(PetscSNPrintf(path, sizeof(path), "%s/particles.xmf", sim->outdir));
+  PetscCall(PetscSNPrintf(tmp, sizeof(tmp), "%s.part", path));
+  f = fopen(tmp, "w");
+  PetscCheck(f, PETSC_COMM_SELF, PETSC_ERR_FILE_OPEN, "Cannot write %s", tmp);
+  fprintf(f, "<?xml version=\"1.0\" ?>\n<Xdmf Version=\"2.0\">\n <Domain>\n  <Grid Name=\"particles\" GridType=\"Collection\" CollectionType=\"Temporal\">\n");
+  for (PetscInt s = 0; s < sim->snap; s++) {
+    char h5[64];
+    PetscCall(PetscSNPrintf(h5, sizeof(h5), "particles_%05" PetscInt_FMT ".h5", s));
+    fprintf(f, "   <Grid Name=\"step%05d\" GridType=\"Uniform\">\n    <Time Value=\"%.9g\"/>\n", (int)s, (double)sim->snap_times[s]);
+    fprintf(f, "    <Topology TopologyType=\"Polyvertex\" NumberOfElements=\"%d\"/>\n", (int)N);
+    fprintf(f, "    <Geometry GeometryType=\"XY\">\n     <DataItem Dimensions=\"%d 2\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s:/x</DataItem>\n    </Geometry>\n", (int)N, h5);
+    fprintf(f, "    <Attribute Name=\"id\" Center=\"Node\"><DataItem Dimensions=\"%d\" NumberType=\"Int\" Precision=\"4\" Format=\"HDF\">%s:/id</DataItem></Attribute>\n", (int)N, h5);
+    fprintf(f, "    <Attribute Name=\"kind\" Center=\"Node\"><DataItem Dimensions=\"%d\" NumberType=\"Int\" Precision=\"4\" Format=\"HDF\">%s:/kind</DataItem></Attribute>\n", (int)N, h5);
+    fprintf(f, "    <Attribute Name=\"v\" AttributeType=\"Vector\" Center=\"Node\"><DataItem Dimensions=\"%d 2\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s:/v</DataItem></Attribute>\n", (int)N, h5);
+    {
+      const char *scal[] = {"p", "rho", "m", "h"};
+      for (int k = 0; k < 4; k++)
+        fprintf(f, "    <Attribute Name=\"%s\" Center=\"Node\"><DataItem Dimensions=\"%d\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s:/%s</DataItem></Attribute>\n", scal[k], (int)N, h5, scal[k]);
+    }
+    if (sim->P->f[FIELD_S].on)
+      fprintf(f, "    <Attribute Name=\"stress\" AttributeType=\"Vector\" Center=\"Node\"><DataItem Dimensions=\"%d 3\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s:/stress</DataItem></Attribute>\n", (int)N, h5);
+    fprintf(f, "   </Grid>\n");
+  }
+  fprintf(f, "  </Grid>\n </Domain>\n</Xdmf>\n");
+  fclose(f);
+  PetscCheck(!rename(tmp, path), PETSC_COMM_SELF, PETSC_ERR_FILE_WRITE, "Cannot rename %s", tmp);
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode IOSnapshot(Sim sim)
+{
+  char path[PETSC_MAX_PATH_LEN];
+  PetscFunctionBeginUser;
+  PetscCall(PetscLogStagePush(sim->stage[STAGE_OUTPUT]));
+  PetscCall(WCSPHPressure(sim)); /* pressure of the stored density */
+  PetscCall(PetscSNPrintf(path, sizeof(path), "%s/particles_%05" PetscInt_FMT ".h5", sim->outdir, sim->snap));
+  PetscCall(IOWriteParticles(sim, path));
+  if (sim->snap >= sim->snap_cap) {
+    PetscReal *t;
+    sim->snap_cap = 2 * sim->snap_cap + 16;
+    PetscCall(PetscMalloc1(sim->snap_cap, &t));
+    if (sim->snap) PetscCall(PetscArraycpy(t, sim->snap_times, sim->snap));
+    PetscCall(PetscFree(sim->snap_times));
+    sim->snap_times = t;
+  }
+  sim->snap_times[sim->snap++] = sim->t;
+  PetscCall(WriteXDMF(sim));
+  while (sim->next_out <= sim->t + 1e-12 * sim->t_end) sim->next_out += sim->out_interval;
+  PetscCall(PetscLogStagePop());
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode IOProbes(Sim sim)
+{
+  PetscReal vals[SCENE_MAX_PROBES];
+  PetscFunctionBeginUser;
+  PetscCall(PetscLogStagePush(sim->stage[STAGE_OUTPUT]));
+  PetscCall(sim->scene->probe(sim, vals));
+  if (sim->probes) {
+    fprintf(sim->probes, "%.9g", (double)sim->t);
+    for (PetscInt k = 0; k < sim->scene->nprobes; k++) fprintf(sim->probes, ",%.9g", (double)vals[k]);
+    fprintf(sim->probes, "\n");
+    fflush(sim->probes);
+  }
+  if (sim->probe_interval > 0)
+    while (sim->next_probe <= sim->t + 1e-12 * sim->t_end) sim->next_probe += sim->probe_interval;
+  PetscCall(PetscLogStagePop());
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode IOSummary(Sim sim)
+{
+  char  path[PETSC_MAX_PATH_LEN], tmp[PETSC_MAX_PATH_LEN];
+  FILE *f = NULL;
+  PetscFunctionBeginUser;
+  if (!sim->rank) {
+    PetscCall(PetscSNPrintf(path, sizeof(path), "%s/summary.json", sim->outdir));
+    PetscCall(PetscSNPrintf(tmp, sizeof(tmp), "%s.part", path));
+    f = fopen(tmp, "w");
+    PetscCheck(f, PETSC_COMM_SELF, PETSC_ERR_FILE_OPEN, "Cannot write %s", tmp);
+    fprintf(f, "{\n  \"case\": \"%s\",\n  \"fluid\": \"%s\",\n  \"ranks\": %d,\n", sim->scene->name, FluidSchemes[sim->fluid], sim->size);
+    fprintf(f, "  \"particles\": %d,\n  \"steps\": %d,\n  \"t_end\": %.9g,\n  \"dx\": %.9g,\n", (int)sim->nparticles, (int)sim->step, (double)sim->t, (double)sim->dx);
+    fprintf(f, "  \"wall_s\": %.6g,\n  \"particle_steps_per_s\": %.6g,\n", (double)sim->wall_loop, (double)(sim->particle_steps / PetscMax(sim->wall_loop, 1e-9)));
+    fprintf(f, "  \"ksp_its_mean\": null,\n  \"ksp_its_max\": null,\n");
+    fprintf(f, "  \"mass_rel_drift\": %.6g,\n", (double)(sim->mass0 > 0 ? (sim->mass - sim->mass0) / sim->mass0 : 0));
+    fprintf(f, "  \"c0\": %.6g,\n  \"bytes_per_particle\": %d,\n  \"repartitions\": %d,\n", (double)sim->fl.c0, (int)ParticlesBytesPerParticle(sim->P), (int)sim->decomp->nrepartition);
+    fprintf(f, "  \"fields\": [");
+    for (PetscInt k = 0, first = 1; k < FIELD_COUNT; k++)
+      if (sim->P->f[k].on) { fprintf(f, "%s\"%s\"", first ? "" : ", ", sim->P->f[k].name); first = 0; }
+    fprintf(f, "],\n  \"errors\": {");
+  }
+  if (sim->scene->errors) PetscCall(sim->scene->errors(sim, f));
+  if (!sim->rank) {
+    fprintf(f, "}\n}\n");
+    fclose(f);
+    PetscCheck(!rename(tmp, path), PETSC_COMM_SELF, PETSC_ERR_FILE_WRITE, "Cannot rename %s", tmp);
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}

@@ -1,0 +1,95 @@
+#include <sphfsi/refdata.h>
+
+PetscErrorCode SeriesAppend(Series *s, PetscReal t, PetscReal y)
+{
+  PetscFunctionBeginUser;
+  if (s->n == s->cap) {
+    PetscReal *nt, *ny;
+    s->cap = 2 * s->cap + 64;
+    PetscCall(PetscMalloc2(s->cap, &nt, s->cap, &ny));
+    if (s->n) { PetscCall(PetscArraycpy(nt, s->t, s->n)); PetscCall(PetscArraycpy(ny, s->y, s->n)); }
+    PetscCall(PetscFree2(s->t, s->y));
+    s->t = nt; s->y = ny;
+  }
+  s->t[s->n] = t; s->y[s->n] = y; s->n++;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode SeriesDestroy(Series *s)
+{
+  PetscFunctionBeginUser;
+  PetscCall(PetscFree2(s->t, s->y));
+  s->n = s->cap = 0;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscReal SeriesAt(const Series *s, PetscReal t)
+{
+  PetscInt lo = 0, hi = s->n - 1;
+  if (!s->n) return 0;
+  if (t <= s->t[0]) return s->y[0];
+  if (t >= s->t[hi]) return s->y[hi];
+  while (hi - lo > 1) { PetscInt mid = (lo + hi) / 2; if (s->t[mid] <= t) lo = mid; else hi = mid; }
+  return s->y[lo] + (s->y[hi] - s->y[lo]) * (t - s->t[lo]) / (s->t[hi] - s->t[lo]);
+}
+
+PetscErrorCode RefDataLoad(Sim sim, const char *file, const char *xcol, const char *ycol, Series *ref, PetscBool *found)
+{
+  char        dir[PETSC_MAX_PATH_LEN] = "../shared/refdata", path[PETSC_MAX_PATH_LEN], line[4096];
+  const char *env = getenv("SPHFSI_REFDATA");
+  FILE       *f;
+  int         ix = -1, iy = -1;
+
+  PetscFunctionBeginUser;
+  *found = PETSC_FALSE;
+  if (env) PetscCall(PetscStrncpy(dir, env, sizeof(dir)));
+  PetscCall(PetscOptionsGetString(NULL, NULL, "-refdata_dir", dir, sizeof(dir), NULL));
+  if (sim->rank) PetscFunctionReturn(PETSC_SUCCESS);
+  PetscCall(PetscSNPrintf(path, sizeof(path), "%s/%s", dir, file));
+  if (!(f = fopen(path, "r"))) {
+    PetscCall(PetscInfo(NULL, "Reference %s not found: no errors reported against it\n", path));
+    PetscFunctionReturn(PETSC_SUCCESS);
+  }
+  while (fgets(line, sizeof(line), f)) {
+    char *tok, *save = NULL;
+    int   col = 0;
+    double vx = 0, vy = 0;
+    if (line[0] == '#' || line[0] == '\n') continue;
+    if (ix < 0) { /* header */
+      for (tok = strtok_r(line, ",\r\n", &save); tok; tok = strtok_r(NULL, ",\r\n", &save), col++) {
+        while (*tok == ' ' || *tok == '"') tok++;
+        if (!strncmp(tok, xcol, strlen(xcol)) && (tok[strlen(xcol)] == 0 || tok[strlen(xcol)] == '"')) ix = col;
+        if (!strncmp(tok, ycol, strlen(ycol)) && (tok[strlen(ycol)] == 0 || tok[strlen(ycol)] == '"')) iy = col;
+      }
+      if (ix < 0 || iy < 0) break;
+      continue;
+    }
+    for (tok = strtok_r(line, ",\r\n", &save); tok; tok = strtok_r(NULL, ",\r\n", &save), col++) {
+      if (col == ix) vx = atof(tok);
+      if (col == iy) vy = atof(tok);
+    }
+    PetscCall(SeriesAppend(ref, vx, vy));
+  }
+  fclose(f);
+  *found = (PetscBool)(ix >= 0 && iy >= 0 && ref->n > 0);
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode SeriesCompare(const Series *sim, const Series *ref, PetscReal tscale, PetscReal yscale, PetscReal t0, PetscReal t1, PetscBool relative, PetscReal *rms, PetscReal *max, PetscInt *npts)
+{
+  PetscReal s2 = 0;
+  PetscFunctionBeginUser;
+  *max = 0; *npts = 0;
+  for (PetscInt k = 0; k < ref->n; k++) {
+    PetscReal e;
+    if (ref->t[k] < t0 || ref->t[k] > t1) continue;
+    e = SeriesAt(sim, ref->t[k] * tscale) / yscale - ref->y[k];
+    if (relative) e /= PetscAbsReal(ref->y[k]);
+    e = PetscAbsReal(e);
+    s2 += e * e;
+    *max = PetscMax(*max, e);
+    (*npts)++;
+  }
+  *rms = *npts ? PetscSqrtReal(s2 / *npts) : 0;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}

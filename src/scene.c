@@ -1,0 +1,110 @@
+#include <sphfsi/scene.h>
+#include <sphfsi/kernel.h>
+
+extern const SceneOps SceneHydrostatic, SceneDamBreak;
+static const SceneOps *const Scenes[] = {&SceneHydrostatic, &SceneDamBreak};
+#define NSCENES ((PetscInt)(sizeof(Scenes) / sizeof(Scenes[0])))
+
+PetscErrorCode SceneFind(const char *name, const SceneOps **ops)
+{
+  PetscFunctionBeginUser;
+  *ops = NULL;
+  for (PetscInt k = 0; k < NSCENES; k++) {
+    PetscBool eq;
+    PetscCall(PetscStrcmp(name, Scenes[k]->name, &eq));
+    if (eq) *ops = Scenes[k];
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode SceneListNames(char *buf, size_t len)
+{
+  PetscFunctionBeginUser;
+  buf[0] = 0;
+  for (PetscInt k = 0; k < NSCENES; k++) {
+    PetscCall(PetscStrlcat(buf, Scenes[k]->name, len));
+    if (k < NSCENES - 1) PetscCall(PetscStrlcat(buf, ", ", len));
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+static PetscErrorCode AddOne(Sim sim, ParticleKind kind, PetscReal x, PetscReal y, PetscReal dx, PetscReal rho0)
+{
+  PetscInt id = sim->next_id++;
+  PetscFunctionBeginUser;
+  if (id % sim->size == sim->rank) PetscCall(ParticlesAdd(sim->P, id, kind, x, y, rho0 * dx * dx, 1.3 * dx, rho0));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode SceneAddLattice(Sim sim, ParticleKind kind, PetscReal x0, PetscReal y0, PetscInt nx, PetscInt ny, PetscReal dx, PetscReal rho0)
+{
+  PetscFunctionBeginUser;
+  for (PetscInt j = 0; j < ny; j++)
+    for (PetscInt i = 0; i < nx; i++) PetscCall(AddOne(sim, kind, x0 + i * dx, y0 + j * dx, dx, rho0));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode SceneAddTank(Sim sim, PetscReal x0, PetscReal x1, PetscReal y0, PetscReal y1, PetscReal dx, PetscInt rows, PetscBool left, PetscBool right)
+{
+  PetscInt  nx = RoundToInt((x1 - x0) / dx), ny = RoundToInt((y1 - y0) / dx);
+  PetscInt  il = left ? -rows : 0, ir = nx + (right ? rows : 0);
+  PetscFunctionBeginUser;
+  /* floor (with the corners) */
+  for (PetscInt k = 0; k < rows; k++)
+    for (PetscInt i = il; i < ir; i++) {
+      PetscInt layer = PetscMax(k, PetscMax(i < 0 ? -i - 1 : 0, i >= nx ? i - nx : 0));
+      PetscCall(AddOne(sim, layer ? KIND_DUMMY : KIND_WALL, x0 + (i + 0.5) * dx, y0 - (k + 0.5) * dx, dx, sim->fl.rho0));
+    }
+  /* side walls */
+  for (PetscInt j = 0; j < ny; j++)
+    for (PetscInt k = 0; k < rows; k++) {
+      if (left) PetscCall(AddOne(sim, k ? KIND_DUMMY : KIND_WALL, x0 - (k + 0.5) * dx, y0 + (j + 0.5) * dx, dx, sim->fl.rho0));
+      if (right) PetscCall(AddOne(sim, k ? KIND_DUMMY : KIND_WALL, x0 + (nx + k + 0.5) * dx, y0 + (j + 0.5) * dx, dx, sim->fl.rho0));
+    }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode SceneHydrostaticDensity(Sim sim, PetscReal y_surface)
+{
+  Particles  P = sim->P;
+  PetscReal *x = PField(P, FIELD_X), *rho = PField(P, FIELD_RHO), *p = PField(P, FIELD_P);
+  PetscFunctionBeginUser;
+  for (PetscInt a = 0; a < P->n; a++) {
+    if (!KindIsFluid(P->kind[a])) continue;
+    p[a]   = sim->fl.rho0 * (-sim->g[1]) * (y_surface - x[2 * a + 1]);
+    rho[a] = EOSDensity(&sim->fl, p[a]);
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode SceneProbePressure(Sim sim, const PetscReal x0[2], PetscReal *pval)
+{
+  Particles  P = sim->P;
+  PetscReal *x = PField(P, FIELD_X), *p = PField(P, FIELD_P), *rho = PField(P, FIELD_RHO), *h = PField(P, FIELD_H);
+  PetscReal  s[2] = {0, 0};
+  PetscFunctionBeginUser;
+  for (PetscInt a = 0; a < P->n; a++) {
+    PetscReal dx, dy, w;
+    if (!KindIsFluid(P->kind[a])) continue;
+    dx = x0[0] - x[2 * a]; dy = x0[1] - x[2 * a + 1];
+    w  = KernelW(PetscSqrtReal(dx * dx + dy * dy), h[a]);
+    if (w <= 0) continue;
+    s[0] += w * (p[a] + rho[a] * (sim->g[0] * dx + sim->g[1] * dy));
+    s[1] += w;
+  }
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, s, 2, MPIU_REAL, MPI_SUM, sim->comm));
+  *pval = s[1] > 0 ? s[0] / s[1] : 0;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode SceneMaxSpeed(Sim sim, PetscReal *vmax)
+{
+  Particles  P = sim->P;
+  PetscReal *v = PField(P, FIELD_V), m = 0;
+  PetscFunctionBeginUser;
+  for (PetscInt a = 0; a < P->n; a++)
+    if (KindIsFluid(P->kind[a])) m = PetscMax(m, v[2 * a] * v[2 * a] + v[2 * a + 1] * v[2 * a + 1]);
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &m, 1, MPIU_REAL, MPIU_MAX, sim->comm));
+  *vmax = PetscSqrtReal(m);
+  PetscFunctionReturn(PETSC_SUCCESS);
+}

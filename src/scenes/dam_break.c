@@ -1,0 +1,118 @@
+/* Collapse of a water column of width a and height 2a (Martin & Moyce 1952) in a tank. */
+#include <sphfsi/scene.h>
+#include <sphfsi/refdata.h>
+
+typedef struct {
+  PetscReal a, H, L, top;
+  PetscInt  rows;
+  Series    front, height;
+} DamBreak;
+
+static PetscErrorCode Create(Sim sim)
+{
+  DamBreak *c;
+  PetscFunctionBeginUser;
+  PetscCall(PetscNew(&c));
+  sim->scene_ctx = c;
+  c->a = 0.05715; c->H = -1; c->L = -1; c->top = -1; c->rows = 3;
+  PetscOptionsBegin(sim->comm, NULL, "Scene dam_break: collapse of a water column", "");
+  PetscCall(PetscOptionsReal("-column_width", "Column width a (m)", "", c->a, &c->a, NULL));
+  PetscCall(PetscOptionsReal("-column_height", "Column height (m); default 2a", "", c->H, &c->H, NULL));
+  PetscCall(PetscOptionsReal("-tank_length", "Tank length from the wall behind the column (m); default 5.25a", "", c->L, &c->L, NULL));
+  PetscCall(PetscOptionsReal("-tank_height", "Tank wall height (m); default 3x the column height", "", c->top, &c->top, NULL));
+  PetscCall(PetscOptionsInt("-wall_rows", "Rows of wall + dummy particles", "", c->rows, &c->rows, NULL));
+  PetscOptionsEnd();
+  PetscCheck(c->a > 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-column_width %g must be > 0", (double)c->a);
+  if (c->H < 0) c->H = 2 * c->a;
+  if (c->L < 0) c->L = 5.25 * c->a;
+  if (c->top < 0) c->top = 3 * c->H;
+  PetscCheck(c->H > 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-column_height %g must be > 0", (double)c->H);
+  PetscCheck(c->L > c->a, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-tank_length %g must exceed the column width %g", (double)c->L, (double)c->a);
+  PetscCheck(c->top >= c->H, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-tank_height %g must be at least the column height %g", (double)c->top, (double)c->H);
+  PetscCheck(c->rows >= 1, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-wall_rows %" PetscInt_FMT " must be >= 1", c->rows);
+  if (sim->dx < 0) sim->dx = c->a / 20;
+  if (sim->t_end < 0) sim->t_end = 3.0 / PetscSqrtReal(2 * 9.81 / c->a); /* T = 3 */
+  PetscCheck(sim->dx <= 0.5 * c->a, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dx %g is larger than half the column width %g: choose a smaller -dx", (double)sim->dx, (double)c->a);
+  sim->v_ref     = PetscSqrtReal(2 * 9.81 * c->H);
+  sim->dom_lo[0] = -(c->rows + 0.5) * sim->dx;
+  sim->dom_hi[0] = c->L + (c->rows + 0.5) * sim->dx;
+  sim->dom_lo[1] = -(c->rows + 0.5) * sim->dx;
+  sim->dom_hi[1] = c->top;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+static PetscErrorCode Populate(Sim sim)
+{
+  DamBreak *c = (DamBreak *)sim->scene_ctx;
+  PetscReal dx = sim->dx;
+  PetscInt  nx = RoundToInt(c->a / dx), ny = RoundToInt(c->H / dx);
+  PetscFunctionBeginUser;
+  PetscCall(SceneAddLattice(sim, KIND_FLUID, 0.5 * dx, 0.5 * dx, nx, ny, dx, sim->fl.rho0));
+  PetscCall(SceneAddTank(sim, 0, c->L, 0, c->top - dx, dx, c->rows, PETSC_TRUE, PETSC_TRUE));
+  PetscCall(SceneHydrostaticDensity(sim, ny * dx));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* front_x: leading fluid particle + dx/2 (= a at t = 0); height_left: highest fluid particle
+ * within 1.5 dx of the wall behind the column + dx/2. */
+static PetscErrorCode Probe(Sim sim, PetscReal *vals)
+{
+  DamBreak  *c = (DamBreak *)sim->scene_ctx;
+  Particles  P = sim->P;
+  PetscReal *x = PField(P, FIELD_X), m[2] = {0, 0};
+  PetscFunctionBeginUser;
+  for (PetscInt a = 0; a < P->n; a++) {
+    if (!KindIsFluid(P->kind[a])) continue;
+    m[0] = PetscMax(m[0], x[2 * a]);
+    if (x[2 * a] < 1.5 * sim->dx) m[1] = PetscMax(m[1], x[2 * a + 1]);
+  }
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, m, 2, MPIU_REAL, MPIU_MAX, sim->comm));
+  vals[0] = m[0] + 0.5 * sim->dx;
+  vals[1] = m[1] + 0.5 * sim->dx;
+  PetscCall(SeriesAppend(&c->front, sim->t, vals[0]));
+  PetscCall(SeriesAppend(&c->height, sim->t, vals[1]));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* Surge front against Martin & Moyce (1952), n^2 = 2, a = 2.25 in: Z = x/a at T = t sqrt(2g/a);
+ * residual height at the wall against their Table 6: h/H0 at tau = t sqrt(g/a). */
+static PetscErrorCode Errors(Sim sim, FILE *f)
+{
+  DamBreak *c = (DamBreak *)sim->scene_ctx;
+  Series    ref = {0};
+  PetscBool found;
+  PetscReal rms, max, g = -sim->g[1], Tend = sim->t * PetscSqrtReal(2 * g / c->a);
+  PetscInt  n;
+  PetscFunctionBeginUser;
+  PetscCall(RefDataLoad(sim, "martin_moyce1952_surge_n2eq2_a2.25in__pysph.csv", "T", "Z", &ref, &found));
+  if (found && f) {
+    PetscCall(SeriesCompare(&c->front, &ref, 1.0 / PetscSqrtReal(2 * g / c->a), c->a, 0, Tend, PETSC_TRUE, &rms, &max, &n));
+    fprintf(f, "\"front_rel_err_rms\": %.6g, \"front_rel_err_max\": %.6g, \"front_points\": %d, \"front_T_max\": %.4g, ", (double)rms, (double)max, (int)n, (double)Tend);
+  }
+  PetscCall(SeriesDestroy(&ref));
+  PetscCall(RefDataLoad(sim, "martin_moyce1952_height_n2eq2_a2.25in_table6__ocellaris.csv", "tau", "H_over_H0", &ref, &found));
+  if (found && f) {
+    PetscCall(SeriesCompare(&c->height, &ref, 1.0 / PetscSqrtReal(g / c->a), c->H, 0, sim->t * PetscSqrtReal(g / c->a), PETSC_TRUE, &rms, &max, &n));
+    fprintf(f, "\"height_rel_err_rms\": %.6g, \"height_rel_err_max\": %.6g, \"height_points\": %d, ", (double)rms, (double)max, (int)n);
+  }
+  PetscCall(SeriesDestroy(&ref));
+  if (f) fprintf(f, "\"reference\": \"Martin & Moyce 1952\"");
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+static PetscErrorCode Destroy(Sim sim)
+{
+  DamBreak *c = (DamBreak *)sim->scene_ctx;
+  PetscFunctionBeginUser;
+  PetscCall(SeriesDestroy(&c->front));
+  PetscCall(SeriesDestroy(&c->height));
+  PetscCall(PetscFree(sim->scene_ctx));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+const SceneOps SceneDamBreak = {
+  .name = "dam_break", .help = "collapse of a water column (Martin & Moyce 1952)",
+  .create = Create, .populate = Populate,
+  .nprobes = 2, .probe_names = {"front_x", "height_left"},
+  .probe = Probe, .errors = Errors, .destroy = Destroy,
+};

@@ -1,0 +1,89 @@
+/* Water at rest in a tank: the floor pressure must be rho g H and nothing must move. */
+#include <sphfsi/scene.h>
+#include <sphfsi/refdata.h>
+
+typedef struct {
+  PetscReal W, H;
+  PetscInt  rows;
+  Series    pb; /* p_bottom history */
+} Hydro;
+
+static PetscErrorCode Create(Sim sim)
+{
+  Hydro *c;
+  PetscFunctionBeginUser;
+  PetscCall(PetscNew(&c));
+  sim->scene_ctx = c;
+  c->W = 0.1; c->H = 0.1; c->rows = 3;
+  PetscOptionsBegin(sim->comm, NULL, "Scene hydrostatic: water at rest in a tank", "");
+  PetscCall(PetscOptionsReal("-tank_width", "Tank (and water) width (m)", "", c->W, &c->W, NULL));
+  PetscCall(PetscOptionsReal("-water_depth", "Water depth H (m)", "", c->H, &c->H, NULL));
+  PetscCall(PetscOptionsInt("-wall_rows", "Rows of wall + dummy particles", "", c->rows, &c->rows, NULL));
+  PetscOptionsEnd();
+  PetscCheck(c->W > 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-tank_width %g must be > 0", (double)c->W);
+  PetscCheck(c->H > 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-water_depth %g must be > 0", (double)c->H);
+  PetscCheck(c->rows >= 1, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-wall_rows %" PetscInt_FMT " must be >= 1", c->rows);
+  if (sim->dx < 0) sim->dx = c->H / 40;
+  if (sim->t_end < 0) sim->t_end = 1.0;
+  PetscCheck(sim->dx <= 0.5 * PetscMin(c->W, c->H), sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dx %g is larger than half the water region (%g x %g m): choose a smaller -dx", (double)sim->dx, (double)c->W, (double)c->H);
+  sim->v_ref     = PetscSqrtReal(2 * 9.81 * c->H);
+  sim->dom_lo[0] = -(c->rows + 0.5) * sim->dx;
+  sim->dom_hi[0] = c->W + (c->rows + 0.5) * sim->dx;
+  sim->dom_lo[1] = -(c->rows + 0.5) * sim->dx;
+  sim->dom_hi[1] = 1.5 * c->H;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+static PetscErrorCode Populate(Sim sim)
+{
+  Hydro   *c = (Hydro *)sim->scene_ctx;
+  PetscReal dx = sim->dx;
+  PetscInt nx = RoundToInt(c->W / dx), ny = RoundToInt(c->H / dx);
+  PetscFunctionBeginUser;
+  c->W = nx * dx; c->H = ny * dx; /* the lattice's own extent */
+  PetscCall(SceneAddLattice(sim, KIND_FLUID, 0.5 * dx, 0.5 * dx, nx, ny, dx, sim->fl.rho0));
+  PetscCall(SceneAddTank(sim, 0, c->W, 0, 1.2 * c->H, dx, c->rows, PETSC_TRUE, PETSC_TRUE));
+  PetscCall(SceneHydrostaticDensity(sim, c->H));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+static PetscErrorCode Probe(Sim sim, PetscReal *vals)
+{
+  Hydro    *c = (Hydro *)sim->scene_ctx;
+  PetscReal x0[2] = {0.5 * c->W, 0};
+  PetscFunctionBeginUser;
+  PetscCall(SceneProbePressure(sim, x0, &vals[0]));
+  PetscCall(SceneMaxSpeed(sim, &vals[1]));
+  PetscCall(SeriesAppend(&c->pb, sim->t, vals[0]));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* Mean floor pressure over the last quarter of the run against rho g H. */
+static PetscErrorCode Errors(Sim sim, FILE *f)
+{
+  Hydro    *c = (Hydro *)sim->scene_ctx;
+  PetscReal ref = sim->fl.rho0 * (-sim->g[1]) * c->H, s = 0, vmax;
+  PetscInt  n = 0;
+  PetscFunctionBeginUser;
+  PetscCall(SceneMaxSpeed(sim, &vmax));
+  for (PetscInt k = 0; k < c->pb.n; k++)
+    if (c->pb.t[k] >= 0.75 * sim->t) { s += c->pb.y[k]; n++; }
+  if (f) fprintf(f, "\"p_bottom_rel_err\": %.6g, \"p_bottom_ref\": %.6g, \"v_max_final\": %.6g", (double)(n ? PetscAbsReal(s / n - ref) / ref : -1), (double)ref, (double)vmax);
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+static PetscErrorCode Destroy(Sim sim)
+{
+  Hydro *c = (Hydro *)sim->scene_ctx;
+  PetscFunctionBeginUser;
+  PetscCall(SeriesDestroy(&c->pb));
+  PetscCall(PetscFree(sim->scene_ctx));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+const SceneOps SceneHydrostatic = {
+  .name = "hydrostatic", .help = "water at rest in a tank",
+  .create = Create, .populate = Populate,
+  .nprobes = 2, .probe_names = {"p_bottom", "v_max"},
+  .probe = Probe, .errors = Errors, .destroy = Destroy,
+};

@@ -1,0 +1,239 @@
+#include <sphfsi/sim.h>
+#include <sphfsi/scene.h>
+#include <sphfsi/wcsph.h>
+#include <sphfsi/boundary.h>
+#include <sphfsi/io.h>
+#include <sphfsi/kernel.h>
+
+const char *const FluidSchemes[] = {"wcsph", "isph", "FluidScheme", "FLUID_", NULL};
+
+PetscErrorCode SimCreate(MPI_Comm comm, Sim *sim)
+{
+  Sim s;
+  PetscFunctionBeginUser;
+  PetscCall(PetscNew(sim));
+  s       = *sim;
+  s->comm = comm;
+  PetscCallMPI(MPI_Comm_rank(comm, &s->rank));
+  PetscCallMPI(MPI_Comm_size(comm, &s->size));
+  s->fluid          = FLUID_WCSPH;
+  s->cfl            = 0.25;
+  s->t_end          = -1;
+  s->dx             = -1;
+  s->max_steps      = PETSC_MAX_INT;
+  s->progress_every = 5;
+  s->fl.rho0        = 1000.0;
+  s->fl.mu          = 1.0e-3;
+  s->fl.alpha       = 0.02;
+  s->fl.xsph        = 0.0;
+  s->g[1]           = -9.81;
+  PetscCall(PetscLogStageRegister("Neighbours", &s->stage[STAGE_NEIGHBOUR]));
+  PetscCall(PetscLogStageRegister("Halo+migrate", &s->stage[STAGE_HALO]));
+  PetscCall(PetscLogStageRegister("Physics", &s->stage[STAGE_PHYSICS]));
+  PetscCall(PetscLogStageRegister("Output", &s->stage[STAGE_OUTPUT]));
+  PetscCall(ParticlesCreate(comm, &s->P));
+  PetscCall(DecompCreate(comm, &s->decomp));
+  PetscCall(HaloCreate(comm, &s->halo));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode SimDestroy(Sim *sim)
+{
+  Sim s = *sim;
+  PetscFunctionBeginUser;
+  if (!s) PetscFunctionReturn(PETSC_SUCCESS);
+  if (s->scene && s->scene->destroy) PetscCall(s->scene->destroy(s));
+  PetscCall(IOFinalize(s));
+  PetscCall(CellsDestroy(&s->cells));
+  PetscCall(HaloDestroy(&s->halo));
+  PetscCall(DecompDestroy(&s->decomp));
+  PetscCall(ParticlesDestroy(&s->P));
+  PetscCall(PetscFree(s->snap_times));
+  PetscCall(PetscFree(*sim));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* Generic options: scene, scheme, resolution, time, output. */
+PetscErrorCode SimSetFromOptions(Sim sim)
+{
+  char      name[64] = "", names[512];
+  PetscBool set;
+  PetscInt  fluid = sim->fluid;
+
+  PetscFunctionBeginUser;
+  PetscCall(SceneListNames(names, sizeof(names)));
+  PetscOptionsBegin(sim->comm, NULL, "sphfsi: SPH for fluid-structure interaction", "Sim");
+  PetscCall(PetscOptionsString("-case", "Scene to run", "", name, name, sizeof(name), &set));
+  PetscCall(PetscOptionsEList("-fluid", "Fluid pressure scheme", "", FluidSchemes, 2, FluidSchemes[sim->fluid], &fluid, NULL));
+  PetscCall(PetscOptionsReal("-dx", "Particle spacing of the finest particles (m); default: the scene's", "", sim->dx, &sim->dx, NULL));
+  PetscCall(PetscOptionsReal("-t_end", "Physical end time (s); default: the scene's", "", sim->t_end, &sim->t_end, NULL));
+  PetscCall(PetscOptionsReal("-dt", "Fixed time step (s); 0 = adaptive", "", sim->dt_fixed, &sim->dt_fixed, NULL));
+  PetscCall(PetscOptionsReal("-cfl", "Courant number of the adaptive time step", "", sim->cfl, &sim->cfl, NULL));
+  PetscCall(PetscOptionsInt("-max_steps", "Stop after this many steps", "", sim->max_steps, &sim->max_steps, NULL));
+  PetscCall(PetscOptionsString("-output_dir", "Output directory (default out/CASE)", "", sim->outdir, sim->outdir, sizeof(sim->outdir), NULL));
+  PetscCall(PetscOptionsReal("-output_interval", "Snapshot interval in physical time (s); 0 = none", "", sim->out_interval, &sim->out_interval, NULL));
+  PetscCall(PetscOptionsReal("-probe_interval", "probes.csv row interval in physical time (s); 0 = every step", "", sim->probe_interval, &sim->probe_interval, NULL));
+  PetscCall(PetscOptionsInt("-progress_every", "Seconds of wall time between progress lines; 0 = none", "", sim->progress_every, &sim->progress_every, NULL));
+  PetscOptionsEnd();
+  sim->fluid = (FluidScheme)fluid;
+  PetscCheck(set && name[0], sim->comm, PETSC_ERR_USER_INPUT, "No scene given: use -case NAME with NAME one of: %s (or -options_file cases/NAME.opts)", names);
+  PetscCall(SceneFind(name, &sim->scene));
+  PetscCheck(sim->scene, sim->comm, PETSC_ERR_USER_INPUT, "Unknown -case %s: choose one of %s", name, names);
+  PetscCheck(sim->fluid == FLUID_WCSPH, sim->comm, PETSC_ERR_SUP, "-fluid isph is not available in this version yet; use -fluid wcsph");
+  PetscCheck(sim->dt_fixed >= 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dt %g must be > 0 (or 0 for an adaptive step)", (double)sim->dt_fixed);
+  PetscCheck(sim->cfl > 0 && sim->cfl <= 1, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-cfl %g must be in (0, 1]", (double)sim->cfl);
+  PetscCheck(sim->out_interval >= 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-output_interval %g must be >= 0", (double)sim->out_interval);
+  PetscCheck(sim->probe_interval >= 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-probe_interval %g must be >= 0", (double)sim->probe_interval);
+  PetscCheck(sim->max_steps >= 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-max_steps must be >= 0");
+  if (!sim->outdir[0]) PetscCall(PetscSNPrintf(sim->outdir, sizeof(sim->outdir), "out/%s", sim->scene->name));
+  PetscCall(DecompSetFromOptions(sim->decomp));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* Fluid material options; defaults from the scene (c0 = 10 v_ref). */
+static PetscErrorCode FluidOptions(Sim sim)
+{
+  PetscFunctionBeginUser;
+  if (sim->fl.c0 <= 0) sim->fl.c0 = 10.0 * sim->v_ref;
+  PetscOptionsBegin(sim->comm, NULL, "Fluid", "Sim");
+  PetscCall(PetscOptionsReal("-rho0", "Fluid reference density (kg/m^3)", "", sim->fl.rho0, &sim->fl.rho0, NULL));
+  PetscCall(PetscOptionsReal("-mu", "Fluid dynamic viscosity (Pa s), Eq. 16", "", sim->fl.mu, &sim->fl.mu, NULL));
+  PetscCall(PetscOptionsReal("-c0", "Artificial sound speed (m/s), Eq. 20; default 10x the scene's expected maximum speed", "", sim->fl.c0, &sim->fl.c0, NULL));
+  PetscCall(PetscOptionsReal("-alpha", "Artificial viscosity coefficient, Eq. 24", "", sim->fl.alpha, &sim->fl.alpha, NULL));
+  PetscCall(PetscOptionsReal("-delta", "Density diffusion coefficient (delta-SPH); 0 = off", "", sim->fl.delta, &sim->fl.delta, NULL));
+  PetscCall(PetscOptionsReal("-xsph", "XSPH epsilon, Eq. 44; 0 = off", "", sim->fl.xsph, &sim->fl.xsph, NULL));
+  PetscCall(PetscOptionsRealArray("-gravity", "Gravity vector gx,gy (m/s^2)", "", sim->g, (PetscInt[]){2}, NULL));
+  PetscOptionsEnd();
+  PetscCheck(sim->fl.rho0 > 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-rho0 %g must be > 0", (double)sim->fl.rho0);
+  PetscCheck(sim->fl.mu >= 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-mu %g must be >= 0", (double)sim->fl.mu);
+  PetscCheck(sim->fl.c0 > 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-c0 %g must be > 0", (double)sim->fl.c0);
+  PetscCheck(sim->fl.alpha >= 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-alpha %g must be >= 0", (double)sim->fl.alpha);
+  PetscCheck(sim->fl.delta >= 0 && sim->fl.delta <= 1, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-delta %g must be in [0, 1]", (double)sim->fl.delta);
+  PetscCheck(sim->fl.xsph >= 0 && sim->fl.xsph <= 1, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-xsph %g must be in [0, 1]", (double)sim->fl.xsph);
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode SimTotalMass(Sim sim, PetscInt kind, PetscReal *M)
+{
+  PetscReal s = 0, *m = PField(sim->P, FIELD_M);
+  PetscFunctionBeginUser;
+  for (PetscInt a = 0; a < sim->P->n; a++)
+    if (sim->P->kind[a] == kind) s += m[a];
+  PetscCall(MPIU_Allreduce(&s, M, 1, MPIU_REAL, MPI_SUM, sim->comm));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode SimRebuild(Sim sim)
+{
+  PetscBool rep;
+  PetscFunctionBeginUser;
+  PetscCall(PetscLogStagePush(sim->stage[STAGE_HALO]));
+  PetscCall(DecompMigrate(sim->decomp, sim->P));
+  PetscCall(DecompBalance(sim->decomp, sim->P, sim->step, &rep));
+  PetscCall(PetscLogStagePop());
+  PetscCall(PetscLogStagePush(sim->stage[STAGE_NEIGHBOUR]));
+  PetscCall(DecompSortOwned(sim->decomp, sim->P));
+  PetscCall(PetscLogStagePop());
+  PetscCall(PetscLogStagePush(sim->stage[STAGE_HALO]));
+  PetscCall(HaloBuild(sim->halo, sim->decomp, sim->P));
+  PetscCall(PetscLogStagePop());
+  PetscCall(PetscLogStagePush(sim->stage[STAGE_NEIGHBOUR]));
+  PetscCall(CellsBuild(sim->cells, sim->P));
+  PetscCall(PetscLogStagePop());
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode SimSetUp(Sim sim)
+{
+  PetscFunctionBeginUser;
+  PetscCall(sim->scene->create(sim));
+  PetscCheck(sim->dx > 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dx %g must be > 0", (double)sim->dx);
+  PetscCheck(sim->t_end > 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-t_end %g must be > 0", (double)sim->t_end);
+  PetscCall(FluidOptions(sim));
+  PetscCall(WCSPHSetUp(sim));
+  PetscCall(ParticlesSetUp(sim->P));
+  sim->h_max = SPH_H_FACTOR * sim->dx;
+  PetscCall(sim->scene->populate(sim));
+  PetscCall(ParticlesGlobalCount(sim->P, &sim->nparticles));
+  {
+    PetscInt nfluid = 0;
+    for (PetscInt a = 0; a < sim->P->n; a++) nfluid += KindIsFluid(sim->P->kind[a]);
+    PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &nfluid, 1, MPIU_INT, MPI_SUM, sim->comm));
+    PetscCheck(nfluid > 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "The geometry leaves no fluid particle at -dx %g: choose a smaller -dx or a larger water region", (double)sim->dx);
+  }
+  PetscCall(GridSetUp(&sim->grid, sim->dom_lo, sim->dom_hi, 2.0 * sim->h_max, sim->periodic));
+  PetscCall(DecompSetUp(sim->decomp, &sim->grid));
+  PetscCall(CellsCreate(&sim->grid, &sim->cells));
+  PetscCall(DecompMigrate(sim->decomp, sim->P)); /* wraps and checks every particle is inside */
+  PetscCall(DecompPartition(sim->decomp, sim->P));
+  PetscCall(SimRebuild(sim));
+  PetscCall(SimTotalMass(sim, KIND_FLUID, &sim->mass0));
+  PetscCall(WCSPHRates(sim));
+  PetscCall(IOSetUp(sim));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+static PetscErrorCode Progress(Sim sim, PetscLogDouble *last, PetscBool force)
+{
+  PetscLogDouble now;
+  PetscFunctionBeginUser;
+  PetscCall(PetscTime(&now));
+  if (!sim->progress_every || (!force && now - *last < sim->progress_every)) PetscFunctionReturn(PETSC_SUCCESS);
+  *last = now;
+  {
+    PetscReal el = now - sim->wall_start, left = sim->t > 0 ? el * (sim->t_end - sim->t) / sim->t : 0;
+    PetscCall(PetscPrintf(sim->comm, "step %7" PetscInt_FMT "  t %.5e / %.4g s  dt %.3e  particles %" PetscInt_FMT "  wall %.1f s  left ~%.0f s\n", sim->step, (double)sim->t, (double)sim->t_end, (double)sim->dt, sim->nparticles, (double)el, (double)left));
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* NaN/Inf in the state stops the run with the particle named. */
+static PetscErrorCode CheckFinite(Sim sim)
+{
+  Particles  P = sim->P;
+  PetscReal *x = PField(P, FIELD_X), *v = PField(P, FIELD_V), *rho = PField(P, FIELD_RHO);
+  PetscInt   bad = -1, gbad;
+  PetscFunctionBeginUser;
+  for (PetscInt a = 0; a < P->n && bad < 0; a++)
+    if (PetscIsInfOrNanReal(x[2 * a] + x[2 * a + 1] + v[2 * a] + v[2 * a + 1] + rho[a])) bad = a;
+  if (bad >= 0) PetscCall(PetscPrintf(PETSC_COMM_SELF, "[%d] particle id %" PetscInt_FMT " (%s) has a non-finite state at step %" PetscInt_FMT ", t = %g\n", sim->rank, P->id[bad], ParticleKindNames[P->kind[bad]], sim->step, (double)sim->t));
+  gbad = bad >= 0;
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &gbad, 1, MPIU_INT, MPI_MAX, sim->comm));
+  PetscCheck(!gbad, sim->comm, PETSC_ERR_NOT_CONVERGED, "NaN or Inf in the particle state at step %" PetscInt_FMT " (t = %g): the run is unstable; reduce -dt or -cfl", sim->step, (double)sim->t);
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode SimRun(Sim sim)
+{
+  PetscLogDouble last, t1;
+  const PetscReal eps = 1e-12 * sim->t_end;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscViewerASCIIPrintf(PETSC_VIEWER_STDOUT_(sim->comm), "sphfsi: case %s, fluid %s, %d rank(s), dx %g, t_end %g, c0 %g\n", sim->scene->name, FluidSchemes[sim->fluid], sim->size, (double)sim->dx, (double)sim->t_end, (double)sim->fl.c0));
+  PetscCall(ParticlesView(sim->P, PETSC_VIEWER_STDOUT_(sim->comm)));
+  PetscCall(DecompView(sim->decomp, PETSC_VIEWER_STDOUT_(sim->comm)));
+  PetscCall(PetscTime(&sim->wall_start));
+  last = sim->wall_start;
+  PetscCall(IOProbes(sim));
+  if (sim->out_interval > 0) PetscCall(IOSnapshot(sim));
+  while (sim->t < sim->t_end - eps && sim->step < sim->max_steps) {
+    if (sim->dt_fixed > 0) sim->dt = sim->dt_fixed;
+    else PetscCall(WCSPHTimeStep(sim, &sim->dt));
+    sim->dt = PetscMin(sim->dt, sim->t_end - sim->t);
+    PetscCall(WCSPHStep(sim));
+    sim->t += sim->dt;
+    sim->step++;
+    sim->particle_steps += (PetscReal)sim->nparticles;
+    PetscCall(CheckFinite(sim));
+    if (sim->t >= sim->next_probe - eps) PetscCall(IOProbes(sim));
+    if (sim->out_interval > 0 && sim->t >= sim->next_out - eps) PetscCall(IOSnapshot(sim));
+    PetscCall(Progress(sim, &last, PETSC_FALSE));
+  }
+  PetscCall(PetscTime(&t1));
+  sim->wall_loop = t1 - sim->wall_start;
+  PetscCall(Progress(sim, &last, PETSC_TRUE));
+  PetscCall(SimTotalMass(sim, KIND_FLUID, &sim->mass));
+  PetscCall(IOSummary(sim));
+  PetscCall(PetscPrintf(sim->comm, "sphfsi: %" PetscInt_FMT " steps in %.2f s (%.3g particle-steps/s); output in %s\n", sim->step, (double)sim->wall_loop, (double)(sim->particle_steps / PetscMax(sim->wall_loop, 1e-9)), sim->outdir));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}

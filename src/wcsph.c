@@ -1,0 +1,190 @@
+#include <sphfsi/wcsph.h>
+#include <sphfsi/boundary.h>
+#include <sphfsi/kernel.h>
+
+PetscErrorCode WCSPHSetUp(Sim sim)
+{
+  PetscFunctionBeginUser;
+  PetscCall(ParticlesEnableField(sim->P, FIELD_ACC, PETSC_FALSE));
+  PetscCall(ParticlesEnableField(sim->P, FIELD_DRHO, PETSC_FALSE));
+  PetscCall(ParticlesEnableField(sim->P, FIELD_VWALL, PETSC_TRUE));
+  if (sim->fl.xsph > 0) PetscCall(ParticlesEnableField(sim->P, FIELD_XSPH, PETSC_FALSE));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode WCSPHPressure(Sim sim)
+{
+  Particles  P = sim->P;
+  PetscReal *rho = PField(P, FIELD_RHO), *p = PField(P, FIELD_P);
+  PetscFunctionBeginUser;
+  for (PetscInt a = 0; a < P->n + P->ng; a++)
+    if (KindIsFluid(P->kind[a])) p[a] = EOSPressure(&sim->fl, rho[a]);
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* Eq. 24: Monaghan artificial viscosity, added to the pressure term; vr = v_ab . r_ab */
+static inline PetscReal ArtificialViscosity(PetscReal alpha, PetscReal c, PetscReal h, PetscReal rho_bar, PetscReal vr, PetscReal r2)
+{
+  if (vr >= 0) return 0.0;
+  return -alpha * c * (h * vr / (r2 + 0.01 * h * h)) / rho_bar;
+}
+
+/* Eq. 16: laminar viscosity, the coefficient of (v_a - v_b); rgw = r_ab . grad_a W_ab, eta = 0.1 h */
+static inline PetscReal LaminarViscosity(PetscReal mb, PetscReal mu, PetscReal rhoa, PetscReal rhob, PetscReal rgw, PetscReal r2, PetscReal h)
+{
+  PetscReal rs = rhoa + rhob;
+  return 4.0 * mb * (2.0 * mu) * rgw / (rs * rs * (r2 + 0.01 * h * h));
+}
+
+/* drho/dt of owned fluid: continuity Eq. 18, optional delta-SPH diffusion (Molteni & Colagrossi
+ * 2009, hydrostatic part removed); and the XSPH velocity correction Eq. 44. */
+static PetscErrorCode Continuity(Sim sim)
+{
+  Particles            P = sim->P;
+  Cells                C = sim->cells;
+  const PetscReal     *x = PField(P, FIELD_X), *v = PField(P, FIELD_V), *rho = PField(P, FIELD_RHO);
+  const PetscReal     *m = PField(P, FIELD_M), *h = PField(P, FIELD_H);
+  PetscReal           *drho = PField(P, FIELD_DRHO), *xs = PField(P, FIELD_XSPH);
+  const FluidMaterial *fl   = &sim->fl;
+  const PetscReal      dcoef = fl->delta * fl->c0, dhyd = fl->rho0 / (fl->c0 * fl->c0);
+
+  PetscFunctionBeginUser;
+  for (PetscInt a = 0; a < P->n; a++) {
+    PetscReal dr = 0, dd = 0, sx = 0, sy = 0;
+    PetscReal xa = x[2 * a], ya = x[2 * a + 1], vxa = v[2 * a], vya = v[2 * a + 1], ra = rho[a];
+    if (!KindIsFluid(P->kind[a])) continue;
+    for (PetscInt k = C->nstart[a]; k < C->nstart[a + 1]; k++) {
+      PetscInt  b = C->nbr[k];
+      PetscReal dx = xa - x[2 * b], dy = ya - x[2 * b + 1], F = C->f[k], vb = m[b] / rho[b];
+      PetscReal dvx = vxa - v[2 * b], dvy = vya - v[2 * b + 1];
+      dr += vb * F * (dvx * dx + dvy * dy);
+      if (!KindIsFluid(P->kind[b])) continue;
+      if (dcoef > 0) {
+        PetscReal dh = dhyd * (-sim->g[0] * dx - sim->g[1] * dy); /* rho_b^H - rho_a^H */
+        dd += PairH(h[a], h[b]) * vb * (-2.0 * F) * (rho[b] - ra - dh);
+      }
+      if (xs) {
+        PetscReal w = C->w[k] * m[b] / (0.5 * (ra + rho[b]));
+        sx -= w * dvx;
+        sy -= w * dvy;
+      }
+    }
+    drho[a] = ra * dr + dcoef * dd;
+    if (xs) { xs[2 * a] = fl->xsph * sx; xs[2 * a + 1] = fl->xsph * sy; }
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* Acceleration of owned fluid: pressure Eq. 19 with artificial viscosity Eq. 24, laminar viscosity
+ * Eq. 16 (walls with their no-slip velocity), gravity. */
+static PetscErrorCode Momentum(Sim sim)
+{
+  Particles            P = sim->P;
+  Cells                C = sim->cells;
+  const PetscReal     *x = PField(P, FIELD_X), *v = PField(P, FIELD_V), *rho = PField(P, FIELD_RHO), *p = PField(P, FIELD_P);
+  const PetscReal     *m = PField(P, FIELD_M), *h = PField(P, FIELD_H), *vw = PField(P, FIELD_VWALL);
+  PetscReal           *acc = PField(P, FIELD_ACC);
+  const FluidMaterial *fl  = &sim->fl;
+
+  PetscFunctionBeginUser;
+  for (PetscInt a = 0; a < P->n; a++) {
+    PetscReal ax = 0, ay = 0;
+    PetscReal xa = x[2 * a], ya = x[2 * a + 1], vxa = v[2 * a], vya = v[2 * a + 1], ra = rho[a], pa = p[a] / (ra * ra), ha = h[a];
+    if (!KindIsFluid(P->kind[a])) continue;
+    for (PetscInt k = C->nstart[a]; k < C->nstart[a + 1]; k++) {
+      PetscInt  b = C->nbr[k];
+      PetscReal dx = xa - x[2 * b], dy = ya - x[2 * b + 1], r2 = dx * dx + dy * dy, F = C->f[k];
+      PetscReal hab = PairH(ha, h[b]), rb = rho[b], mb = m[b];
+      PetscReal dvx = vxa - v[2 * b], dvy = vya - v[2 * b + 1], pterm, visc;
+      pterm = pa + p[b] / (rb * rb) + ArtificialViscosity(fl->alpha, fl->c0, hab, 0.5 * (ra + rb), dvx * dx + dvy * dy, r2);
+      visc  = LaminarViscosity(mb, fl->mu, ra, rb, F * r2, r2, hab);
+      if (KindIsWall(P->kind[b])) { dvx = vxa - vw[2 * b]; dvy = vya - vw[2 * b + 1]; }
+      ax += (visc * dvx - mb * pterm * F * dx);
+      ay += (visc * dvy - mb * pterm * F * dy);
+    }
+    acc[2 * a]     = ax + sim->g[0];
+    acc[2 * a + 1] = ay + sim->g[1];
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* Pressure of fluid (EOS) and walls, then accelerations: the state after a rebuild. */
+PetscErrorCode WCSPHRates(Sim sim)
+{
+  PetscFunctionBeginUser;
+  PetscCall(PetscLogStagePush(sim->stage[STAGE_PHYSICS]));
+  PetscCall(WCSPHPressure(sim));
+  PetscCall(PetscLogStagePop());
+  PetscCall(BoundaryWallState(sim));
+  PetscCall(PetscLogStagePush(sim->stage[STAGE_PHYSICS]));
+  PetscCall(Momentum(sim));
+  PetscCall(PetscLogStagePop());
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode WCSPHTimeStep(Sim sim, PetscReal *dt)
+{
+  Particles        P = sim->P;
+  const PetscReal *v = PField(P, FIELD_V), *acc = PField(P, FIELD_ACC), *h = PField(P, FIELD_H), *rho = PField(P, FIELD_RHO);
+  PetscReal        lim = PETSC_MAX_REAL;
+
+  PetscFunctionBeginUser;
+  for (PetscInt a = 0; a < P->n; a++) {
+    PetscReal vn, an;
+    if (!KindIsFluid(P->kind[a])) continue;
+    vn  = PetscSqrtReal(v[2 * a] * v[2 * a] + v[2 * a + 1] * v[2 * a + 1]);
+    an  = PetscSqrtReal(acc[2 * a] * acc[2 * a] + acc[2 * a + 1] * acc[2 * a + 1]);
+    lim = PetscMin(lim, sim->cfl * h[a] / (sim->fl.c0 + vn));                           /* CFL */
+    if (an > 0) lim = PetscMin(lim, 0.25 * PetscSqrtReal(h[a] / an));                   /* force */
+    if (sim->fl.mu > 0) lim = PetscMin(lim, 0.125 * h[a] * h[a] * rho[a] / sim->fl.mu); /* viscous */
+  }
+  PetscCall(MPIU_Allreduce(&lim, dt, 1, MPIU_REAL, MPIU_MIN, sim->comm));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+static void KickVelocity(Sim sim, PetscReal dt)
+{
+  Particles  P = sim->P;
+  PetscReal *v = PField(P, FIELD_V), *acc = PField(P, FIELD_ACC);
+  for (PetscInt a = 0; a < P->n; a++) {
+    if (!KindIsFluid(P->kind[a])) continue;
+    v[2 * a] += dt * acc[2 * a];
+    v[2 * a + 1] += dt * acc[2 * a + 1];
+  }
+}
+
+/* Velocity Verlet with density as a position-like variable (symplectic for the acoustic pair):
+ * v+ = v + dt/2 a;  rho' = rho + dt drho(x, v+);  x' = x + dt (v+ + xsph);  a' = a(x', rho');
+ * v' = v+ + dt/2 a'. */
+PetscErrorCode WCSPHStep(Sim sim)
+{
+  Particles     P  = sim->P;
+  const PetscReal dt = sim->dt;
+  const FieldId vel[] = {FIELD_V};
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscLogStagePush(sim->stage[STAGE_PHYSICS]));
+  KickVelocity(sim, 0.5 * dt);
+  PetscCall(PetscLogStagePop());
+  PetscCall(PetscLogStagePush(sim->stage[STAGE_HALO]));
+  PetscCall(HaloRefresh(sim->halo, P, 1, vel));
+  PetscCall(PetscLogStagePop());
+  PetscCall(PetscLogStagePush(sim->stage[STAGE_PHYSICS]));
+  PetscCall(Continuity(sim));
+  {
+    PetscReal *x = PField(P, FIELD_X), *v = PField(P, FIELD_V), *xs = PField(P, FIELD_XSPH), *rho = PField(P, FIELD_RHO), *drho = PField(P, FIELD_DRHO);
+    for (PetscInt a = 0; a < P->n; a++) {
+      if (!KindIsFluid(P->kind[a])) continue;
+      rho[a] += dt * drho[a];
+      x[2 * a] += dt * (v[2 * a] + (xs ? xs[2 * a] : 0));
+      x[2 * a + 1] += dt * (v[2 * a + 1] + (xs ? xs[2 * a + 1] : 0));
+    }
+  }
+  PetscCall(PetscLogStagePop());
+  PetscCall(SimRebuild(sim));
+  PetscCall(WCSPHRates(sim));
+  PetscCall(PetscLogStagePush(sim->stage[STAGE_PHYSICS]));
+  KickVelocity(sim, 0.5 * dt);
+  PetscCall(PetscLogStagePop());
+  PetscFunctionReturn(PETSC_SUCCESS);
+}

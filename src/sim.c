@@ -27,10 +27,13 @@ PetscErrorCode SimCreate(MPI_Comm comm, Sim *sim)
   s->fl.alpha       = 0.02;
   s->fl.xsph        = 0.0;
   s->g[1]           = -9.81;
-  PetscCall(PetscLogStageRegister("Neighbours", &s->stage[STAGE_NEIGHBOUR]));
-  PetscCall(PetscLogStageRegister("Halo+migrate", &s->stage[STAGE_HALO]));
-  PetscCall(PetscLogStageRegister("Physics", &s->stage[STAGE_PHYSICS]));
-  PetscCall(PetscLogStageRegister("Output", &s->stage[STAGE_OUTPUT]));
+  {
+    const char *names[STAGE_COUNT] = {"Neighbours", "Halo+migrate", "Physics", "Output"};
+    for (PetscInt k = 0; k < STAGE_COUNT; k++) { /* a second Sim in one program shares the stages */
+      PetscCall(PetscLogStageGetId(names[k], &s->stage[k]));
+      if (s->stage[k] < 0) PetscCall(PetscLogStageRegister(names[k], &s->stage[k]));
+    }
+  }
   PetscCall(ParticlesCreate(comm, &s->P));
   PetscCall(DecompCreate(comm, &s->decomp));
   PetscCall(HaloCreate(comm, &s->halo));
@@ -57,7 +60,7 @@ PetscErrorCode SimDestroy(Sim *sim)
 PetscErrorCode SimSetFromOptions(Sim sim)
 {
   char      name[64] = "", names[512];
-  PetscBool set;
+  PetscBool set, dx_set, t_set;
   PetscInt  fluid = sim->fluid;
 
   PetscFunctionBeginUser;
@@ -65,8 +68,8 @@ PetscErrorCode SimSetFromOptions(Sim sim)
   PetscOptionsBegin(sim->comm, NULL, "sphfsi: SPH for fluid-structure interaction", "Sim");
   PetscCall(PetscOptionsString("-case", "Scene to run", "", name, name, sizeof(name), &set));
   PetscCall(PetscOptionsEList("-fluid", "Fluid pressure scheme", "", FluidSchemes, 2, FluidSchemes[sim->fluid], &fluid, NULL));
-  PetscCall(PetscOptionsReal("-dx", "Particle spacing of the finest particles (m); default: the scene's", "", sim->dx, &sim->dx, NULL));
-  PetscCall(PetscOptionsReal("-t_end", "Physical end time (s); default: the scene's", "", sim->t_end, &sim->t_end, NULL));
+  PetscCall(PetscOptionsReal("-dx", "Particle spacing of the finest particles (m); default: the scene's", "", sim->dx, &sim->dx, &dx_set));
+  PetscCall(PetscOptionsReal("-t_end", "Physical end time (s); default: the scene's", "", sim->t_end, &sim->t_end, &t_set));
   PetscCall(PetscOptionsReal("-dt", "Fixed time step (s); 0 = adaptive", "", sim->dt_fixed, &sim->dt_fixed, NULL));
   PetscCall(PetscOptionsReal("-cfl", "Courant number of the adaptive time step", "", sim->cfl, &sim->cfl, NULL));
   PetscCall(PetscOptionsInt("-max_steps", "Stop after this many steps", "", sim->max_steps, &sim->max_steps, NULL));
@@ -80,6 +83,8 @@ PetscErrorCode SimSetFromOptions(Sim sim)
   PetscCall(SceneFind(name, &sim->scene));
   PetscCheck(sim->scene, sim->comm, PETSC_ERR_USER_INPUT, "Unknown -case %s: choose one of %s", name, names);
   PetscCheck(sim->fluid == FLUID_WCSPH, sim->comm, PETSC_ERR_SUP, "-fluid isph is not available in this version yet; use -fluid wcsph");
+  PetscCheck(!dx_set || sim->dx > 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dx %g must be > 0", (double)sim->dx);
+  PetscCheck(!t_set || sim->t_end > 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-t_end %g must be > 0", (double)sim->t_end);
   PetscCheck(sim->dt_fixed >= 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dt %g must be > 0 (or 0 for an adaptive step)", (double)sim->dt_fixed);
   PetscCheck(sim->cfl > 0 && sim->cfl <= 1, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-cfl %g must be in (0, 1]", (double)sim->cfl);
   PetscCheck(sim->out_interval >= 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-output_interval %g must be >= 0", (double)sim->out_interval);

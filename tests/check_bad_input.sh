@@ -1,0 +1,31 @@
+#!/usr/bin/env bash
+# Each bad input ends the run before the first step with a message naming the problem and a
+# non-zero status (no crash: no signal, no PETSc traceback of a segmentation fault).
+MPI=$1; OUT=$2
+mkdir -p "$OUT"
+bad=0; n=0
+check() { # expected message fragment, arguments...
+  local want=$1; shift
+  n=$((n + 1))
+  timeout 60 $MPI bin/sphfsi -output_dir "$OUT/run" -t_end 0.001 -progress_every 0 "$@" > "$OUT/case$n.log" 2>&1
+  local rc=$?
+  if [ $rc -eq 0 ] || [ $rc -ge 124 ] || grep -q "Segmentation\|signal" "$OUT/case$n.log" || ! grep -qi -- "$want" "$OUT/case$n.log"; then
+    echo "bad input $n ($*): status $rc, expected a message with '$want'"; bad=$((bad + 1))
+  fi
+}
+check "No scene given"        -dx 0.01
+check "Unknown -case"         -case nosuch
+check "-fluid"                -case dam_break -fluid lbm
+check "-dx"                   -case dam_break -dx -0.01
+check "-dx"                   -case dam_break -dx 0
+check "-t_end"                -case hydrostatic -t_end -1
+check "larger than half"      -case hydrostatic -dx 0.2
+check "-cfl"                  -case dam_break -cfl 3
+check "-water_depth"          -case hydrostatic -water_depth -0.1
+check "-column_width"         -case dam_break -column_width 0
+check "options_file"          -options_file cases/does_not_exist.opts
+check "output directory"      -case hydrostatic -dx 0.01 -output_dir /proc/forbidden
+check "-rebalance_threshold"  -case dam_break -rebalance_threshold 0.5
+check "-delta"                -case dam_break -delta 2
+echo "bad_input: $((n - bad)) of $n bad inputs rejected with a clear message"
+[ $bad -eq 0 ]

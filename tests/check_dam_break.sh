@@ -13,7 +13,10 @@ rows = list(csv.DictReader(open(sys.argv[1] + "/probes.csv")))
 t = [float(r["t"]) for r in rows]; f = [float(r["front_x"]) for r in rows]
 assert abs(f[0] - a) < 1e-9, "front does not start at the column width"
 assert all(f[i + 1] >= f[i] - 1e-9 for i in range(len(f) - 1)), "front moved back"
-ref = [l.strip().split(",") for l in open("../shared/refdata/martin_moyce1952_surge_n2eq2_a2.25in__pysph.csv") if l[0] not in "#T"]
+import os
+path = os.path.join(os.environ.get("SPHFSI_REFDATA", "../shared/refdata"), "martin_moyce1952_surge_n2eq2_a2.25in__pysph.csv")
+assert os.path.exists(path), f"reference data {path} not found: set SPHFSI_REFDATA to the refdata directory"
+ref = [l.strip().split(",") for l in open(path) if l[0] not in "#T"]
 worst = 0; n = 0
 for T, Z in ((float(T), float(Z)) for T, Z in ref):
     if T > 2.5: break

@@ -1,6 +1,17 @@
 #include <sphfsi/decomp.h>
 #include <metis.h>
 
+/* Relative work of a particle by kind: fluid and solid particles run every neighbour pass, wall
+ * and dummy particles only the light wall-state pass. Used to weight cells and measure balance. */
+static const PetscInt KindCost[KIND_COUNT] = {4, 1, 1, 4, 1};
+
+static PetscInt Work(Particles P)
+{
+  PetscInt w = 0;
+  for (PetscInt a = 0; a < P->n; a++) w += KindCost[P->kind[a]];
+  return w;
+}
+
 PetscErrorCode DecompCreate(MPI_Comm comm, Decomp *d)
 {
   PetscFunctionBeginUser;
@@ -17,7 +28,7 @@ PetscErrorCode DecompSetFromOptions(Decomp d)
 {
   PetscFunctionBeginUser;
   PetscOptionsBegin(d->comm, NULL, "Domain decomposition", "Decomp");
-  PetscCall(PetscOptionsReal("-rebalance_threshold", "Repartition when max/mean owned particles exceeds this (>= 1)", "", d->threshold, &d->threshold, NULL));
+  PetscCall(PetscOptionsReal("-rebalance_threshold", "Repartition when max/mean work per rank exceeds this (>= 1)", "", d->threshold, &d->threshold, NULL));
   PetscCall(PetscOptionsInt("-rebalance_every", "Steps between load-imbalance checks (> 0)", "", d->check_every, &d->check_every, NULL));
   PetscOptionsEnd();
   PetscCheck(d->threshold >= 1.0, d->comm, PETSC_ERR_ARG_OUTOFRANGE, "-rebalance_threshold %g must be >= 1", (double)d->threshold);
@@ -44,7 +55,7 @@ PetscErrorCode DecompDestroy(Decomp *d)
 }
 
 /* k-way partition of the cell graph (8 neighbours, periodic wrap) on rank 0.
- * Vertex weight 8 count + 1 (empty cells nearly free); edge weight count_i + count_j + 1, a proxy
+ * Vertex weight 2 work + 1 (empty cells nearly free); edge weight work_i + work_j + 1, a proxy
  * for the ghosts a cut edge creates. */
 static PetscErrorCode PartitionCells(Decomp d, const PetscInt *count, PetscMPIInt *owner)
 {
@@ -60,7 +71,7 @@ static PetscErrorCode PartitionCells(Decomp d, const PetscInt *count, PetscMPIIn
     for (PetscInt i = 0; i < g->n[0]; i++) {
       PetscInt c = j * g->n[0] + i;
       xadj[c] = ne;
-      vw[c]   = 8 * count[c] + 1;
+      vw[c]   = 2 * count[c] + 1;
       for (PetscInt dj = -1; dj <= 1; dj++)
         for (PetscInt di = -1; di <= 1; di++) {
           PetscInt ii = i + di, jj = j + dj;
@@ -78,9 +89,9 @@ static PetscErrorCode PartitionCells(Decomp d, const PetscInt *count, PetscMPIIn
   opts[METIS_OPTION_SEED]    = 1;
   opts[METIS_OPTION_NUMBERING] = 0;
   status = METIS_PartGraphKway(&nv, &ncon, xadj, adj, vw, NULL, ew, &nparts, NULL, NULL, opts, &objval, part);
-  PetscCheck(status == METIS_OK, PETSC_COMM_SELF, PETSC_ERR_LIB, "METIS_PartGraphKway failed with status %d", status);
   for (PetscInt c = 0; c < nv; c++) owner[c] = (PetscMPIInt)part[c];
   PetscCall(PetscFree5(xadj, adj, vw, ew, part));
+  PetscCheck(status == METIS_OK, PETSC_COMM_SELF, PETSC_ERR_LIB, "METIS_PartGraphKway failed with status %d", status);
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -98,7 +109,7 @@ PetscErrorCode DecompPartition(Decomp d, Particles P)
     PetscInt  c;
     GridWrap(g, xa);
     c = GridCellOf(g, xa);
-    if (c >= 0) d->wcount[c]++;
+    if (c >= 0) d->wcount[c] += KindCost[P->kind[a]];
   }
   if (d->size == 1) {
     PetscCall(PetscArrayzero(d->owner, nc));
@@ -251,13 +262,14 @@ PetscErrorCode DecompSortOwned(Decomp d, Particles P)
 
 PetscErrorCode DecompBalance(Decomp d, Particles P, PetscInt step, PetscBool *repartitioned)
 {
-  PetscInt nmax, nsum;
+  PetscInt nmax, nsum, w;
 
   PetscFunctionBeginUser;
   *repartitioned = PETSC_FALSE;
   if (d->size == 1 || step % d->check_every) PetscFunctionReturn(PETSC_SUCCESS);
-  PetscCall(MPIU_Allreduce(&P->n, &nmax, 1, MPIU_INT, MPI_MAX, d->comm));
-  PetscCall(MPIU_Allreduce(&P->n, &nsum, 1, MPIU_INT, MPI_SUM, d->comm));
+  w = Work(P);
+  PetscCall(MPIU_Allreduce(&w, &nmax, 1, MPIU_INT, MPI_MAX, d->comm));
+  PetscCall(MPIU_Allreduce(&w, &nsum, 1, MPIU_INT, MPI_SUM, d->comm));
   d->imbalance = nsum ? (PetscReal)nmax * d->size / nsum : 1.0;
   if (d->imbalance <= d->threshold) PetscFunctionReturn(PETSC_SUCCESS);
   PetscCall(PetscInfo(NULL, "Step %" PetscInt_FMT ": imbalance %.3f > %.3f, repartitioning\n", step, (double)d->imbalance, (double)d->threshold));

@@ -46,7 +46,6 @@ PetscErrorCode HaloBuild(Halo h, Decomp d, Particles P)
   PetscInt    *pa, *pr, *pc; /* (particle, rank, shift code) to send */
   PetscReal   *sbuf, *rbuf, *x = PField(P, FIELD_X);
   PetscSFNode *remote;
-  PetscInt    *ilocal;
   MPI_Datatype rec;
 
   PetscFunctionBeginUser;
@@ -116,14 +115,12 @@ PetscErrorCode HaloBuild(Halo h, Decomp d, Particles P)
     PetscCall(PetscMalloc1(h->cap_shift, &h->shift));
   }
   PetscCall(PetscMalloc1(nrecv, &remote));
-  PetscCall(PetscMalloc1(nrecv, &ilocal));
   for (PetscMPIInt r = 0; r < size; r++)
     for (PetscInt k = rdisp[r]; k < rdisp[r + 1]; k++) {
       const PetscReal *rec_ = rbuf + k * rs;
       PetscInt         b = n + k, q = 4;
       remote[k].rank  = r;
       remote[k].index = (PetscInt)rec_[0];
-      ilocal[k]       = b;
       h->shift[k]     = (PetscInt)rec_[1];
       P->id[b]        = (PetscInt)rec_[2];
       P->kind[b]      = (PetscInt)rec_[3];
@@ -136,7 +133,8 @@ PetscErrorCode HaloBuild(Halo h, Decomp d, Particles P)
   P->ng = nrecv;
   PetscCall(PetscSFDestroy(&h->sf));
   PetscCall(PetscSFCreate(d->comm, &h->sf));
-  PetscCall(PetscSFSetGraph(h->sf, n, nrecv, ilocal, PETSC_OWN_POINTER, remote, PETSC_OWN_POINTER));
+  /* leaves are contiguous: leafdata starts at the first ghost, never aliasing the roots */
+  PetscCall(PetscSFSetGraph(h->sf, n, nrecv, NULL, PETSC_COPY_VALUES, remote, PETSC_OWN_POINTER));
   PetscCall(PetscSFSetUp(h->sf));
   PetscCall(PetscFree2(sbuf, rbuf));
   PetscCall(PetscFree3(pa, pr, pc));
@@ -150,11 +148,11 @@ PetscErrorCode HaloRefresh(Halo h, Particles P, PetscInt nf, const FieldId f[])
   for (PetscInt k = 0; k < nf; k++) {
     Field *F = &P->f[f[k]];
     PetscCheck(F->on, h->comm, PETSC_ERR_ARG_WRONGSTATE, "Halo refresh of field %s, which this scene does not allocate", F->name);
-    PetscCall(PetscSFBcastBegin(h->sf, h->unit[F->width], F->a, F->a, MPI_REPLACE));
+    PetscCall(PetscSFBcastBegin(h->sf, h->unit[F->width], F->a, F->a + P->n * F->width, MPI_REPLACE));
   }
   for (PetscInt k = 0; k < nf; k++) {
     Field *F = &P->f[f[k]];
-    PetscCall(PetscSFBcastEnd(h->sf, h->unit[F->width], F->a, F->a, MPI_REPLACE));
+    PetscCall(PetscSFBcastEnd(h->sf, h->unit[F->width], F->a, F->a + P->n * F->width, MPI_REPLACE));
     if (f[k] == FIELD_X) {
       /* periodic images: the same shift the build applied */
       for (PetscInt j = 0; j < P->ng; j++) {

@@ -29,19 +29,30 @@ static PetscErrorCode MakeDir(Sim sim, const char *dir)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* A failure on rank 0 alone (files it writes) becomes an error on every rank, not a hang. */
+static PetscErrorCode RootCheck(Sim sim, int err, const char *what)
+{
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Bcast(&err, 1, MPI_INT, 0, sim->comm));
+  PetscCheck(!err, sim->comm, PETSC_ERR_FILE_WRITE, "Rank 0 could not write %s in %s (%s)", what, sim->outdir, strerror(err));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 PetscErrorCode IOSetUp(Sim sim)
 {
   PetscFunctionBeginUser;
+  int err = 0;
   PetscCall(MakeDir(sim, sim->outdir));
   if (!sim->rank) {
     char path[PETSC_MAX_PATH_LEN];
     PetscCall(PetscSNPrintf(path, sizeof(path), "%s/probes.csv", sim->outdir));
-    sim->probes = fopen(path, "w");
-    PetscCheck(sim->probes, PETSC_COMM_SELF, PETSC_ERR_FILE_OPEN, "Cannot open %s for writing", path);
-    fprintf(sim->probes, "t");
-    for (PetscInt k = 0; k < sim->scene->nprobes; k++) fprintf(sim->probes, ",%s", sim->scene->probe_names[k]);
-    fprintf(sim->probes, "\n");
+    if ((sim->probes = fopen(path, "w"))) {
+      fprintf(sim->probes, "t");
+      for (PetscInt k = 0; k < sim->scene->nprobes; k++) fprintf(sim->probes, ",%s", sim->scene->probe_names[k]);
+      fprintf(sim->probes, "\n");
+    } else err = errno;
   }
+  PetscCall(RootCheck(sim, err, "probes.csv"));
   sim->next_probe = 0;
   sim->next_out   = 0;
   PetscFunctionReturn(PETSC_SUCCESS);
@@ -98,8 +109,7 @@ PetscErrorCode IOWriteParticles(Sim sim, const char *path)
   PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "time", PETSC_REAL, &sim->t));
   PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "step", PETSC_INT, &sim->step));
   PetscCall(PetscViewerDestroy(&v));
-  if (!sim->rank) PetscCheck(!rename(tmp, path), PETSC_COMM_SELF, PETSC_ERR_FILE_WRITE, "Cannot rename %s to %s", tmp, path);
-  PetscCallMPI(MPI_Barrier(sim->comm));
+  PetscCall(RootCheck(sim, sim->rank || !rename(tmp, path) ? 0 : errno, path));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -111,11 +121,11 @@ static PetscErrorCode WriteXDMF(Sim sim)
   const PetscInt N = sim->nparticles;
 
   PetscFunctionBeginUser;
-  if (sim->rank) PetscFunctionReturn(PETSC_SUCCESS);
+  int err = 0;
+  if (sim->rank) PetscFunctionReturn(RootCheck(sim, 0, "particles.xmf"));
   PetscCall(PetscSNPrintf(path, sizeof(path), "%s/particles.xmf", sim->outdir));
   PetscCall(PetscSNPrintf(tmp, sizeof(tmp), "%s.part", path));
-  f = fopen(tmp, "w");
-  PetscCheck(f, PETSC_COMM_SELF, PETSC_ERR_FILE_OPEN, "Cannot write %s", tmp);
+  if (!(f = fopen(tmp, "w"))) PetscFunctionReturn(RootCheck(sim, errno, "particles.xmf"));
   fprintf(f, "<?xml version=\"1.0\" ?>\n<Xdmf Version=\"2.0\">\n <Domain>\n  <Grid Name=\"particles\" GridType=\"Collection\" CollectionType=\"Temporal\">\n");
   for (PetscInt s = 0; s < sim->snap; s++) {
     char h5[64];
@@ -123,8 +133,8 @@ static PetscErrorCode WriteXDMF(Sim sim)
     fprintf(f, "   <Grid Name=\"step%05d\" GridType=\"Uniform\">\n    <Time Value=\"%.9g\"/>\n", (int)s, (double)sim->snap_times[s]);
     fprintf(f, "    <Topology TopologyType=\"Polyvertex\" NumberOfElements=\"%d\"/>\n", (int)N);
     fprintf(f, "    <Geometry GeometryType=\"XY\">\n     <DataItem Dimensions=\"%d 2\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s:/x</DataItem>\n    </Geometry>\n", (int)N, h5);
-    fprintf(f, "    <Attribute Name=\"id\" Center=\"Node\"><DataItem Dimensions=\"%d\" NumberType=\"Int\" Precision=\"4\" Format=\"HDF\">%s:/id</DataItem></Attribute>\n", (int)N, h5);
-    fprintf(f, "    <Attribute Name=\"kind\" Center=\"Node\"><DataItem Dimensions=\"%d\" NumberType=\"Int\" Precision=\"4\" Format=\"HDF\">%s:/kind</DataItem></Attribute>\n", (int)N, h5);
+    fprintf(f, "    <Attribute Name=\"id\" Center=\"Node\"><DataItem Dimensions=\"%d\" NumberType=\"Int\" Precision=\"%d\" Format=\"HDF\">%s:/id</DataItem></Attribute>\n", (int)N, (int)sizeof(PetscInt), h5);
+    fprintf(f, "    <Attribute Name=\"kind\" Center=\"Node\"><DataItem Dimensions=\"%d\" NumberType=\"Int\" Precision=\"%d\" Format=\"HDF\">%s:/kind</DataItem></Attribute>\n", (int)N, (int)sizeof(PetscInt), h5);
     fprintf(f, "    <Attribute Name=\"v\" AttributeType=\"Vector\" Center=\"Node\"><DataItem Dimensions=\"%d 2\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s:/v</DataItem></Attribute>\n", (int)N, h5);
     {
       const char *scal[] = {"p", "rho", "m", "h"};
@@ -137,7 +147,8 @@ static PetscErrorCode WriteXDMF(Sim sim)
   }
   fprintf(f, "  </Grid>\n </Domain>\n</Xdmf>\n");
   fclose(f);
-  PetscCheck(!rename(tmp, path), PETSC_COMM_SELF, PETSC_ERR_FILE_WRITE, "Cannot rename %s", tmp);
+  if (rename(tmp, path)) err = errno;
+  PetscCall(RootCheck(sim, err, "particles.xmf"));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -186,12 +197,15 @@ PetscErrorCode IOSummary(Sim sim)
 {
   char  path[PETSC_MAX_PATH_LEN], tmp[PETSC_MAX_PATH_LEN];
   FILE *f = NULL;
+  int   err = 0;
   PetscFunctionBeginUser;
   if (!sim->rank) {
     PetscCall(PetscSNPrintf(path, sizeof(path), "%s/summary.json", sim->outdir));
     PetscCall(PetscSNPrintf(tmp, sizeof(tmp), "%s.part", path));
-    f = fopen(tmp, "w");
-    PetscCheck(f, PETSC_COMM_SELF, PETSC_ERR_FILE_OPEN, "Cannot write %s", tmp);
+    if (!(f = fopen(tmp, "w"))) err = errno;
+  }
+  PetscCall(RootCheck(sim, err, "summary.json"));
+  if (!sim->rank) {
     fprintf(f, "{\n  \"case\": \"%s\",\n  \"fluid\": \"%s\",\n  \"ranks\": %d,\n", sim->scene->name, FluidSchemes[sim->fluid], sim->size);
     fprintf(f, "  \"particles\": %d,\n  \"steps\": %d,\n  \"t_end\": %.9g,\n  \"dx\": %.9g,\n", (int)sim->nparticles, (int)sim->step, (double)sim->t, (double)sim->dx);
     fprintf(f, "  \"wall_s\": %.6g,\n  \"particle_steps_per_s\": %.6g,\n", (double)sim->wall_loop, (double)(sim->particle_steps / PetscMax(sim->wall_loop, 1e-9)));
@@ -207,7 +221,8 @@ PetscErrorCode IOSummary(Sim sim)
   if (!sim->rank) {
     fprintf(f, "}\n}\n");
     fclose(f);
-    PetscCheck(!rename(tmp, path), PETSC_COMM_SELF, PETSC_ERR_FILE_WRITE, "Cannot rename %s", tmp);
+    if (rename(tmp, path)) err = errno;
   }
+  PetscCall(RootCheck(sim, err, "summary.json"));
   PetscFunctionReturn(PETSC_SUCCESS);
 }

@@ -100,11 +100,12 @@ PetscErrorCode ParticlesAdd(Particles P, PetscInt id, ParticleKind kind, PetscRe
 
 PetscErrorCode ParticlesPermute(Particles P, const PetscInt *perm)
 {
-  PetscInt  n = P->n, *itmp;
+  PetscInt  n = P->n, *itmp, wmax = 1;
   PetscReal *rtmp;
   PetscFunctionBeginUser;
   P->ng = 0;
-  PetscCall(PetscMalloc2(n, &itmp, 3 * n, &rtmp));
+  for (PetscInt f = 0; f < FIELD_COUNT; f++) wmax = PetscMax(wmax, P->f[f].width);
+  PetscCall(PetscMalloc2(n, &itmp, wmax * n, &rtmp));
   for (PetscInt i = 0; i < n; i++) itmp[i] = P->id[perm[i]];
   PetscCall(PetscArraycpy(P->id, itmp, n));
   for (PetscInt i = 0; i < n; i++) itmp[i] = P->kind[perm[i]];

@@ -51,22 +51,26 @@ PetscErrorCode RefDataLoad(Sim sim, const char *file, const char *xcol, const ch
     PetscFunctionReturn(PETSC_SUCCESS);
   }
   while (fgets(line, sizeof(line), f)) {
-    char *tok, *save = NULL;
+    char *tok, *rest = line;
     int   col = 0;
     double vx = 0, vy = 0;
     if (line[0] == '#' || line[0] == '\n') continue;
     if (ix < 0) { /* header */
-      for (tok = strtok_r(line, ",\r\n", &save); tok; tok = strtok_r(NULL, ",\r\n", &save), col++) {
+      line[strcspn(line, "\r\n")] = 0;
+      while ((tok = strsep(&rest, ","))) {
         while (*tok == ' ' || *tok == '"') tok++;
         if (!strncmp(tok, xcol, strlen(xcol)) && (tok[strlen(xcol)] == 0 || tok[strlen(xcol)] == '"')) ix = col;
         if (!strncmp(tok, ycol, strlen(ycol)) && (tok[strlen(ycol)] == 0 || tok[strlen(ycol)] == '"')) iy = col;
+        col++;
       }
       if (ix < 0 || iy < 0) break;
       continue;
     }
-    for (tok = strtok_r(line, ",\r\n", &save); tok; tok = strtok_r(NULL, ",\r\n", &save), col++) {
+    line[strcspn(line, "\r\n")] = 0;
+    while ((tok = strsep(&rest, ","))) {
       if (col == ix) vx = atof(tok);
       if (col == iy) vy = atof(tok);
+      col++;
     }
     PetscCall(SeriesAppend(ref, vx, vy));
   }

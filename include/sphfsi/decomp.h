@@ -11,11 +11,11 @@ struct _p_Decomp {
   PetscMPIInt rank, size;
   const Grid *grid;
   PetscMPIInt *owner;       /* owner rank of each global cell */
-  PetscReal   threshold;    /* repartition when max/mean owned particles exceeds it */
+  PetscReal   threshold;    /* repartition when max/mean work per rank exceeds it */
   PetscInt    check_every;  /* steps between imbalance checks */
   PetscInt    nrepartition; /* repartitions after the first */
   PetscReal   imbalance;    /* at the last check */
-  PetscInt    *wcount;      /* per-cell particle counts (work) */
+  PetscInt    *wcount;      /* per-cell work (particles weighted by kind) */
 };
 
 PetscErrorCode DecompCreate(MPI_Comm comm, Decomp *d);
@@ -29,6 +29,7 @@ PetscErrorCode DecompPartition(Decomp d, Particles P);
 PetscErrorCode DecompMigrate(Decomp d, Particles P);
 /* Reorder owned particles by (cell, id): neighbours close in memory, order independent of ranks. */
 PetscErrorCode DecompSortOwned(Decomp d, Particles P);
-/* Every check_every steps: measure imbalance, repartition + migrate past the threshold. */
+/* Every check_every steps: measure the imbalance of work (particles weighted by kind, fluid and
+ * solid 4, walls 1), repartition + migrate past the threshold. */
 PetscErrorCode DecompBalance(Decomp d, Particles P, PetscInt step, PetscBool *repartitioned);
 PetscErrorCode DecompView(Decomp d, PetscViewer v);

@@ -39,5 +39,6 @@ static inline void GridWrap(const Grid *g, PetscReal *x)
     PetscReal L = g->hi[d] - g->lo[d];
     if (x[d] >= g->hi[d]) x[d] -= L;
     else if (x[d] < g->lo[d]) x[d] += L;
+    if (x[d] >= g->hi[d]) x[d] = g->lo[d]; /* lo - tiny + L rounds to hi: the same point */
   }
 }

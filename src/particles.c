@@ -24,7 +24,7 @@ PetscErrorCode ParticlesCreate(MPI_Comm comm, Particles *P)
   PetscCall(ParticlesEnableField(*P, FIELD_X, PETSC_TRUE));
   PetscCall(ParticlesEnableField(*P, FIELD_V, PETSC_TRUE));
   PetscCall(ParticlesEnableField(*P, FIELD_RHO, PETSC_TRUE));
-  PetscCall(ParticlesEnableField(*P, FIELD_P, PETSC_TRUE));
+  PetscCall(ParticlesEnableField(*P, FIELD_P, PETSC_FALSE)); /* ghosts: from their density or a refresh */
   PetscCall(ParticlesEnableField(*P, FIELD_M, PETSC_TRUE));
   PetscCall(ParticlesEnableField(*P, FIELD_H, PETSC_TRUE));
   PetscFunctionReturn(PETSC_SUCCESS);

@@ -7,7 +7,7 @@ PetscErrorCode WCSPHSetUp(Sim sim)
   PetscFunctionBeginUser;
   PetscCall(ParticlesEnableField(sim->P, FIELD_ACC, PETSC_FALSE));
   PetscCall(ParticlesEnableField(sim->P, FIELD_DRHO, PETSC_FALSE));
-  PetscCall(ParticlesEnableField(sim->P, FIELD_VWALL, PETSC_TRUE));
+  PetscCall(ParticlesEnableField(sim->P, FIELD_VWALL, PETSC_FALSE)); /* ghosts: refreshed by BoundaryWallState */
   if (sim->fl.xsph > 0) PetscCall(ParticlesEnableField(sim->P, FIELD_XSPH, PETSC_FALSE));
   PetscFunctionReturn(PETSC_SUCCESS);
 }

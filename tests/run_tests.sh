@@ -13,7 +13,7 @@ run() { # name, command...
   local name=$1; shift
   local t0=$SECONDS
   if "$@" > "$OUT/$name.log" 2>&1; then
-    pass=$((pass + 1)); echo "PASS $name ($((SECONDS - t0)) s): $(grep -E '^(#|[a-z_ ]+:)' "$OUT/$name.log" | tail -n 1)"
+    pass=$((pass + 1)); echo "PASS $name ($((SECONDS - t0)) s): $(grep -E '^(#|[a-z0-9_ ]+:)' "$OUT/$name.log" | tail -n 1)"
   else
     fail=$((fail + 1)); failed+=("$name"); echo "FAIL $name ($((SECONDS - t0)) s); last lines of $OUT/$name.log:"; tail -n 15 "$OUT/$name.log" | sed 's/^/    /'
   fi

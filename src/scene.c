@@ -32,7 +32,7 @@ static PetscErrorCode AddOne(Sim sim, ParticleKind kind, PetscReal x, PetscReal 
 {
   PetscInt id = sim->next_id++;
   PetscFunctionBeginUser;
-  if (id % sim->size == sim->rank) PetscCall(ParticlesAdd(sim->P, id, kind, x, y, rho0 * dx * dx, 1.3 * dx, rho0));
+  if (id % sim->size == sim->rank) PetscCall(ParticlesAdd(sim->P, id, kind, x, y, rho0 * dx * dx, SPH_H_FACTOR * dx, rho0));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

@@ -38,7 +38,7 @@ struct _p_Sim {
   PetscReal     dom_lo[2], dom_hi[2];
   PetscBool     periodic[2];
   /* time */
-  PetscReal t, t_end, dt, dt_fixed, cfl, dt_min;
+  PetscReal t, t_end, dt, dt_fixed, cfl;
   PetscInt  step, max_steps;
   /* output */
   char      outdir[PETSC_MAX_PATH_LEN];

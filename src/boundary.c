@@ -1,12 +1,14 @@
 #include <sphfsi/boundary.h>
 
-PetscErrorCode BoundaryWallState(Sim sim)
+/* Wall state from the fluid neighbours of each owned wall/dummy particle: the no-slip mirror
+ * velocity always, the Adami pressure and EOS density when `pressure` is set (WCSPH). */
+static PetscErrorCode WallState(Sim sim, PetscBool pressure)
 {
   Particles        P = sim->P;
   Cells            C = sim->cells;
   const PetscReal *x = PField(P, FIELD_X), *v = PField(P, FIELD_V);
   PetscReal       *p = PField(P, FIELD_P), *rho = PField(P, FIELD_RHO), *vw = PField(P, FIELD_VWALL);
-  const FieldId    refresh[] = {FIELD_P, FIELD_RHO, FIELD_VWALL};
+  const FieldId    refresh[] = {FIELD_VWALL, FIELD_P, FIELD_RHO};
 
   PetscFunctionBeginUser;
   PetscCall(PetscLogStagePush(sim->stage[STAGE_PHYSICS]));
@@ -24,20 +26,35 @@ PetscErrorCode BoundaryWallState(Sim sim)
       svx += v[2 * b] * w; svy += v[2 * b + 1] * w;
     }
     if (sw > 0) {
-      /* Adami et al. 2012, Eq. 27 (static wall): p_w = (sum p_f W + g . sum rho_f r_wf W) / sum W */
-      p[a]          = (sp + sim->g[0] * sgx + sim->g[1] * sgy) / sw;
       vw[2 * a]     = 2.0 * v[2 * a] - svx / sw;
       vw[2 * a + 1] = 2.0 * v[2 * a + 1] - svy / sw;
     } else {
-      p[a]          = 0;
       vw[2 * a]     = v[2 * a];
       vw[2 * a + 1] = v[2 * a + 1];
     }
-    rho[a] = EOSDensity(&sim->fl, p[a]);
+    if (pressure) {
+      /* Adami et al. 2012, Eq. 27 (static wall): p_w = (sum p_f W + g . sum rho_f r_wf W) / sum W */
+      p[a]   = sw > 0 ? (sp + sim->g[0] * sgx + sim->g[1] * sgy) / sw : 0;
+      rho[a] = EOSDensity(&sim->fl, p[a]);
+    }
   }
   PetscCall(PetscLogStagePop());
   PetscCall(PetscLogStagePush(sim->stage[STAGE_HALO]));
-  PetscCall(HaloRefresh(sim->halo, P, 3, refresh));
+  PetscCall(HaloRefresh(sim->halo, P, pressure ? 3 : 1, refresh));
   PetscCall(PetscLogStagePop());
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode BoundaryWallState(Sim sim)
+{
+  PetscFunctionBeginUser;
+  PetscCall(WallState(sim, PETSC_TRUE));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode BoundaryWallVelocity(Sim sim)
+{
+  PetscFunctionBeginUser;
+  PetscCall(WallState(sim, PETSC_FALSE));
   PetscFunctionReturn(PETSC_SUCCESS);
 }

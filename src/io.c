@@ -1,6 +1,7 @@
 #include <sphfsi/io.h>
 #include <sphfsi/scene.h>
 #include <sphfsi/wcsph.h>
+#include <sphfsi/isph.h>
 #include <petscviewerhdf5.h>
 #include <sys/stat.h>
 #include <errno.h>
@@ -157,7 +158,7 @@ PetscErrorCode IOSnapshot(Sim sim)
   char path[PETSC_MAX_PATH_LEN];
   PetscFunctionBeginUser;
   PetscCall(PetscLogStagePush(sim->stage[STAGE_OUTPUT]));
-  PetscCall(WCSPHPressure(sim)); /* pressure of the stored density */
+  if (!sim->isph) PetscCall(WCSPHPressure(sim)); /* pressure of the stored density */
   PetscCall(PetscSNPrintf(path, sizeof(path), "%s/particles_%05" PetscInt_FMT ".h5", sim->outdir, sim->snap));
   PetscCall(IOWriteParticles(sim, path));
   if (sim->snap >= sim->snap_cap) {
@@ -209,7 +210,8 @@ PetscErrorCode IOSummary(Sim sim)
     fprintf(f, "{\n  \"case\": \"%s\",\n  \"fluid\": \"%s\",\n  \"ranks\": %d,\n", sim->scene->name, FluidSchemes[sim->fluid], sim->size);
     fprintf(f, "  \"particles\": %d,\n  \"steps\": %d,\n  \"t_end\": %.9g,\n  \"dx\": %.9g,\n", (int)sim->nparticles, (int)sim->step, (double)sim->t, (double)sim->dx);
     fprintf(f, "  \"wall_s\": %.6g,\n  \"particle_steps_per_s\": %.6g,\n", (double)sim->wall_loop, (double)(sim->particle_steps / PetscMax(sim->wall_loop, 1e-9)));
-    fprintf(f, "  \"ksp_its_mean\": null,\n  \"ksp_its_max\": null,\n");
+    if (sim->isph && sim->isph->ppe->nsolve) fprintf(f, "  \"ksp_its_mean\": %.4g,\n  \"ksp_its_max\": %d,\n", (double)(sim->isph->ppe->its_sum / sim->isph->ppe->nsolve), (int)sim->isph->ppe->its_max);
+    else fprintf(f, "  \"ksp_its_mean\": null,\n  \"ksp_its_max\": null,\n");
     fprintf(f, "  \"mass_rel_drift\": %.6g,\n", (double)(sim->mass0 > 0 ? (sim->mass - sim->mass0) / sim->mass0 : 0));
     fprintf(f, "  \"c0\": %.6g,\n  \"bytes_per_particle\": %d,\n  \"repartitions\": %d,\n", (double)sim->fl.c0, (int)ParticlesBytesPerParticle(sim->P), (int)sim->decomp->nrepartition);
     fprintf(f, "  \"fields\": [");

@@ -1,6 +1,7 @@
 #include <sphfsi/sim.h>
 #include <sphfsi/scene.h>
 #include <sphfsi/wcsph.h>
+#include <sphfsi/isph.h>
 #include <sphfsi/boundary.h>
 #include <sphfsi/io.h>
 #include <sphfsi/kernel.h>
@@ -28,7 +29,7 @@ PetscErrorCode SimCreate(MPI_Comm comm, Sim *sim)
   s->fl.xsph        = 0.0;
   s->g[1]           = -9.81;
   {
-    const char *names[STAGE_COUNT] = {"Neighbours", "Halo+migrate", "Physics", "Output"};
+    const char *names[STAGE_COUNT] = {"Neighbours", "Halo+migrate", "Physics", "PPE assembly", "PPE solve", "Output"};
     for (PetscInt k = 0; k < STAGE_COUNT; k++) { /* a second Sim in one program shares the stages */
       PetscCall(PetscLogStageGetId(names[k], &s->stage[k]));
       if (s->stage[k] < 0) PetscCall(PetscLogStageRegister(names[k], &s->stage[k]));
@@ -47,6 +48,7 @@ PetscErrorCode SimDestroy(Sim *sim)
   if (!s) PetscFunctionReturn(PETSC_SUCCESS);
   if (s->scene && s->scene->destroy) PetscCall(s->scene->destroy(s));
   PetscCall(IOFinalize(s));
+  PetscCall(ISPHDestroy(&s->isph));
   PetscCall(CellsDestroy(&s->cells));
   PetscCall(HaloDestroy(&s->halo));
   PetscCall(DecompDestroy(&s->decomp));
@@ -82,7 +84,6 @@ PetscErrorCode SimSetFromOptions(Sim sim)
   PetscCheck(set && name[0], sim->comm, PETSC_ERR_USER_INPUT, "No scene given: use -case NAME with NAME one of: %s (or -options_file cases/NAME.opts)", names);
   PetscCall(SceneFind(name, &sim->scene));
   PetscCheck(sim->scene, sim->comm, PETSC_ERR_USER_INPUT, "Unknown -case %s: choose one of %s", name, names);
-  PetscCheck(sim->fluid == FLUID_WCSPH, sim->comm, PETSC_ERR_SUP, "-fluid isph is not available in this version yet; use -fluid wcsph");
   PetscCheck(!dx_set || sim->dx > 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dx %g must be > 0", (double)sim->dx);
   PetscCheck(!t_set || sim->t_end > 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-t_end %g must be > 0", (double)sim->t_end);
   PetscCheck(sim->dt_fixed >= 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dt %g must be > 0 (or 0 for an adaptive step)", (double)sim->dt_fixed);
@@ -155,7 +156,8 @@ PetscErrorCode SimSetUp(Sim sim)
   PetscCheck(sim->dx > 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dx %g must be > 0", (double)sim->dx);
   PetscCheck(sim->t_end > 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-t_end %g must be > 0", (double)sim->t_end);
   PetscCall(FluidOptions(sim));
-  PetscCall(WCSPHSetUp(sim));
+  if (sim->fluid == FLUID_ISPH) PetscCall(ISPHSetUp(sim));
+  else PetscCall(WCSPHSetUp(sim));
   PetscCall(ParticlesSetUp(sim->P));
   sim->h_max = SPH_H_FACTOR * sim->dx;
   PetscCall(sim->scene->populate(sim));
@@ -173,7 +175,8 @@ PetscErrorCode SimSetUp(Sim sim)
   PetscCall(DecompPartition(sim->decomp, sim->P));
   PetscCall(SimRebuild(sim));
   PetscCall(SimTotalMass(sim, KIND_FLUID, &sim->mass0));
-  PetscCall(WCSPHRates(sim));
+  if (sim->fluid == FLUID_ISPH) PetscCall(ISPHInitialize(sim));
+  else PetscCall(WCSPHRates(sim));
   PetscCall(IOSetUp(sim));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -187,7 +190,9 @@ static PetscErrorCode Progress(Sim sim, PetscLogDouble *last, PetscBool force)
   *last = now;
   {
     PetscReal el = now - sim->wall_start, left = sim->t > 0 ? el * (sim->t_end - sim->t) / sim->t : 0;
-    PetscCall(PetscPrintf(sim->comm, "step %7" PetscInt_FMT "  t %.5e / %.4g s  dt %.3e  particles %" PetscInt_FMT "  wall %.1f s  left ~%.0f s\n", sim->step, (double)sim->t, (double)sim->t_end, (double)sim->dt, sim->nparticles, (double)el, (double)left));
+    char its[64] = "";
+    if (sim->isph) PetscCall(PetscSNPrintf(its, sizeof(its), "  PPE its %" PetscInt_FMT " (free surface %" PetscInt_FMT ")", sim->isph->ppe->its_last, sim->isph->nfree));
+    PetscCall(PetscPrintf(sim->comm, "step %7" PetscInt_FMT "  t %.5e / %.4g s  dt %.3e  particles %" PetscInt_FMT "%s  wall %.1f s  left ~%.0f s\n", sim->step, (double)sim->t, (double)sim->t_end, (double)sim->dt, sim->nparticles, its, (double)el, (double)left));
   }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -217,15 +222,18 @@ PetscErrorCode SimRun(Sim sim)
   PetscCall(PetscViewerASCIIPrintf(PETSC_VIEWER_STDOUT_(sim->comm), "sphfsi: case %s, fluid %s, %d rank(s), dx %g, t_end %g, c0 %g\n", sim->scene->name, FluidSchemes[sim->fluid], sim->size, (double)sim->dx, (double)sim->t_end, (double)sim->fl.c0));
   PetscCall(ParticlesView(sim->P, PETSC_VIEWER_STDOUT_(sim->comm)));
   PetscCall(DecompView(sim->decomp, PETSC_VIEWER_STDOUT_(sim->comm)));
+  if (sim->isph) PetscCall(ISPHView(sim, PETSC_VIEWER_STDOUT_(sim->comm)));
   PetscCall(PetscTime(&sim->wall_start));
   last = sim->wall_start;
   PetscCall(IOProbes(sim));
   if (sim->out_interval > 0) PetscCall(IOSnapshot(sim));
   while (sim->t < sim->t_end - eps && sim->step < sim->max_steps) {
     if (sim->dt_fixed > 0) sim->dt = sim->dt_fixed;
+    else if (sim->isph) PetscCall(ISPHTimeStep(sim, &sim->dt));
     else PetscCall(WCSPHTimeStep(sim, &sim->dt));
     sim->dt = PetscMin(sim->dt, sim->t_end - sim->t);
-    PetscCall(WCSPHStep(sim));
+    if (sim->isph) PetscCall(ISPHStep(sim));
+    else PetscCall(WCSPHStep(sim));
     sim->t += sim->dt;
     sim->step++;
     sim->particle_steps += (PetscReal)sim->nparticles;

@@ -1,6 +1,7 @@
 #include <sphfsi/wcsph.h>
 #include <sphfsi/boundary.h>
 #include <sphfsi/kernel.h>
+#include <sphfsi/fluid_terms.h>
 
 PetscErrorCode WCSPHSetUp(Sim sim)
 {
@@ -20,20 +21,6 @@ PetscErrorCode WCSPHPressure(Sim sim)
   for (PetscInt a = 0; a < P->n + P->ng; a++)
     if (KindIsFluid(P->kind[a])) p[a] = EOSPressure(&sim->fl, rho[a]);
   PetscFunctionReturn(PETSC_SUCCESS);
-}
-
-/* Eq. 24: Monaghan artificial viscosity, added to the pressure term; vr = v_ab . r_ab */
-static inline PetscReal ArtificialViscosity(PetscReal alpha, PetscReal c, PetscReal h, PetscReal rho_bar, PetscReal vr, PetscReal r2)
-{
-  if (vr >= 0) return 0.0;
-  return -alpha * c * (h * vr / (r2 + 0.01 * h * h)) / rho_bar;
-}
-
-/* Eq. 16: laminar viscosity, the coefficient of (v_a - v_b); rgw = r_ab . grad_a W_ab, eta = 0.1 h */
-static inline PetscReal LaminarViscosity(PetscReal mb, PetscReal mu, PetscReal rhoa, PetscReal rhob, PetscReal rgw, PetscReal r2, PetscReal h)
-{
-  PetscReal rs = rhoa + rhob;
-  return 4.0 * mb * (2.0 * mu) * rgw / (rs * rs * (r2 + 0.01 * h * h));
 }
 
 /* drho/dt of owned fluid: continuity Eq. 18, optional delta-SPH diffusion (Molteni & Colagrossi

@@ -27,5 +27,9 @@ check "options_file"          -options_file cases/does_not_exist.opts
 check "output directory"      -case hydrostatic -dx 0.01 -output_dir /proc/forbidden
 check "-rebalance_threshold"  -case dam_break -rebalance_threshold 0.5
 check "-delta"                -case dam_break -delta 2
+check "-isph_beta"            -case dam_break -fluid isph -isph_beta 1.5
+check "-isph_source"          -case dam_break -fluid isph -isph_source magic
+check "DIVERGED_ITS"          -case hydrostatic -fluid isph -dx 0.01 -ksp_max_it 1 -ksp_error_if_not_converged
+check "DIVERGED_ITS"          -case hydrostatic -fluid isph -dx 0.01 -ksp_max_it 1
 echo "bad_input: $((n - bad)) of $n bad inputs rejected with a clear message"
 [ $bad -eq 0 ]

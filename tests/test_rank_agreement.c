@@ -1,6 +1,9 @@
 /* The same short dam break on all ranks of the world and on rank 0 alone agrees particle by particle
- * (by id). Neighbour sums run in an order independent of the decomposition, so the agreement is
- * expected to be exact; the test allows round-off (1e-12 relative). Run on 2 ranks. */
+ * (by id). Neighbour sums run in an order independent of the decomposition, so with WCSPH the
+ * agreement is expected to be exact; the test allows round-off (-tol, default 1e-12 relative).
+ * With -fluid isph the pressure comes from an iterative solve whose parallel preconditioner differs
+ * between 1 and 2 ranks, so the runs agree to the solver tolerance: run with -ksp_rtol 1e-10 and
+ * -tol 1e-6.  Run on 2 ranks. */
 #include <sphfsi/sim.h>
 
 static PetscErrorCode RunCase(MPI_Comm comm, const char *outdir, Sim *sim)
@@ -19,8 +22,9 @@ int main(int argc, char **argv)
   Sim         world, self = NULL;
   PetscMPIInt rank, size;
   PetscInt    N;
-  PetscReal  *ref = NULL, err = 0, scale = 0;
+  PetscReal  *ref = NULL, err = 0, scale = 0, tol = 1e-12;
   PetscCall(PetscInitialize(&argc, &argv, NULL, NULL));
+  PetscCall(PetscOptionsGetReal(NULL, NULL, "-tol", &tol, NULL));
   PetscCallMPI(MPI_Comm_rank(PETSC_COMM_WORLD, &rank));
   PetscCallMPI(MPI_Comm_size(PETSC_COMM_WORLD, &size));
   PetscCall(PetscOptionsSetValue(NULL, "-case", "dam_break"));
@@ -62,8 +66,8 @@ int main(int argc, char **argv)
         for (PetscInt c = 1; c < 6; c++) { err = PetscMax(err, PetscAbsReal(w[c] - s[c]) / (c == 5 ? 1000.0 : c >= 3 ? 1.0 : 0.1)); }
         scale = PetscMax(scale, PetscAbsReal(s[3]) + PetscAbsReal(s[4]));
       }
-      PetscCall(PetscPrintf(PETSC_COMM_SELF, "rank agreement: %d particles after %d steps, max scaled difference %.3e (max speed %.3f m/s)\n", (int)N, (int)world->step, (double)err, (double)scale));
-      PetscCheck(err <= 1e-12, PETSC_COMM_SELF, PETSC_ERR_PLIB, "1-rank and %d-rank runs differ by %g", size, (double)err);
+      PetscCall(PetscPrintf(PETSC_COMM_SELF, "rank agreement (%s): %d particles after %d steps, max scaled difference %.3e (bound %.0e; max speed %.3f m/s)\n", world->isph ? "isph" : "wcsph", (int)N, (int)world->step, (double)err, (double)tol, (double)scale));
+      PetscCheck(err <= tol, PETSC_COMM_SELF, PETSC_ERR_PLIB, "1-rank and %d-rank runs differ by %g", size, (double)err);
       PetscCheck(scale > 0.5, PETSC_COMM_SELF, PETSC_ERR_PLIB, "The dam break did not move (max speed %g)", (double)scale);
       PetscCall(PetscFree(ref));
       PetscCall(PetscFree3(cnt, disp, buf));

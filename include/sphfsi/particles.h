@@ -28,6 +28,7 @@ typedef enum {
   FIELD_FS,    /* free-surface flag (0/1) */
   FIELD_S,     /* solid deviatoric stress (3: xx, xy, yy) */
   FIELD_NORMAL,  /* interface normal (2) */
+  FIELD_ROW,   /* ISPH: global row of the pressure equation (-1: none) */
   FIELD_COUNT
 } FieldId;
 

@@ -12,10 +12,11 @@
 typedef enum { FLUID_WCSPH = 0, FLUID_ISPH } FluidScheme;
 extern const char *const FluidSchemes[];
 
-typedef enum { STAGE_NEIGHBOUR, STAGE_HALO, STAGE_PHYSICS, STAGE_OUTPUT, STAGE_COUNT } SimStage;
+typedef enum { STAGE_NEIGHBOUR, STAGE_HALO, STAGE_PHYSICS, STAGE_PPE_ASSEMBLY, STAGE_PPE_SOLVE, STAGE_OUTPUT, STAGE_COUNT } SimStage;
 
 typedef struct _p_Sim *Sim;
 typedef struct _SceneOps SceneOps;
+typedef struct _p_ISPH *ISPH;
 
 struct _p_Sim {
   MPI_Comm    comm;
@@ -33,6 +34,7 @@ struct _p_Sim {
   /* physics */
   PetscReal     g[2];
   FluidMaterial fl;
+  ISPH          isph; /* NULL unless -fluid isph */
   PetscReal     v_ref;      /* expected maximum speed: c0 = 10 v_ref when -c0 is not given */
   PetscReal     dx, h_max;  /* finest spacing, largest smoothing length */
   PetscReal     dom_lo[2], dom_hi[2];

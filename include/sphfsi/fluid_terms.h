@@ -1,0 +1,26 @@
+/* Pair terms of the fluid equations shared by the WCSPH and ISPH schemes: each is a function of
+ * one pair (a, b); the loop drivers in wcsph.c and isph*.c call the terms a step needs. */
+#pragma once
+#include <sphfsi/base.h>
+
+/* Eq. 24: Monaghan artificial viscosity, added to the pressure term; vr = v_ab . r_ab */
+static inline PetscReal ArtificialViscosity(PetscReal alpha, PetscReal c, PetscReal h, PetscReal rho_bar, PetscReal vr, PetscReal r2)
+{
+  if (vr >= 0) return 0.0;
+  return -alpha * c * (h * vr / (r2 + 0.01 * h * h)) / rho_bar;
+}
+
+/* Eq. 16: laminar viscosity, the coefficient of (v_a - v_b); rgw = r_ab . grad_a W_ab, eta = 0.1 h */
+static inline PetscReal LaminarViscosity(PetscReal mb, PetscReal mu, PetscReal rhoa, PetscReal rhob, PetscReal rgw, PetscReal r2, PetscReal h)
+{
+  PetscReal rs = rhoa + rhob;
+  return 4.0 * mb * (2.0 * mu) * rgw / (rs * rs * (r2 + 0.01 * h * h));
+}
+
+/* Eq. 22: coefficient c_ab of the Laplacian  div(grad P / rho)_a = sum_b c_ab (P_a - P_b);
+ * F = (dW/dr)/r so r_ab . grad_a W_ab = F r2; eta = 0.1 h.  c_ab <= 0 and m_a c_ab is symmetric. */
+static inline PetscReal PPECoefficient(PetscReal mb, PetscReal rhoa, PetscReal rhob, PetscReal F, PetscReal r2, PetscReal h)
+{
+  PetscReal rs = rhoa + rhob;
+  return 8.0 * mb * F * r2 / (rs * rs * (r2 + 0.01 * h * h));
+}

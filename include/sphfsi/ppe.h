@@ -1,0 +1,43 @@
+/* The pressure Poisson equation of ISPH (Eqs. 22, 48) as a PETSc Mat, solved with KSP.
+ * Rows: owned fluid particles and owned wall/dummy particles that have a fluid neighbour.
+ *   fluid row a:        L_a(P) = src_a                     (src from isph.c: Eq. 13 or density)
+ *   free-surface row a: P_a = 0                            (Dirichlet, section 2.5)
+ *   wall row a:         L_a(P) = L_a(rho0 g . r)           (Neumann dP/dn = rho0 g . n, walls at rest)
+ * with L_a(P) = sum_b c_ab (P_a - P_b) (Eq. 22).  Each row is multiplied by -V_a = -m_a/rho0,
+ * which makes the matrix symmetric positive (semi)definite: CG applies.  Free-surface columns are
+ * eliminated (their P is 0), which keeps the symmetry.  Without any Dirichlet row (periodic or
+ * closed domains) the constant is a null space and is attached to the matrix. */
+#pragma once
+#include <sphfsi/sim.h>
+#include <petscksp.h>
+
+typedef struct _p_PPE *PPE;
+struct _p_PPE {
+  MPI_Comm     comm;
+  KSP          ksp;
+  Mat          A;
+  Vec          x, b;
+  MatNullSpace nullsp;
+  PetscInt     nrow, rstart, nrow_global, ndirichlet_global;
+  PetscInt    *rowpart, *dnnz, *onnz, cap_rows; /* per local row: owned particle, preallocation */
+  PetscInt    *cols, cap_cols;
+  PetscScalar *vals;
+  /* statistics */
+  PetscInt  nsolve, its_last, its_max;
+  PetscReal its_sum;
+  PetscLogDouble mallocs; /* mallocs during the last assembly: must stay 0 */
+};
+
+PetscErrorCode PPECreate(MPI_Comm comm, PPE *ppe);
+/* KSP defaults CG + hypre BoomerAMG (GAMG when PETSc lacks hypre), then the user's options. */
+PetscErrorCode PPESetFromOptions(PPE ppe);
+PetscErrorCode PPEView(PPE ppe, PetscViewer v);
+PetscErrorCode PPEDestroy(PPE *ppe);
+/* Give every row its global number (FIELD_ROW, ghosts refreshed).  Needs FIELD_FS and FIELD_RHO
+ * of ghosts current. */
+PetscErrorCode PPENumber(PPE ppe, Sim sim);
+/* Assemble the matrix and right-hand side; src[a] for owned fluid rows. */
+PetscErrorCode PPEAssemble(PPE ppe, Sim sim, const PetscReal *src);
+/* Solve with the current pressure as initial guess; pressure of owned rows set, ghosts refreshed.
+ * A solver failure is an error that names the KSP reason. */
+PetscErrorCode PPESolve(PPE ppe, Sim sim);

@@ -1,0 +1,382 @@
+#include <sphfsi/isph.h>
+#include <sphfsi/boundary.h>
+#include <sphfsi/kernel.h>
+#include <sphfsi/fluid_terms.h>
+
+const char *const ISPHFreeSurfaces[] = {"density", "divr", "ISPHFreeSurface", "ISPH_FS_", NULL};
+const char *const ISPHSources[]      = {"divergence", "density", "blend", "ISPHSource", "ISPH_SOURCE_", NULL};
+const char *const ISPHGradients[]    = {"eq14", "corrected", "hybrid", "ISPHGradient", "ISPH_GRAD_", NULL};
+
+/* Sums over a full square lattice of spacing 1 (h = SPH_H_FACTOR): sum W and -sum F r^2, the
+ * interior values of the summation density (Eq. 17, per rho0) and of div r (2 in the continuum). */
+static void LatticeSums(PetscReal *sw, PetscReal *divr)
+{
+  const PetscReal h = SPH_H_FACTOR;
+  *sw = 0; *divr = 0;
+  for (PetscInt j = -3; j <= 3; j++)
+    for (PetscInt i = -3; i <= 3; i++) {
+      PetscReal r = PetscSqrtReal((PetscReal)(i * i + j * j));
+      *sw += KernelW(r, h);
+      *divr -= KernelF(r, h) * r * r;
+    }
+}
+
+PetscErrorCode ISPHSetUp(Sim sim)
+{
+  ISPH      s;
+  PetscInt  fs, src, grad;
+  PetscFunctionBeginUser;
+  PetscCall(PetscNew(&s));
+  sim->isph   = s;
+  s->beta     = 0.9;
+  s->divr_min = 1.5;
+  s->blend    = 0.1;
+  s->alpha    = 0.1;
+  s->gradient = ISPH_GRAD_HYBRID;
+  fs = s->fs; src = s->source; grad = s->gradient;
+  PetscOptionsBegin(sim->comm, NULL, "ISPH fluid (section 2.8)", "ISPH");
+  PetscCall(PetscOptionsEList("-isph_free_surface", "Free-surface criterion: density (rho* < beta rho0, section 2.5) or divr (divergence of position)", "", ISPHFreeSurfaces, 2, ISPHFreeSurfaces[fs], &fs, NULL));
+  PetscCall(PetscOptionsReal("-isph_beta", "Free surface where rho* < beta rho0 (paper: 0.8 < beta < 0.99)", "", s->beta, &s->beta, NULL));
+  PetscCall(PetscOptionsReal("-isph_divr", "Free surface where div r < this (2 in the bulk in 2D)", "", s->divr_min, &s->divr_min, NULL));
+  PetscCall(PetscOptionsEList("-isph_source", "PPE source: divergence (Eq. 13, 48), density ((rho0 - rho*)/(rho0 dt^2)) or blend", "", ISPHSources, 3, ISPHSources[src], &src, NULL));
+  PetscCall(PetscOptionsReal("-isph_blend", "Weight of the density source in -isph_source blend", "", s->blend, &s->blend, NULL));
+  PetscCall(PetscOptionsEList("-isph_gradient", "Pressure gradient of the corrector: eq14 (symmetric, Eq. 14), corrected (Bonet-Lok), hybrid (corrected on and next to the free surface)", "", ISPHGradients, 3, ISPHGradients[grad], &grad, NULL));
+  PetscCall(PetscOptionsReal("-isph_alpha", "Artificial viscosity (Eq. 24, velocity scale c0) in the predictor; damps the free-surface noise of the projection", "", s->alpha, &s->alpha, NULL));
+  PetscCall(PetscOptionsReal("-isph_shift", "Particle shifting coefficient A (D = A h |v| dt, Skillen et al. 2013); 0 = off", "", s->shift, &s->shift, NULL));
+  PetscOptionsEnd();
+  s->fs = (ISPHFreeSurface)fs; s->source = (ISPHSource)src; s->gradient = (ISPHGradient)grad;
+  PetscCheck(s->beta > 0 && s->beta < 1, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-isph_beta %g must be in (0, 1); the paper uses 0.8 .. 0.99", (double)s->beta);
+  PetscCheck(s->divr_min > 0 && s->divr_min < 2, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-isph_divr %g must be in (0, 2)", (double)s->divr_min);
+  PetscCheck(s->blend >= 0 && s->blend <= 1, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-isph_blend %g must be in [0, 1]", (double)s->blend);
+  PetscCheck(s->alpha >= 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-isph_alpha %g must be >= 0", (double)s->alpha);
+  PetscCheck(s->shift >= 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-isph_shift %g must be >= 0", (double)s->shift);
+  if (s->source == ISPH_SOURCE_DIVERGENCE) s->blend = 0;
+  if (s->source == ISPH_SOURCE_DENSITY) s->blend = 1;
+  LatticeSums(&s->lat_w, &s->lat_divr);
+  PetscCall(PPECreate(sim->comm, &s->ppe));
+  PetscCall(PPESetFromOptions(s->ppe));
+  PetscCall(ParticlesEnableField(sim->P, FIELD_ACC, PETSC_FALSE));
+  PetscCall(ParticlesEnableField(sim->P, FIELD_VWALL, PETSC_FALSE));
+  PetscCall(ParticlesEnableField(sim->P, FIELD_VSTAR, PETSC_TRUE)); /* read by neighbours after the predictor's rebuild */
+  PetscCall(ParticlesEnableField(sim->P, FIELD_FS, PETSC_FALSE));
+  PetscCall(ParticlesEnableField(sim->P, FIELD_ROW, PETSC_FALSE));
+  if (sim->fl.xsph > 0 || s->shift > 0) PetscCall(ParticlesEnableField(sim->P, FIELD_XSPH, PETSC_FALSE));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode ISPHDestroy(ISPH *isph)
+{
+  PetscFunctionBeginUser;
+  if (!*isph) PetscFunctionReturn(PETSC_SUCCESS);
+  PetscCall(PPEDestroy(&(*isph)->ppe));
+  PetscCall(PetscFree((*isph)->src));
+  PetscCall(PetscFree(*isph));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode ISPHView(Sim sim, PetscViewer v)
+{
+  ISPH s = sim->isph;
+  PetscFunctionBeginUser;
+  PetscCall(PetscViewerASCIIPrintf(v, "ISPH: free surface by %s (%s %g), PPE source %s (density weight %g), gradient %s, AV alpha %g, shifting A = %g, XSPH %g\n", ISPHFreeSurfaces[s->fs], s->fs == ISPH_FS_DENSITY ? "beta" : "div r <", (double)(s->fs == ISPH_FS_DENSITY ? s->beta : s->divr_min), ISPHSources[s->source], (double)s->blend, ISPHGradients[s->gradient], (double)s->alpha, (double)s->shift, (double)sim->fl.xsph));
+  PetscCall(PPEView(s->ppe, v));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode ISPHInitialize(Sim sim)
+{
+  Particles  P   = sim->P;
+  PetscReal *rho = PField(P, FIELD_RHO);
+  PetscFunctionBeginUser;
+  for (PetscInt a = 0; a < P->n + P->ng; a++)
+    if (KindIsWall(P->kind[a])) rho[a] = sim->fl.rho0;
+  PetscCall(BoundaryWallVelocity(sim));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode ISPHTimeStep(Sim sim, PetscReal *dt)
+{
+  Particles        P = sim->P;
+  const PetscReal *v = PField(P, FIELD_V), *h = PField(P, FIELD_H);
+  const PetscReal  g = PetscSqrtReal(sim->g[0] * sim->g[0] + sim->g[1] * sim->g[1]);
+  PetscReal        lim = PETSC_MAX_REAL, hmin = PETSC_MAX_REAL;
+
+  PetscFunctionBeginUser;
+  /* The force limit uses the body force only: the projection's velocity change does not scale
+   * with dt, so a limit on (v - v_t)/dt would shrink dt without end. */
+  for (PetscInt a = 0; a < P->n; a++) {
+    PetscReal vn;
+    if (!KindIsFluid(P->kind[a])) continue;
+    vn   = PetscSqrtReal(v[2 * a] * v[2 * a] + v[2 * a + 1] * v[2 * a + 1]);
+    hmin = PetscMin(hmin, h[a]);
+    if (vn > 0) lim = PetscMin(lim, sim->cfl * h[a] / vn);                                     /* CFL on the flow speed */
+    if (g > 0) lim = PetscMin(lim, 0.25 * PetscSqrtReal(h[a] / g));                            /* body force */
+    if (sim->fl.mu > 0) lim = PetscMin(lim, 0.125 * h[a] * h[a] * sim->fl.rho0 / sim->fl.mu); /* viscous */
+    if (sim->isph->alpha > 0) lim = PetscMin(lim, 0.5 * h[a] / (sim->isph->alpha * sim->fl.c0));    /* explicit AV, nu ~ alpha c0 h / 8 */
+  }
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &hmin, 1, MPIU_REAL, MPIU_MIN, sim->comm));
+  if (lim == PETSC_MAX_REAL) lim = sim->cfl * hmin / sim->v_ref; /* nothing moves and no force yet */
+  PetscCall(MPIU_Allreduce(&lim, dt, 1, MPIU_REAL, MPIU_MIN, sim->comm));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* Eqs. 45-47: v* = v + dt (g + viscous Eq. 16) at r_t; r* = r + dt v.  Walls get
+ * v* = v + dt g, the velocity whose projection with their Neumann pressure (ppe.h) leaves them
+ * at rest, so that the velocity divergence sees no spurious source at a wall in hydrostatics. */
+static PetscErrorCode Predictor(Sim sim)
+{
+  Particles        P = sim->P;
+  Cells            C = sim->cells;
+  const PetscReal *v = PField(P, FIELD_V), *rho = PField(P, FIELD_RHO), *m = PField(P, FIELD_M), *h = PField(P, FIELD_H), *vw = PField(P, FIELD_VWALL);
+  PetscReal       *x = PField(P, FIELD_X), *vs = PField(P, FIELD_VSTAR);
+  const PetscReal  dt = sim->dt, mu = sim->fl.mu, alpha = sim->isph->alpha;
+
+  PetscFunctionBeginUser;
+  for (PetscInt a = 0; a < P->n; a++) {
+    PetscReal ax = sim->g[0], ay = sim->g[1];
+    if (KindIsFluid(P->kind[a]) && (mu > 0 || alpha > 0))
+      for (PetscInt k = C->nstart[a]; k < C->nstart[a + 1]; k++) {
+        PetscInt        b = C->nbr[k];
+        PetscReal       dx = x[2 * a] - x[2 * b], dy = x[2 * a + 1] - x[2 * b + 1], r2 = dx * dx + dy * dy, hab = PairH(h[a], h[b]);
+        const PetscReal *vb = KindIsWall(P->kind[b]) ? vw + 2 * b : v + 2 * b;
+        PetscReal       c = LaminarViscosity(m[b], mu, rho[a], rho[b], C->f[k] * r2, r2, hab);
+        PetscReal       av = alpha > 0 ? m[b] * ArtificialViscosity(alpha, sim->fl.c0, hab, 0.5 * (rho[a] + rho[b]), (v[2 * a] - v[2 * b]) * dx + (v[2 * a + 1] - v[2 * b + 1]) * dy, r2) * C->f[k] : 0;
+        ax += c * (v[2 * a] - vb[0]) - av * dx;
+        ay += c * (v[2 * a + 1] - vb[1]) - av * dy;
+      }
+    vs[2 * a]     = v[2 * a] + dt * ax;
+    vs[2 * a + 1] = v[2 * a + 1] + dt * ay;
+  }
+  for (PetscInt a = 0; a < P->n; a++)
+    if (KindIsFluid(P->kind[a])) { x[2 * a] += dt * v[2 * a]; x[2 * a + 1] += dt * v[2 * a + 1]; }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* rho* by summation (Eq. 17) normalised by the full-lattice sum, walls at rho0; free surface by
+ * rho* < beta rho0 (section 2.5) or div r < divr_min. */
+static PetscErrorCode DensityAndFreeSurface(Sim sim)
+{
+  ISPH             s = sim->isph;
+  Particles        P = sim->P;
+  Cells            C = sim->cells;
+  const PetscReal *x = PField(P, FIELD_X), *m = PField(P, FIELD_M), *h = PField(P, FIELD_H);
+  PetscReal       *rho = PField(P, FIELD_RHO), *fs = PField(P, FIELD_FS);
+  const PetscReal  rho0 = sim->fl.rho0;
+  const FieldId    refresh[] = {FIELD_RHO, FIELD_FS};
+  PetscInt         nfree = 0;
+
+  PetscFunctionBeginUser;
+  for (PetscInt a = 0; a < P->n; a++) {
+    PetscReal sw, divr = 0;
+    rho[a] = rho0; fs[a] = 0;
+    if (!KindIsFluid(P->kind[a])) continue;
+    sw = m[a] * KernelW(0, h[a]);
+    for (PetscInt k = C->nstart[a]; k < C->nstart[a + 1]; k++) {
+      PetscInt  b = C->nbr[k];
+      PetscReal dx = x[2 * a] - x[2 * b], dy = x[2 * a + 1] - x[2 * b + 1];
+      sw += m[b] * C->w[k];
+      divr -= m[b] / rho0 * C->f[k] * (dx * dx + dy * dy);
+    }
+    rho[a] = sw / s->lat_w;
+    divr *= 2.0 / s->lat_divr;
+    fs[a] = (s->fs == ISPH_FS_DENSITY ? rho[a] < s->beta * rho0 : divr < s->divr_min) ? 1.0 : 0.0;
+    nfree += fs[a] > 0;
+  }
+  PetscCall(MPIU_Allreduce(&nfree, &s->nfree, 1, MPIU_INT, MPI_SUM, sim->comm));
+  PetscCall(PetscLogStagePush(sim->stage[STAGE_HALO]));
+  PetscCall(HaloRefresh(sim->halo, P, 2, refresh));
+  PetscCall(PetscLogStagePop());
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* Source of the PPE for fluid rows: (1 - w) div v* / dt (Eq. 13 with 1/rho_a, Eq. 48)
+ * + w (rho0 - rho*) / (rho0 dt^2) (density invariance, Shao & Lo 2003). */
+static PetscErrorCode Source(Sim sim)
+{
+  ISPH             s = sim->isph;
+  Particles        P = sim->P;
+  Cells            C = sim->cells;
+  const PetscReal *x = PField(P, FIELD_X), *m = PField(P, FIELD_M), *rho = PField(P, FIELD_RHO), *vs = PField(P, FIELD_VSTAR);
+  const PetscReal  dt = sim->dt, rho0 = sim->fl.rho0, w = s->blend;
+
+  PetscFunctionBeginUser;
+  if (P->n > s->cap_src) {
+    PetscCall(PetscFree(s->src));
+    s->cap_src = (PetscInt)(1.2 * P->n) + 16;
+    PetscCall(PetscMalloc1(s->cap_src, &s->src));
+  }
+  for (PetscInt a = 0; a < P->n; a++) {
+    PetscReal div = 0;
+    s->src[a] = 0;
+    if (!KindIsFluid(P->kind[a])) continue;
+    if (w < 1)
+      for (PetscInt k = C->nstart[a]; k < C->nstart[a + 1]; k++) {
+        PetscInt b = C->nbr[k];
+        div += m[b] * C->f[k] * ((vs[2 * b] - vs[2 * a]) * (x[2 * a] - x[2 * b]) + (vs[2 * b + 1] - vs[2 * a + 1]) * (x[2 * a + 1] - x[2 * b + 1]));
+      }
+    s->src[a] = (1 - w) * div / (rho[a] * dt) + w * (rho0 - rho[a]) / (rho0 * dt * dt);
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* grad P / rho at particle a.  Eq. 14 (symmetric, conserves momentum; its rho_a cancels), or the
+ * difference form with the kernel-gradient correction of Bonet & Lok 1999, exact for a linear P
+ * on a truncated support: the free surface, where Eq. 14 sees half the gradient and lets surface
+ * particles fall at g/2.  The corrected form divides by rho0: rho* is truncated there too. */
+static inline void PressureGradient(Particles P, Cells C, PetscInt a, PetscBool corrected, PetscReal rho0, PetscReal g[2])
+{
+  const PetscReal *x = PField(P, FIELD_X), *m = PField(P, FIELD_M), *rho = PField(P, FIELD_RHO), *p = PField(P, FIELD_P);
+  PetscReal        gx = 0, gy = 0, M[4] = {0, 0, 0, 0}, pa = p[a] / (rho[a] * rho[a]), det;
+  for (PetscInt k = C->nstart[a]; k < C->nstart[a + 1]; k++) {
+    PetscInt  b = C->nbr[k];
+    PetscReal dx = x[2 * a] - x[2 * b], dy = x[2 * a + 1] - x[2 * b + 1], c;
+    if (!corrected) {
+      c = m[b] * (p[b] / (rho[b] * rho[b]) + pa) * C->f[k];
+    } else {
+      PetscReal s = -m[b] / rho0 * C->f[k]; /* (x_b - x_a) (x) V_b grad_a W */
+      M[0] += s * dx * dx; M[1] += s * dx * dy; M[3] += s * dy * dy;
+      c = m[b] / rho0 * (p[b] - p[a]) * C->f[k] / rho0;
+    }
+    gx += c * dx;
+    gy += c * dy;
+  }
+  M[2] = M[1];
+  det  = M[0] * M[3] - M[1] * M[2];
+  if (corrected && det > 1e-6 * (M[0] * M[0] + M[3] * M[3])) { /* L = M^-1 (M is symmetric) */
+    g[0] = (M[3] * gx - M[1] * gy) / det;
+    g[1] = (-M[2] * gx + M[0] * gy) / det;
+  } else {
+    g[0] = gx; g[1] = gy;
+  }
+}
+
+static inline PetscBool NearFreeSurface(Particles P, Cells C, const PetscReal *fs, PetscInt a)
+{
+  if (fs[a] > 0) return PETSC_TRUE;
+  for (PetscInt k = C->nstart[a]; k < C->nstart[a + 1]; k++)
+    if (fs[C->nbr[k]] > 0 && KindIsFluid(P->kind[C->nbr[k]])) return PETSC_TRUE;
+  return PETSC_FALSE;
+}
+
+/* Eqs. 49, 51: v = v* - dt grad P / rho; acc = (v - v_t) / dt. */
+static PetscErrorCode Corrector(Sim sim)
+{
+  ISPH             s = sim->isph;
+  Particles        P = sim->P;
+  Cells            C = sim->cells;
+  const PetscReal *vs = PField(P, FIELD_VSTAR), *fs = PField(P, FIELD_FS);
+  PetscReal       *v = PField(P, FIELD_V), *acc = PField(P, FIELD_ACC);
+  const PetscReal  dt = sim->dt;
+
+  PetscFunctionBeginUser;
+  for (PetscInt a = 0; a < P->n; a++) {
+    PetscReal g[2], vx, vy;
+    PetscBool corr;
+    if (!KindIsFluid(P->kind[a])) continue;
+    corr = (PetscBool)(s->gradient == ISPH_GRAD_CORRECTED || (s->gradient == ISPH_GRAD_HYBRID && NearFreeSurface(P, C, fs, a)));
+    PressureGradient(P, C, a, corr, sim->fl.rho0, g);
+    vx = vs[2 * a] - dt * g[0];
+    vy = vs[2 * a + 1] - dt * g[1];
+    acc[2 * a]     = (vx - v[2 * a]) / dt;
+    acc[2 * a + 1] = (vy - v[2 * a + 1]) / dt;
+    v[2 * a] = vx; v[2 * a + 1] = vy;
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* Position corrections as velocities: XSPH (Eq. 44) and Fickian shifting
+ * dr = -A h |v| dt grad C (Skillen et al. 2013), none on the free surface and only tangential next
+ * to it (Lind et al. 2012), at most 0.1 h per step. */
+static PetscErrorCode Drift(Sim sim)
+{
+  ISPH             s = sim->isph;
+  Particles        P = sim->P;
+  Cells            C = sim->cells;
+  const PetscReal *x = PField(P, FIELD_X), *m = PField(P, FIELD_M), *rho = PField(P, FIELD_RHO), *v = PField(P, FIELD_V), *h = PField(P, FIELD_H), *fs = PField(P, FIELD_FS);
+  PetscReal       *xs = PField(P, FIELD_XSPH);
+  const PetscReal  dt = sim->dt, rho0 = sim->fl.rho0, eps = sim->fl.xsph;
+  const FieldId    vel[] = {FIELD_V};
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscLogStagePush(sim->stage[STAGE_HALO]));
+  PetscCall(HaloRefresh(sim->halo, P, 1, vel));
+  PetscCall(PetscLogStagePop());
+  for (PetscInt a = 0; a < P->n; a++) {
+    PetscReal sx = 0, sy = 0, cx = 0, cy = 0;
+    PetscBool near_fs = PETSC_FALSE;
+    xs[2 * a] = xs[2 * a + 1] = 0;
+    if (!KindIsFluid(P->kind[a])) continue;
+    for (PetscInt k = C->nstart[a]; k < C->nstart[a + 1]; k++) {
+      PetscInt  b = C->nbr[k];
+      PetscReal dx = x[2 * a] - x[2 * b], dy = x[2 * a + 1] - x[2 * b + 1];
+      if (KindIsFluid(P->kind[b])) {
+        PetscReal w = C->w[k] * m[b] / (0.5 * (rho[a] + rho[b]));
+        sx -= w * (v[2 * a] - v[2 * b]);
+        sy -= w * (v[2 * a + 1] - v[2 * b + 1]);
+        if (fs[b] > 0) near_fs = PETSC_TRUE;
+      }
+      cx += m[b] / rho0 * C->f[k] * dx;
+      cy += m[b] / rho0 * C->f[k] * dy;
+    }
+    xs[2 * a] = eps * sx; xs[2 * a + 1] = eps * sy;
+    if (s->shift > 0 && fs[a] == 0) {
+      PetscReal speed = PetscSqrtReal(v[2 * a] * v[2 * a] + v[2 * a + 1] * v[2 * a + 1]);
+      PetscReal D = s->shift * h[a] * speed * dt, dxs = -D * cx, dys = -D * cy, len;
+      if (near_fs) { /* keep the tangential part: n = -grad C / |grad C| */
+        PetscReal gn = PetscSqrtReal(cx * cx + cy * cy), nx = gn > 0 ? cx / gn : 0, ny = gn > 0 ? cy / gn : 0, dn = dxs * nx + dys * ny;
+        dxs -= dn * nx; dys -= dn * ny;
+      }
+      len = PetscSqrtReal(dxs * dxs + dys * dys);
+      if (len > 0.1 * h[a]) { dxs *= 0.1 * h[a] / len; dys *= 0.1 * h[a] / len; }
+      xs[2 * a] += dxs / dt; xs[2 * a + 1] += dys / dt;
+    }
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* Eq. 50: r = r_t + dt (v_t + v) / 2 = r* + dt^2 acc / 2, plus the drift corrections. */
+static void MoveToEnd(Sim sim)
+{
+  Particles        P = sim->P;
+  const PetscReal *acc = PField(P, FIELD_ACC), *xs = PField(P, FIELD_XSPH);
+  PetscReal       *x = PField(P, FIELD_X);
+  const PetscReal  dt = sim->dt;
+  for (PetscInt a = 0; a < P->n; a++) {
+    if (!KindIsFluid(P->kind[a])) continue;
+    x[2 * a] += 0.5 * dt * dt * acc[2 * a] + (xs ? dt * xs[2 * a] : 0);
+    x[2 * a + 1] += 0.5 * dt * dt * acc[2 * a + 1] + (xs ? dt * xs[2 * a + 1] : 0);
+  }
+}
+
+PetscErrorCode ISPHPressureEquation(Sim sim)
+{
+  ISPH s = sim->isph;
+  PetscFunctionBeginUser;
+  PetscCall(PetscLogStagePush(sim->stage[STAGE_PHYSICS]));
+  PetscCall(DensityAndFreeSurface(sim));
+  PetscCall(Source(sim));
+  PetscCall(PetscLogStagePop());
+  PetscCall(PPENumber(s->ppe, sim));
+  PetscCall(PPEAssemble(s->ppe, sim, s->src));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode ISPHStep(Sim sim)
+{
+  ISPH s = sim->isph;
+  PetscFunctionBeginUser;
+  PetscCall(PetscLogStagePush(sim->stage[STAGE_PHYSICS]));
+  PetscCall(Predictor(sim));
+  PetscCall(PetscLogStagePop());
+  PetscCall(SimRebuild(sim)); /* neighbours at r* */
+  PetscCall(ISPHPressureEquation(sim));
+  PetscCall(PPESolve(s->ppe, sim));
+  PetscCall(PetscLogStagePush(sim->stage[STAGE_PHYSICS]));
+  PetscCall(Corrector(sim));
+  if (PField(sim->P, FIELD_XSPH)) PetscCall(Drift(sim));
+  MoveToEnd(sim);
+  PetscCall(PetscLogStagePop());
+  PetscCall(SimRebuild(sim));
+  PetscCall(BoundaryWallVelocity(sim));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}

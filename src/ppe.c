@@ -1,0 +1,251 @@
+#include <sphfsi/ppe.h>
+#include <sphfsi/fluid_terms.h>
+#include <sphfsi/kernel.h>
+
+PetscErrorCode PPECreate(MPI_Comm comm, PPE *ppe)
+{
+  PetscFunctionBeginUser;
+  PetscCall(PetscNew(ppe));
+  (*ppe)->comm = comm;
+  PetscCall(KSPCreate(comm, &(*ppe)->ksp));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode PPESetFromOptions(PPE ppe)
+{
+  PC pc;
+  PetscFunctionBeginUser;
+  PetscCall(KSPSetType(ppe->ksp, KSPCG));
+  PetscCall(KSPGetPC(ppe->ksp, &pc));
+#if defined(PETSC_HAVE_HYPRE)
+  PetscCall(PCSetType(pc, PCHYPRE));
+  PetscCall(PCHYPRESetType(pc, "boomeramg"));
+#else
+  PetscCall(PCSetType(pc, PCGAMG));
+#endif
+  PetscCall(KSPSetTolerances(ppe->ksp, 1e-8, 1e-50, PETSC_DEFAULT, 200));
+  PetscCall(KSPSetInitialGuessNonzero(ppe->ksp, PETSC_TRUE)); /* last step's pressure */
+  PetscCall(KSPSetFromOptions(ppe->ksp));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode PPEView(PPE ppe, PetscViewer v)
+{
+  PetscFunctionBeginUser;
+  PetscCall(PetscViewerASCIIPrintf(v, "Pressure Poisson equation (Eq. 22, 48):\n"));
+  PetscCall(PetscViewerASCIIPushTab(v));
+  PetscCall(KSPView(ppe->ksp, v));
+  PetscCall(PetscViewerASCIIPopTab(v));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode PPEDestroy(PPE *ppe)
+{
+  PetscFunctionBeginUser;
+  if (!*ppe) PetscFunctionReturn(PETSC_SUCCESS);
+  PetscCall(KSPDestroy(&(*ppe)->ksp));
+  PetscCall(MatDestroy(&(*ppe)->A));
+  PetscCall(VecDestroy(&(*ppe)->x));
+  PetscCall(VecDestroy(&(*ppe)->b));
+  PetscCall(MatNullSpaceDestroy(&(*ppe)->nullsp));
+  PetscCall(PetscFree3((*ppe)->rowpart, (*ppe)->dnnz, (*ppe)->onnz));
+  PetscCall(PetscFree2((*ppe)->cols, (*ppe)->vals));
+  PetscCall(PetscFree(*ppe));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* Owned wall/dummy particles take part only when some fluid particle is within reach. */
+static PetscBool HasFluidNeighbour(Cells C, Particles P, PetscInt a)
+{
+  for (PetscInt k = C->nstart[a]; k < C->nstart[a + 1]; k++)
+    if (KindIsFluid(P->kind[C->nbr[k]])) return PETSC_TRUE;
+  return PETSC_FALSE;
+}
+
+PetscErrorCode PPENumber(PPE ppe, Sim sim)
+{
+  Particles     P = sim->P;
+  PetscReal    *row = PField(P, FIELD_ROW), *fs = PField(P, FIELD_FS);
+  PetscInt      n = 0, cnt[2], nd = 0;
+  const FieldId refresh[] = {FIELD_ROW};
+
+  PetscFunctionBeginUser;
+  if (P->n > ppe->cap_rows) {
+    PetscCall(PetscFree3(ppe->rowpart, ppe->dnnz, ppe->onnz));
+    ppe->cap_rows = (PetscInt)(1.2 * P->n) + 16;
+    PetscCall(PetscMalloc3(ppe->cap_rows, &ppe->rowpart, ppe->cap_rows, &ppe->dnnz, ppe->cap_rows, &ppe->onnz));
+  }
+  for (PetscInt a = 0; a < P->n; a++) {
+    PetscBool r = KindIsFluid(P->kind[a]) || (KindIsWall(P->kind[a]) && HasFluidNeighbour(sim->cells, P, a));
+    row[a]      = -1;
+    if (!r) continue;
+    ppe->rowpart[n++] = a;
+    if (fs[a] > 0) nd++;
+  }
+  ppe->nrow = n;
+  PetscCallMPI(MPI_Scan(&n, &ppe->rstart, 1, MPIU_INT, MPI_SUM, ppe->comm));
+  ppe->rstart -= n;
+  cnt[0] = n; cnt[1] = nd;
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, cnt, 2, MPIU_INT, MPI_SUM, ppe->comm));
+  ppe->nrow_global = cnt[0]; ppe->ndirichlet_global = cnt[1];
+  for (PetscInt r = 0; r < n; r++) row[ppe->rowpart[r]] = (PetscReal)(ppe->rstart + r);
+  PetscCall(PetscLogStagePush(sim->stage[STAGE_HALO]));
+  PetscCall(HaloRefresh(sim->halo, P, 1, refresh));
+  PetscCall(PetscLogStagePop());
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+typedef enum { NBR_SKIP, NBR_KNOWN, NBR_UNKNOWN } NbrRole;
+
+/* What neighbour b is in row a's equation: an unknown (column), a known pressure (free surface:
+ * 0; a solid: its own pressure), or absent: a wall sees only fluid (its row is the implicit form
+ * of the Adami extrapolation), a wall outside every fluid particle's reach, a periodic image of a. */
+static inline NbrRole Role(Particles P, const PetscReal *row, const PetscReal *fs, PetscInt a, PetscInt b)
+{
+  if (KindIsWall(P->kind[a]) && !KindIsFluid(P->kind[b])) return NBR_SKIP;
+  if (row[b] < 0) return KindIsSolid(P->kind[b]) ? NBR_KNOWN : NBR_SKIP;
+  if (fs[b] > 0) return NBR_KNOWN;
+  if (row[b] == row[a]) return NBR_SKIP;
+  return NBR_UNKNOWN;
+}
+
+static inline PetscBool IsDirichlet(const PetscReal *fs, PetscInt a) { return (PetscBool)(fs[a] > 0); }
+
+/* Exact preallocation: one diagonal entry plus one per unknown neighbour. */
+static PetscErrorCode Preallocate(PPE ppe, Sim sim)
+{
+  Particles        P = sim->P;
+  Cells            C = sim->cells;
+  const PetscReal *row = PField(P, FIELD_ROW), *fs = PField(P, FIELD_FS);
+  const PetscInt   rend = ppe->rstart + ppe->nrow;
+
+  PetscFunctionBeginUser;
+  for (PetscInt r = 0; r < ppe->nrow; r++) {
+    PetscInt a = ppe->rowpart[r];
+    ppe->dnnz[r] = 1; ppe->onnz[r] = 0;
+    if (IsDirichlet(fs, a)) continue;
+    for (PetscInt k = C->nstart[a]; k < C->nstart[a + 1]; k++) {
+      PetscInt b = C->nbr[k], gb;
+      if (Role(P, row, fs, a, b) != NBR_UNKNOWN) continue;
+      gb = (PetscInt)row[b];
+      if (gb >= ppe->rstart && gb < rend) ppe->dnnz[r]++;
+      else ppe->onnz[r]++;
+    }
+  }
+  if (ppe->A) { /* the KSP keeps its type and options; only a size change needs a reset */
+    PetscInt m, M;
+    PetscCall(MatGetLocalSize(ppe->A, &m, NULL));
+    PetscCall(MatGetSize(ppe->A, &M, NULL));
+    if (m != ppe->nrow || M != ppe->nrow_global) PetscCall(KSPReset(ppe->ksp));
+  }
+  PetscCall(MatDestroy(&ppe->A));
+  PetscCall(MatCreate(ppe->comm, &ppe->A));
+  PetscCall(MatSetSizes(ppe->A, ppe->nrow, ppe->nrow, ppe->nrow_global, ppe->nrow_global));
+  PetscCall(MatSetType(ppe->A, MATAIJ));
+  PetscCall(MatXAIJSetPreallocation(ppe->A, 1, ppe->dnnz, ppe->onnz, NULL, NULL));
+  PetscCall(MatSetOption(ppe->A, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_TRUE));
+  PetscCall(MatSetOption(ppe->A, MAT_SYMMETRIC, PETSC_TRUE));
+  PetscCall(MatSetOption(ppe->A, MAT_SYMMETRY_ETERNAL, PETSC_FALSE));
+  if (C->max_nbr + 1 > ppe->cap_cols) {
+    PetscCall(PetscFree2(ppe->cols, ppe->vals));
+    ppe->cap_cols = 2 * C->max_nbr + 16;
+    PetscCall(PetscMalloc2(ppe->cap_cols, &ppe->cols, ppe->cap_cols, &ppe->vals));
+  }
+  PetscCall(VecDestroy(&ppe->x));
+  PetscCall(VecDestroy(&ppe->b));
+  PetscCall(MatCreateVecs(ppe->A, &ppe->x, &ppe->b));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode PPEAssemble(PPE ppe, Sim sim, const PetscReal *src)
+{
+  Particles        P = sim->P;
+  Cells            C = sim->cells;
+  const PetscReal *row = PField(P, FIELD_ROW), *fs = PField(P, FIELD_FS), *x = PField(P, FIELD_X);
+  const PetscReal *rho = PField(P, FIELD_RHO), *m = PField(P, FIELD_M), *h = PField(P, FIELD_H), *p = PField(P, FIELD_P);
+  const PetscReal  rho0 = sim->fl.rho0, gx = sim->g[0], gy = sim->g[1];
+  PetscScalar     *bb;
+  MatInfo          info;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscLogStagePush(sim->stage[STAGE_PPE_ASSEMBLY]));
+  PetscCall(Preallocate(ppe, sim));
+  PetscCall(VecGetArrayWrite(ppe->b, &bb));
+  for (PetscInt r = 0; r < ppe->nrow; r++) {
+    PetscInt  a = ppe->rowpart[r], ga = ppe->rstart + r, nc = 1;
+    PetscReal va = m[a] / rho0, diag = 0, known = 0, hyd = 0;
+    PetscBool wall = KindIsWall(P->kind[a]), dir = IsDirichlet(fs, a);
+    for (PetscInt k = C->nstart[a]; k < C->nstart[a + 1]; k++) {
+      PetscInt  b = C->nbr[k];
+      NbrRole   role = Role(P, row, fs, a, b);
+      PetscReal dx, dy, r2, c;
+      if (role == NBR_SKIP) continue;
+      dx = x[2 * a] - x[2 * b]; dy = x[2 * a + 1] - x[2 * b + 1]; r2 = dx * dx + dy * dy;
+      c  = PPECoefficient(m[b], rho[a], rho[b], C->f[k], r2, PairH(h[a], h[b]));
+      diag += c;
+      if (wall) hyd += c * rho0 * (gx * dx + gy * dy); /* L_a(rho0 g . r) */
+      if (dir) continue;
+      if (role == NBR_KNOWN) known += c * (KindIsSolid(P->kind[b]) ? p[b] : 0.0);
+      else { ppe->cols[nc] = (PetscInt)row[b]; ppe->vals[nc++] = va * c; }
+    }
+    ppe->cols[0] = ga;
+    ppe->vals[0] = -va * diag;
+    if (diag == 0) ppe->vals[0] = va / (rho0 * h[a] * h[a]); /* isolated free-surface particle */
+    if (dir) { nc = 1; bb[r] = 0; }
+    else bb[r] = -va * ((wall ? hyd : src[a]) + known);
+    PetscCall(MatSetValues(ppe->A, 1, &ga, nc, ppe->cols, ppe->vals, INSERT_VALUES));
+  }
+  PetscCall(VecRestoreArrayWrite(ppe->b, &bb));
+  PetscCall(MatAssemblyBegin(ppe->A, MAT_FINAL_ASSEMBLY));
+  PetscCall(MatAssemblyEnd(ppe->A, MAT_FINAL_ASSEMBLY));
+  PetscCall(MatGetInfo(ppe->A, MAT_GLOBAL_SUM, &info));
+  ppe->mallocs = info.mallocs;
+  PetscCheck(info.mallocs == 0, ppe->comm, PETSC_ERR_PLIB, "PPE assembly needed %g mallocs: preallocation is wrong", (double)info.mallocs);
+  PetscCall(MatNullSpaceDestroy(&ppe->nullsp));
+  if (!ppe->ndirichlet_global) { /* no free surface: P is defined up to a constant */
+    PetscCall(MatNullSpaceCreate(ppe->comm, PETSC_TRUE, 0, NULL, &ppe->nullsp));
+    PetscCall(MatSetNullSpace(ppe->A, ppe->nullsp));
+    PetscCall(MatNullSpaceRemove(ppe->nullsp, ppe->b));
+  }
+  PetscCall(PetscLogStagePop());
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode PPESolve(PPE ppe, Sim sim)
+{
+  Particles          P = sim->P;
+  PetscReal         *p = PField(P, FIELD_P);
+  PetscScalar       *xx;
+  PetscInt           its;
+  KSPConvergedReason reason;
+  const FieldId      refresh[] = {FIELD_P};
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscLogStagePush(sim->stage[STAGE_PPE_SOLVE]));
+  PetscCall(VecGetArrayWrite(ppe->x, &xx));
+  for (PetscInt r = 0; r < ppe->nrow; r++) xx[r] = p[ppe->rowpart[r]];
+  PetscCall(VecRestoreArrayWrite(ppe->x, &xx));
+  PetscCall(KSPSetOperators(ppe->ksp, ppe->A, ppe->A));
+  PetscCall(KSPSolve(ppe->ksp, ppe->b, ppe->x));
+  PetscCall(KSPGetConvergedReason(ppe->ksp, &reason));
+  PetscCall(KSPGetIterationNumber(ppe->ksp, &its));
+  PetscCheck(reason >= 0, ppe->comm, PETSC_ERR_NOT_CONVERGED, "The pressure Poisson solve did not converge at step %" PetscInt_FMT " (t = %g): KSP reason %s after %" PetscInt_FMT " iterations. Try a smaller -dt/-cfl, a larger -ksp_max_it, or another -ksp_type/-pc_type", sim->step, (double)sim->t, KSPConvergedReasons[reason], its);
+  ppe->nsolve++;
+  ppe->its_last = its;
+  ppe->its_sum += its;
+  ppe->its_max = PetscMax(ppe->its_max, its);
+  for (PetscInt a = 0; a < P->n; a++)
+    if (KindIsWall(P->kind[a])) p[a] = 0; /* walls out of reach of the fluid */
+  PetscCall(VecGetArrayRead(ppe->x, (const PetscScalar **)&xx));
+  for (PetscInt r = 0; r < ppe->nrow; r++) {
+    PetscInt a = ppe->rowpart[r];
+    /* a wall above the water line extrapolates a negative pressure that would pull fluid onto it */
+    p[a] = KindIsWall(P->kind[a]) ? PetscMax(xx[r], 0.0) : xx[r];
+  }
+  PetscCall(VecRestoreArrayRead(ppe->x, (const PetscScalar **)&xx));
+  PetscCall(PetscLogStagePop());
+  PetscCall(PetscLogStagePush(sim->stage[STAGE_HALO]));
+  PetscCall(HaloRefresh(sim->halo, P, 1, refresh));
+  PetscCall(PetscLogStagePop());
+  PetscFunctionReturn(PETSC_SUCCESS);
+}

@@ -1,0 +1,127 @@
+/* Taylor-Green vortices in a doubly periodic square of side L: the decaying solution of the
+ * Navier-Stokes equations
+ *   u = U e^{-b t} sin(k x) cos(k y),  v = -U e^{-b t} cos(k x) sin(k y),
+ *   p = rho0 U^2 / 4 e^{-2 b t} (cos(2 k x) + cos(2 k y)),   k = 2 pi / L,  b = 2 nu k^2 = 8 pi^2 nu / L^2,
+ * so the kinetic energy decays as e^{-2 b t} = e^{-16 pi^2 nu t / L^2}.  (The form u = -U cos(kx) sin(ky),
+ * v = U sin(kx) cos(ky) is this field shifted by L/4 in x and y; its pressure has the opposite sign.) */
+#include <sphfsi/scene.h>
+
+typedef struct {
+  PetscReal L, U, Re;
+  PetscReal E0;     /* kinetic energy of the initial particle state */
+  PetscReal e_last; /* last probed kinetic energy and velocity error, and their time */
+  PetscReal l2_last, t_last;
+} TaylorGreen;
+
+static PetscErrorCode Create(Sim sim)
+{
+  TaylorGreen *c;
+  PetscInt     n;
+  PetscFunctionBeginUser;
+  PetscCall(PetscNew(&c));
+  sim->scene_ctx = c;
+  c->L = 1.0; c->U = 1.0; c->Re = 100;
+  PetscOptionsBegin(sim->comm, NULL, "Scene taylor_green: decaying vortices in a periodic unit square (L = 1 m, U = 1 m/s)", "");
+  PetscCall(PetscOptionsReal("-re", "Reynolds number U L / nu; sets mu = rho0 U L / Re (a later -mu overrides)", "", c->Re, &c->Re, NULL));
+  PetscOptionsEnd();
+  PetscCheck(c->Re > 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-re %g must be > 0", (double)c->Re);
+  if (sim->dx < 0) sim->dx = c->L / 50;
+  if (sim->t_end < 0) sim->t_end = 1.0;
+  /* the lattice must tile the period exactly: dx = L / n */
+  n = RoundToInt(c->L / sim->dx);
+  PetscCheck(n >= 8, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dx %g leaves fewer than 8 particles across the %g m period: choose -dx <= %g", (double)sim->dx, (double)c->L, (double)(c->L / 8));
+  if (PetscAbsReal(sim->dx - c->L / n) > 1e-12 * c->L) PetscCall(PetscInfo(NULL, "taylor_green: -dx %g rounded to %g = L / %" PetscInt_FMT "\n", (double)sim->dx, (double)(c->L / n), n));
+  sim->dx          = c->L / n;
+  sim->periodic[0] = sim->periodic[1] = PETSC_TRUE;
+  sim->dom_lo[0] = sim->dom_lo[1] = 0;
+  sim->dom_hi[0] = sim->dom_hi[1] = c->L;
+  sim->g[0] = sim->g[1] = 0;
+  sim->fl.mu = sim->fl.rho0 * c->U * c->L / c->Re;
+  sim->v_ref = c->U;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* Exact velocity at (x, y, t) */
+static inline void Exact(const TaylorGreen *c, PetscReal nu, PetscReal t, const PetscReal *x, PetscReal ve[2])
+{
+  PetscReal k = 2 * PETSC_PI / c->L, A = c->U * PetscExpReal(-2 * nu * k * k * t);
+  ve[0] = A * PetscSinReal(k * x[0]) * PetscCosReal(k * x[1]);
+  ve[1] = -A * PetscCosReal(k * x[0]) * PetscSinReal(k * x[1]);
+}
+
+static PetscErrorCode Populate(Sim sim)
+{
+  TaylorGreen *c = (TaylorGreen *)sim->scene_ctx;
+  Particles    P;
+  PetscReal   *x, *v, *p, *rho, *m, dx = sim->dx, k = 2 * PETSC_PI / c->L, E = 0;
+  PetscInt     n = RoundToInt(c->L / dx);
+  PetscFunctionBeginUser;
+  PetscCall(SceneAddLattice(sim, KIND_FLUID, 0.5 * dx, 0.5 * dx, n, n, dx, sim->fl.rho0));
+  P = sim->P;
+  x = PField(P, FIELD_X); v = PField(P, FIELD_V); p = PField(P, FIELD_P); rho = PField(P, FIELD_RHO); m = PField(P, FIELD_M);
+  for (PetscInt a = 0; a < P->n; a++) {
+    Exact(c, 0, 0, &x[2 * a], &v[2 * a]);
+    /* exact pressure at t = 0, density through the EOS (Eq. 20) */
+    p[a]   = 0.25 * sim->fl.rho0 * c->U * c->U * (PetscCosReal(2 * k * x[2 * a]) + PetscCosReal(2 * k * x[2 * a + 1]));
+    rho[a] = EOSDensity(&sim->fl, p[a]);
+    E += 0.5 * m[a] * (v[2 * a] * v[2 * a] + v[2 * a + 1] * v[2 * a + 1]);
+  }
+  PetscCall(MPIU_Allreduce(&E, &c->E0, 1, MPIU_REAL, MPI_SUM, sim->comm));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* e_kin = 1/2 sum m |v|^2 over fluid; l2_vel_err = sqrt(sum |v - v_exact|^2 / sum |v_exact|^2),
+ * v_exact at the particles' current positions and time. */
+static PetscErrorCode Probe(Sim sim, PetscReal *vals)
+{
+  TaylorGreen *c = (TaylorGreen *)sim->scene_ctx;
+  Particles    P = sim->P;
+  PetscReal   *x = PField(P, FIELD_X), *v = PField(P, FIELD_V), *m = PField(P, FIELD_M);
+  PetscReal    s[3] = {0, 0, 0}, nu = sim->fl.mu / sim->fl.rho0;
+  PetscFunctionBeginUser;
+  for (PetscInt a = 0; a < P->n; a++) {
+    PetscReal ve[2], ex, ey;
+    if (!KindIsFluid(P->kind[a])) continue;
+    Exact(c, nu, sim->t, &x[2 * a], ve);
+    ex = v[2 * a] - ve[0]; ey = v[2 * a + 1] - ve[1];
+    s[0] += 0.5 * m[a] * (v[2 * a] * v[2 * a] + v[2 * a + 1] * v[2 * a + 1]);
+    s[1] += ex * ex + ey * ey;
+    s[2] += ve[0] * ve[0] + ve[1] * ve[1];
+  }
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, s, 3, MPIU_REAL, MPI_SUM, sim->comm));
+  vals[0]    = s[0];
+  vals[1]    = s[2] > 0 ? PetscSqrtReal(s[1] / s[2]) : 0;
+  c->e_last  = vals[0];
+  c->l2_last = vals[1];
+  c->t_last  = sim->t;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* At the final time: E(t)/E(0) against e^{-16 pi^2 nu t / L^2}, and the velocity error. */
+static PetscErrorCode Errors(Sim sim, FILE *f)
+{
+  TaylorGreen *c = (TaylorGreen *)sim->scene_ctx;
+  PetscReal    vals[2], nu = sim->fl.mu / sim->fl.rho0, ratio, exact;
+  PetscFunctionBeginUser;
+  if (c->t_last != sim->t) PetscCall(Probe(sim, vals)); /* the last probe row may predate t_end */
+  ratio = c->e_last / c->E0;
+  exact = PetscExpReal(-16 * PETSC_PI * PETSC_PI * nu * sim->t / (c->L * c->L));
+  if (f)
+    fprintf(f, "\"e_kin_rel_err_final\": %.6g, \"e_kin_ratio_final\": %.9g, \"e_kin_ratio_exact\": %.9g, \"l2_vel_err_final\": %.6g, \"t_final\": %.9g, \"re\": %.6g, \"reference\": \"Taylor-Green analytic decay\"",
+            (double)(PetscAbsReal(ratio - exact) / exact), (double)ratio, (double)exact, (double)c->l2_last, (double)sim->t, (double)(c->U * c->L / nu));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+static PetscErrorCode Destroy(Sim sim)
+{
+  PetscFunctionBeginUser;
+  PetscCall(PetscFree(sim->scene_ctx));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+const SceneOps SceneTaylorGreen = {
+  .name = "taylor_green", .help = "decaying Taylor-Green vortices in a periodic unit square",
+  .create = Create, .populate = Populate,
+  .nprobes = 2, .probe_names = {"e_kin", "l2_vel_err"},
+  .probe = Probe, .errors = Errors, .destroy = Destroy,
+};

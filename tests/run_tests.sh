@@ -34,6 +34,9 @@ if [ "${1:-}" != "--unit-only" ]; then
   # ISPH (issue 3): floor pressure within 2 % at dx = H/80 (first-order free-surface error: 2.15 % at H/40)
   P_BOUND=0.02 run hydrostatic_isph bash tests/check_hydrostatic.sh "$MPI" "$OUT/hydrostatic_isph" -fluid isph -dx 0.00125
   run dam_break_isph_front bash tests/check_dam_break.sh "$MPI" "$OUT/dam_break_isph" -fluid isph
+  run poiseuille_isph bash tests/check_poiseuille.sh "$MPI" "$OUT/poiseuille_isph" -fluid isph
+  run taylor_green_isph bash tests/check_taylor_green.sh "$MPI" "$OUT/taylor_green_isph"
+  run sluice_gate_wcsph bash tests/check_sluice_gate.sh "$MPI" "$OUT/sluice_gate_wcsph"
   # Bad input: clear message, non-zero status, no crash
   run bad_input bash tests/check_bad_input.sh "$MPI" "$OUT/bad_input"
 fi

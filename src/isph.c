@@ -153,51 +153,19 @@ static PetscErrorCode Predictor(Sim sim)
 }
 
 /* rho* by summation (Eq. 17) normalised by the full-lattice sum, walls at rho0; free surface by
- * rho* < beta rho0 (section 2.5) or div r < divr_min. */
-static PetscErrorCode DensityAndFreeSurface(Sim sim)
+ * rho* < beta rho0 (section 2.5) or div r < divr_min; and the PPE source of fluid rows,
+ * (1 - w) div v* / dt (Eq. 13 with 1/rho_a, Eq. 48) + w (rho0 - rho*) / (rho0 dt^2) (density
+ * invariance, Shao & Lo 2003): one pass, since v* of the neighbours came with the rebuild. */
+static PetscErrorCode DensityFreeSurfaceSource(Sim sim)
 {
   ISPH             s = sim->isph;
   Particles        P = sim->P;
   Cells            C = sim->cells;
-  const PetscReal *x = PField(P, FIELD_X), *m = PField(P, FIELD_M), *h = PField(P, FIELD_H);
+  const PetscReal *x = PField(P, FIELD_X), *m = PField(P, FIELD_M), *h = PField(P, FIELD_H), *vs = PField(P, FIELD_VSTAR);
   PetscReal       *rho = PField(P, FIELD_RHO), *fs = PField(P, FIELD_FS);
-  const PetscReal  rho0 = sim->fl.rho0;
+  const PetscReal  rho0 = sim->fl.rho0, dt = sim->dt, w = s->blend;
   const FieldId    refresh[] = {FIELD_RHO, FIELD_FS};
   PetscInt         nfree = 0;
-
-  PetscFunctionBeginUser;
-  for (PetscInt a = 0; a < P->n; a++) {
-    PetscReal sw, divr = 0;
-    rho[a] = rho0; fs[a] = 0;
-    if (!KindIsFluid(P->kind[a])) continue;
-    sw = m[a] * KernelW(0, h[a]);
-    for (PetscInt k = C->nstart[a]; k < C->nstart[a + 1]; k++) {
-      PetscInt  b = C->nbr[k];
-      PetscReal dx = x[2 * a] - x[2 * b], dy = x[2 * a + 1] - x[2 * b + 1];
-      sw += m[b] * C->w[k];
-      divr -= m[b] / rho0 * C->f[k] * (dx * dx + dy * dy);
-    }
-    rho[a] = sw / s->lat_w;
-    divr *= 2.0 / s->lat_divr;
-    fs[a] = (s->fs == ISPH_FS_DENSITY ? rho[a] < s->beta * rho0 : divr < s->divr_min) ? 1.0 : 0.0;
-    nfree += fs[a] > 0;
-  }
-  PetscCall(MPIU_Allreduce(&nfree, &s->nfree, 1, MPIU_INT, MPI_SUM, sim->comm));
-  PetscCall(PetscLogStagePush(sim->stage[STAGE_HALO]));
-  PetscCall(HaloRefresh(sim->halo, P, 2, refresh));
-  PetscCall(PetscLogStagePop());
-  PetscFunctionReturn(PETSC_SUCCESS);
-}
-
-/* Source of the PPE for fluid rows: (1 - w) div v* / dt (Eq. 13 with 1/rho_a, Eq. 48)
- * + w (rho0 - rho*) / (rho0 dt^2) (density invariance, Shao & Lo 2003). */
-static PetscErrorCode Source(Sim sim)
-{
-  ISPH             s = sim->isph;
-  Particles        P = sim->P;
-  Cells            C = sim->cells;
-  const PetscReal *x = PField(P, FIELD_X), *m = PField(P, FIELD_M), *rho = PField(P, FIELD_RHO), *vs = PField(P, FIELD_VSTAR);
-  const PetscReal  dt = sim->dt, rho0 = sim->fl.rho0, w = s->blend;
 
   PetscFunctionBeginUser;
   if (P->n > s->cap_src) {
@@ -206,56 +174,56 @@ static PetscErrorCode Source(Sim sim)
     PetscCall(PetscMalloc1(s->cap_src, &s->src));
   }
   for (PetscInt a = 0; a < P->n; a++) {
-    PetscReal div = 0;
-    s->src[a] = 0;
+    PetscReal sw, divr = 0, div = 0;
+    rho[a] = rho0; fs[a] = 0; s->src[a] = 0;
     if (!KindIsFluid(P->kind[a])) continue;
-    if (w < 1)
-      for (PetscInt k = C->nstart[a]; k < C->nstart[a + 1]; k++) {
-        PetscInt b = C->nbr[k];
-        div += m[b] * C->f[k] * ((vs[2 * b] - vs[2 * a]) * (x[2 * a] - x[2 * b]) + (vs[2 * b + 1] - vs[2 * a + 1]) * (x[2 * a + 1] - x[2 * b + 1]));
-      }
+    sw = m[a] * KernelW(0, h[a]);
+    for (PetscInt k = C->nstart[a]; k < C->nstart[a + 1]; k++) {
+      PetscInt  b = C->nbr[k];
+      PetscReal dx = x[2 * a] - x[2 * b], dy = x[2 * a + 1] - x[2 * b + 1], F = C->f[k];
+      sw += m[b] * C->w[k];
+      divr -= m[b] / rho0 * F * (dx * dx + dy * dy);
+      div += m[b] * F * ((vs[2 * b] - vs[2 * a]) * dx + (vs[2 * b + 1] - vs[2 * a + 1]) * dy);
+    }
+    rho[a] = sw / s->lat_w;
+    divr *= 2.0 / s->lat_divr;
+    fs[a] = (s->fs == ISPH_FS_DENSITY ? rho[a] < s->beta * rho0 : divr < s->divr_min) ? 1.0 : 0.0;
+    nfree += fs[a] > 0;
     s->src[a] = (1 - w) * div / (rho[a] * dt) + w * (rho0 - rho[a]) / (rho0 * dt * dt);
   }
+  PetscCall(MPIU_Allreduce(&nfree, &s->nfree, 1, MPIU_INT, MPI_SUM, sim->comm));
+  PetscCall(PetscLogStagePush(sim->stage[STAGE_HALO]));
+  PetscCall(HaloRefresh(sim->halo, P, 2, refresh));
+  PetscCall(PetscLogStagePop());
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
 /* grad P / rho at particle a.  Eq. 14 (symmetric, conserves momentum; its rho_a cancels), or the
  * difference form with the kernel-gradient correction of Bonet & Lok 1999, exact for a linear P
  * on a truncated support: the free surface, where Eq. 14 sees half the gradient and lets surface
- * particles fall at g/2.  The corrected form divides by rho0: rho* is truncated there too. */
-static inline void PressureGradient(Particles P, Cells C, PetscInt a, PetscBool corrected, PetscReal rho0, PetscReal g[2])
+ * particles fall at g/2.  The corrected form divides by rho0: rho* is truncated there too.  One
+ * pass gathers both forms and whether a free-surface particle is in reach (hybrid). */
+static inline void PressureGradient(Particles P, Cells C, PetscInt a, ISPHGradient mode, PetscReal rho0, PetscReal g[2])
 {
-  const PetscReal *x = PField(P, FIELD_X), *m = PField(P, FIELD_M), *rho = PField(P, FIELD_RHO), *p = PField(P, FIELD_P);
-  PetscReal        gx = 0, gy = 0, M[4] = {0, 0, 0, 0}, pa = p[a] / (rho[a] * rho[a]), det;
+  const PetscReal *x = PField(P, FIELD_X), *m = PField(P, FIELD_M), *rho = PField(P, FIELD_RHO), *p = PField(P, FIELD_P), *fs = PField(P, FIELD_FS);
+  PetscReal        gs[2] = {0, 0}, gd[2] = {0, 0}, M[3] = {0, 0, 0}, pa = p[a] / (rho[a] * rho[a]), det;
+  PetscBool        near = (PetscBool)(fs[a] > 0), corrected;
   for (PetscInt k = C->nstart[a]; k < C->nstart[a + 1]; k++) {
     PetscInt  b = C->nbr[k];
-    PetscReal dx = x[2 * a] - x[2 * b], dy = x[2 * a + 1] - x[2 * b + 1], c;
-    if (!corrected) {
-      c = m[b] * (p[b] / (rho[b] * rho[b]) + pa) * C->f[k];
-    } else {
-      PetscReal s = -m[b] / rho0 * C->f[k]; /* (x_b - x_a) (x) V_b grad_a W */
-      M[0] += s * dx * dx; M[1] += s * dx * dy; M[3] += s * dy * dy;
-      c = m[b] / rho0 * (p[b] - p[a]) * C->f[k] / rho0;
-    }
-    gx += c * dx;
-    gy += c * dy;
+    PetscReal dx = x[2 * a] - x[2 * b], dy = x[2 * a + 1] - x[2 * b + 1], F = C->f[k];
+    PetscReal cs = m[b] * (p[b] / (rho[b] * rho[b]) + pa) * F, vb = m[b] / rho0 * F;
+    gs[0] += cs * dx; gs[1] += cs * dy;
+    gd[0] += vb * (p[b] - p[a]) / rho0 * dx; gd[1] += vb * (p[b] - p[a]) / rho0 * dy;
+    M[0] -= vb * dx * dx; M[1] -= vb * dx * dy; M[2] -= vb * dy * dy; /* (x_b - x_a) (x) V_b grad_a W */
+    if (fs[b] > 0 && KindIsFluid(P->kind[b])) near = PETSC_TRUE;
   }
-  M[2] = M[1];
-  det  = M[0] * M[3] - M[1] * M[2];
-  if (corrected && det > 1e-6 * (M[0] * M[0] + M[3] * M[3])) { /* L = M^-1 (M is symmetric) */
-    g[0] = (M[3] * gx - M[1] * gy) / det;
-    g[1] = (-M[2] * gx + M[0] * gy) / det;
-  } else {
-    g[0] = gx; g[1] = gy;
-  }
-}
-
-static inline PetscBool NearFreeSurface(Particles P, Cells C, const PetscReal *fs, PetscInt a)
-{
-  if (fs[a] > 0) return PETSC_TRUE;
-  for (PetscInt k = C->nstart[a]; k < C->nstart[a + 1]; k++)
-    if (fs[C->nbr[k]] > 0 && KindIsFluid(P->kind[C->nbr[k]])) return PETSC_TRUE;
-  return PETSC_FALSE;
+  corrected = (PetscBool)(mode == ISPH_GRAD_CORRECTED || (mode == ISPH_GRAD_HYBRID && near));
+  det       = M[0] * M[2] - M[1] * M[1];
+  if (!corrected) { g[0] = gs[0]; g[1] = gs[1]; }
+  else if (det > 1e-6 * (M[0] * M[0] + M[2] * M[2])) { /* L = M^-1 (M is symmetric) */
+    g[0] = (M[2] * gd[0] - M[1] * gd[1]) / det;
+    g[1] = (-M[1] * gd[0] + M[0] * gd[1]) / det;
+  } else { g[0] = gd[0]; g[1] = gd[1]; }
 }
 
 /* Eqs. 49, 51: v = v* - dt grad P / rho; acc = (v - v_t) / dt. */
@@ -264,17 +232,15 @@ static PetscErrorCode Corrector(Sim sim)
   ISPH             s = sim->isph;
   Particles        P = sim->P;
   Cells            C = sim->cells;
-  const PetscReal *vs = PField(P, FIELD_VSTAR), *fs = PField(P, FIELD_FS);
+  const PetscReal *vs = PField(P, FIELD_VSTAR);
   PetscReal       *v = PField(P, FIELD_V), *acc = PField(P, FIELD_ACC);
   const PetscReal  dt = sim->dt;
 
   PetscFunctionBeginUser;
   for (PetscInt a = 0; a < P->n; a++) {
     PetscReal g[2], vx, vy;
-    PetscBool corr;
     if (!KindIsFluid(P->kind[a])) continue;
-    corr = (PetscBool)(s->gradient == ISPH_GRAD_CORRECTED || (s->gradient == ISPH_GRAD_HYBRID && NearFreeSurface(P, C, fs, a)));
-    PressureGradient(P, C, a, corr, sim->fl.rho0, g);
+    PressureGradient(P, C, a, s->gradient, sim->fl.rho0, g);
     vx = vs[2 * a] - dt * g[0];
     vy = vs[2 * a + 1] - dt * g[1];
     acc[2 * a]     = (vx - v[2 * a]) / dt;
@@ -310,7 +276,7 @@ static PetscErrorCode Drift(Sim sim)
       PetscInt  b = C->nbr[k];
       PetscReal dx = x[2 * a] - x[2 * b], dy = x[2 * a + 1] - x[2 * b + 1];
       if (KindIsFluid(P->kind[b])) {
-        PetscReal w = C->w[k] * m[b] / (0.5 * (rho[a] + rho[b]));
+        PetscReal w = XSPHWeight(C->w[k], m[b], rho[a], rho[b]);
         sx -= w * (v[2 * a] - v[2 * b]);
         sy -= w * (v[2 * a + 1] - v[2 * b + 1]);
         if (fs[b] > 0) near_fs = PETSC_TRUE;
@@ -353,8 +319,7 @@ PetscErrorCode ISPHPressureEquation(Sim sim)
   ISPH s = sim->isph;
   PetscFunctionBeginUser;
   PetscCall(PetscLogStagePush(sim->stage[STAGE_PHYSICS]));
-  PetscCall(DensityAndFreeSurface(sim));
-  PetscCall(Source(sim));
+  PetscCall(DensityFreeSurfaceSource(sim));
   PetscCall(PetscLogStagePop());
   PetscCall(PPENumber(s->ppe, sim));
   PetscCall(PPEAssemble(s->ppe, sim, s->src));

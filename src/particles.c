@@ -7,7 +7,7 @@ static const struct { const char *name; PetscInt width; } FieldInfo[FIELD_COUNT]
   [FIELD_P] = {"p", 1},         [FIELD_M] = {"m", 1},         [FIELD_H] = {"h", 1},
   [FIELD_X0] = {"x0", 2},       [FIELD_ACC] = {"acc", 2},     [FIELD_DRHO] = {"drho", 1},
   [FIELD_XSPH] = {"xsph", 2},   [FIELD_VWALL] = {"vwall", 2}, [FIELD_VSTAR] = {"vstar", 2},
-  [FIELD_RHOSTAR] = {"rhostar", 1}, [FIELD_FS] = {"free_surface", 1}, [FIELD_S] = {"stress", 3},
+[FIELD_FS] = {"free_surface", 1}, [FIELD_S] = {"stress", 3},
   [FIELD_NORMAL] = {"normal", 2},   [FIELD_ROW] = {"row", 1},
 };
 

@@ -132,11 +132,34 @@ static PetscErrorCode Preallocate(PPE ppe, Sim sim)
       else ppe->onnz[r]++;
     }
   }
-  if (ppe->A) { /* the KSP keeps its type and options; only a size change needs a reset */
-    PetscInt m, M;
-    PetscCall(MatGetLocalSize(ppe->A, &m, NULL));
-    PetscCall(MatGetSize(ppe->A, &M, NULL));
-    if (m != ppe->nrow || M != ppe->nrow_global) PetscCall(KSPReset(ppe->ksp));
+  /* The neighbour graph changes every step, so does the pattern: reset the KSP (it keeps its type
+   * and options).  A multigrid PC keeps its levels through a reset, and they no longer fit:
+   * rebuild it from its type and options.  Our vectors stay while the local row count does. */
+  PetscCall(KSPReset(ppe->ksp));
+  {
+    PC        pc;
+    PCType    type;
+    PetscBool mg;
+    PetscCall(KSPGetPC(ppe->ksp, &pc));
+    PetscCall(PCGetType(pc, &type));
+    PetscCall(PetscObjectTypeCompareAny((PetscObject)pc, &mg, PCGAMG, PCMG, PCML, ""));
+    if (mg) {
+      char name[64];
+      PetscCall(PetscStrncpy(name, type, sizeof(name)));
+      PetscCall(PCSetType(pc, PCNONE));
+      PetscCall(PCSetType(pc, name));
+      PetscCall(PCSetFromOptions(pc));
+    }
+  }
+  { /* creating vectors is collective: every rank decides alike */
+    PetscInt m = -1, changed;
+    if (ppe->x) PetscCall(VecGetLocalSize(ppe->x, &m));
+    changed = m != ppe->nrow;
+    PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &changed, 1, MPIU_INT, MPI_MAX, ppe->comm));
+    if (changed) {
+      PetscCall(VecDestroy(&ppe->x));
+      PetscCall(VecDestroy(&ppe->b));
+    }
   }
   PetscCall(MatDestroy(&ppe->A));
   PetscCall(MatCreate(ppe->comm, &ppe->A));
@@ -151,9 +174,7 @@ static PetscErrorCode Preallocate(PPE ppe, Sim sim)
     ppe->cap_cols = 2 * C->max_nbr + 16;
     PetscCall(PetscMalloc2(ppe->cap_cols, &ppe->cols, ppe->cap_cols, &ppe->vals));
   }
-  PetscCall(VecDestroy(&ppe->x));
-  PetscCall(VecDestroy(&ppe->b));
-  PetscCall(MatCreateVecs(ppe->A, &ppe->x, &ppe->b));
+  if (!ppe->x) PetscCall(MatCreateVecs(ppe->A, &ppe->x, &ppe->b));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

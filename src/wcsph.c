@@ -51,7 +51,7 @@ static PetscErrorCode Continuity(Sim sim)
         dd += PairH(h[a], h[b]) * vb * (-2.0 * F) * (rho[b] - ra - dh);
       }
       if (xs) {
-        PetscReal w = C->w[k] * m[b] / (0.5 * (ra + rho[b]));
+        PetscReal w = XSPHWeight(C->w[k], m[b], ra, rho[b]);
         sx -= w * dvx;
         sy -= w * dvy;
       }

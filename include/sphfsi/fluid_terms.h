@@ -24,3 +24,6 @@ static inline PetscReal PPECoefficient(PetscReal mb, PetscReal rhoa, PetscReal r
   PetscReal rs = rhoa + rhob;
   return 8.0 * mb * F * r2 / (rs * rs * (r2 + 0.01 * h * h));
 }
+
+/* Eq. 44: XSPH weight of neighbour b, m_b W_ab / rho_ab with rho_ab the mean density */
+static inline PetscReal XSPHWeight(PetscReal W, PetscReal mb, PetscReal rhoa, PetscReal rhob) { return W * mb / (0.5 * (rhoa + rhob)); }

@@ -24,7 +24,6 @@ typedef enum {
   FIELD_XSPH,  /* XSPH velocity correction (2), Eq. 44 */
   FIELD_VWALL, /* wall velocity seen by the viscous term (2) */
   FIELD_VSTAR, /* ISPH: intermediate velocity (2) */
-  FIELD_RHOSTAR, /* ISPH: density by summation at r* */
   FIELD_FS,    /* free-surface flag (0/1) */
   FIELD_S,     /* solid deviatoric stress (3: xx, xy, yy) */
   FIELD_NORMAL,  /* interface normal (2) */

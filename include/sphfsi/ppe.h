@@ -3,7 +3,9 @@
  *   fluid row a:        L_a(P) = src_a                     (src from isph.c: Eq. 13 or density)
  *   free-surface row a: P_a = 0                            (Dirichlet, section 2.5)
  *   wall row a:         L_a(P) = L_a(rho0 g . r)           (Neumann dP/dn = rho0 g . n, walls at rest)
- * with L_a(P) = sum_b c_ab (P_a - P_b) (Eq. 22).  Each row is multiplied by -V_a = -m_a/rho0,
+ * with L_a(P) = sum_b c_ab (P_a - P_b) (Eq. 22); a wall row sums over fluid neighbours only (the
+ * implicit form of the Adami extrapolation) and its solved pressure is clipped at 0 (above the
+ * water line the extrapolation is negative and would pull fluid onto the wall).  Each row is multiplied by -V_a = -m_a/rho0,
  * which makes the matrix symmetric positive (semi)definite: CG applies.  Free-surface columns are
  * eliminated (their P is 0), which keeps the symmetry.  Without any Dirichlet row (periodic or
  * closed domains) the constant is a null space and is attached to the matrix. */

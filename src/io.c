@@ -2,6 +2,7 @@
 #include <sphfsi/scene.h>
 #include <sphfsi/wcsph.h>
 #include <sphfsi/isph.h>
+#include <sphfsi/solid.h>
 #include <petscviewerhdf5.h>
 #include <sys/stat.h>
 #include <errno.h>
@@ -207,12 +208,13 @@ PetscErrorCode IOSummary(Sim sim)
   }
   PetscCall(RootCheck(sim, err, "summary.json"));
   if (!sim->rank) {
-    fprintf(f, "{\n  \"case\": \"%s\",\n  \"fluid\": \"%s\",\n  \"ranks\": %d,\n", sim->scene->name, FluidSchemes[sim->fluid], sim->size);
+    fprintf(f, "{\n  \"case\": \"%s\",\n  \"fluid\": \"%s\",\n  \"ranks\": %d,\n", sim->scene->name, sim->has_fluid ? FluidSchemes[sim->fluid] : "none", sim->size);
     fprintf(f, "  \"particles\": %d,\n  \"steps\": %d,\n  \"t_end\": %.9g,\n  \"dx\": %.9g,\n", (int)sim->nparticles, (int)sim->step, (double)sim->t, (double)sim->dx);
     fprintf(f, "  \"wall_s\": %.6g,\n  \"particle_steps_per_s\": %.6g,\n", (double)sim->wall_loop, (double)(sim->particle_steps / PetscMax(sim->wall_loop, 1e-9)));
     if (sim->isph && sim->isph->ppe->nsolve) fprintf(f, "  \"ksp_its_mean\": %.4g,\n  \"ksp_its_max\": %d,\n", (double)(sim->isph->ppe->its_sum / sim->isph->ppe->nsolve), (int)sim->isph->ppe->its_max);
     else fprintf(f, "  \"ksp_its_mean\": null,\n  \"ksp_its_max\": null,\n");
     fprintf(f, "  \"mass_rel_drift\": %.6g,\n", (double)(sim->mass0 > 0 ? (sim->mass - sim->mass0) / sim->mass0 : 0));
+    if (sim->solid) fprintf(f, "  \"c0_solid\": %.6g,\n  \"solid_substeps_max\": %d,\n", (double)sim->sl.c0, (int)sim->solid->nsub_max);
     fprintf(f, "  \"c0\": %.6g,\n  \"bytes_per_particle\": %d,\n  \"repartitions\": %d,\n", (double)sim->fl.c0, (int)ParticlesBytesPerParticle(sim->P), (int)sim->decomp->nrepartition);
     fprintf(f, "  \"fields\": [");
     for (PetscInt k = 0, first = 1; k < FIELD_COUNT; k++)

@@ -9,6 +9,7 @@ static const struct { const char *name; PetscInt width; } FieldInfo[FIELD_COUNT]
   [FIELD_XSPH] = {"xsph", 2},   [FIELD_VWALL] = {"vwall", 2}, [FIELD_VSTAR] = {"vstar", 2},
 [FIELD_FS] = {"free_surface", 1}, [FIELD_S] = {"stress", 3},
   [FIELD_NORMAL] = {"normal", 2},   [FIELD_ROW] = {"row", 1},
+  [FIELD_KCORR] = {"kernel_correction", 4},
 };
 
 PetscErrorCode ParticlesCreate(MPI_Comm comm, Particles *P)

@@ -2,6 +2,7 @@
 #include <sphfsi/scene.h>
 #include <sphfsi/wcsph.h>
 #include <sphfsi/isph.h>
+#include <sphfsi/solid.h>
 #include <sphfsi/boundary.h>
 #include <sphfsi/io.h>
 #include <sphfsi/kernel.h>
@@ -28,8 +29,13 @@ PetscErrorCode SimCreate(MPI_Comm comm, Sim *sim)
   s->fl.alpha       = 0.02;
   s->fl.xsph        = 0.0;
   s->g[1]           = -9.81;
+  s->has_fluid      = PETSC_TRUE;
+  s->sl.rho0        = 1000.0;
+  s->sl.alpha       = 1.0;
+  s->sl.eps         = 0.3;
+  s->sl.n           = 4.0;
   {
-    const char *names[STAGE_COUNT] = {"Neighbours", "Halo+migrate", "Physics", "PPE assembly", "PPE solve", "Output"};
+    const char *names[STAGE_COUNT] = {"Neighbours", "Halo+migrate", "Physics", "PPE assembly", "PPE solve", "Solid", "Output"};
     for (PetscInt k = 0; k < STAGE_COUNT; k++) { /* a second Sim in one program shares the stages */
       PetscCall(PetscLogStageGetId(names[k], &s->stage[k]));
       if (s->stage[k] < 0) PetscCall(PetscLogStageRegister(names[k], &s->stage[k]));
@@ -49,6 +55,7 @@ PetscErrorCode SimDestroy(Sim *sim)
   if (s->scene && s->scene->destroy) PetscCall(s->scene->destroy(s));
   PetscCall(IOFinalize(s));
   PetscCall(ISPHDestroy(&s->isph));
+  PetscCall(SolidDestroy(&s->solid));
   PetscCall(CellsDestroy(&s->cells));
   PetscCall(HaloDestroy(&s->halo));
   PetscCall(DecompDestroy(&s->decomp));
@@ -108,7 +115,6 @@ static PetscErrorCode FluidOptions(Sim sim)
   PetscCall(PetscOptionsReal("-alpha", "Artificial viscosity coefficient, Eq. 24", "", sim->fl.alpha, &sim->fl.alpha, NULL));
   PetscCall(PetscOptionsReal("-delta", "Density diffusion coefficient (delta-SPH); 0 = off", "", sim->fl.delta, &sim->fl.delta, NULL));
   PetscCall(PetscOptionsReal("-xsph", "XSPH epsilon, Eq. 44; 0 = off", "", sim->fl.xsph, &sim->fl.xsph, NULL));
-  PetscCall(PetscOptionsRealArray("-gravity", "Gravity vector gx,gy (m/s^2)", "", sim->g, (PetscInt[]){2}, NULL));
   PetscOptionsEnd();
   PetscCheck(sim->fl.rho0 > 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-rho0 %g must be > 0", (double)sim->fl.rho0);
   PetscCheck(sim->fl.mu >= 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-mu %g must be >= 0", (double)sim->fl.mu);
@@ -119,12 +125,12 @@ static PetscErrorCode FluidOptions(Sim sim)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode SimTotalMass(Sim sim, PetscInt kind, PetscReal *M)
+PetscErrorCode SimTotalMass(Sim sim, PetscReal *M)
 {
   PetscReal s = 0, *m = PField(sim->P, FIELD_M);
   PetscFunctionBeginUser;
   for (PetscInt a = 0; a < sim->P->n; a++)
-    if (sim->P->kind[a] == kind) s += m[a];
+    if (KindIsFluid(sim->P->kind[a]) || sim->P->kind[a] == KIND_SOLID) s += m[a];
   PetscCall(MPIU_Allreduce(&s, M, 1, MPIU_REAL, MPI_SUM, sim->comm));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -155,14 +161,21 @@ PetscErrorCode SimSetUp(Sim sim)
   PetscCall(sim->scene->create(sim));
   PetscCheck(sim->dx > 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dx %g must be > 0", (double)sim->dx);
   PetscCheck(sim->t_end > 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-t_end %g must be > 0", (double)sim->t_end);
-  PetscCall(FluidOptions(sim));
-  if (sim->fluid == FLUID_ISPH) PetscCall(ISPHSetUp(sim));
-  else PetscCall(WCSPHSetUp(sim));
+  PetscCheck(sim->has_fluid || sim->has_solid, sim->comm, PETSC_ERR_PLIB, "Scene %s has neither fluid nor solid", sim->scene->name);
+  PetscOptionsBegin(sim->comm, NULL, "Body force", "Sim");
+  PetscCall(PetscOptionsRealArray("-gravity", "Gravity vector gx,gy (m/s^2)", "", sim->g, (PetscInt[]){2}, NULL));
+  PetscOptionsEnd();
+  if (sim->has_fluid) {
+    PetscCall(FluidOptions(sim));
+    if (sim->fluid == FLUID_ISPH) PetscCall(ISPHSetUp(sim));
+    else PetscCall(WCSPHSetUp(sim));
+  }
+  if (sim->has_solid) PetscCall(SolidSetUp(sim));
   PetscCall(ParticlesSetUp(sim->P));
   sim->h_max = SPH_H_FACTOR * sim->dx;
   PetscCall(sim->scene->populate(sim));
   PetscCall(ParticlesGlobalCount(sim->P, &sim->nparticles));
-  {
+  if (sim->has_fluid) {
     PetscInt nfluid = 0;
     for (PetscInt a = 0; a < sim->P->n; a++) nfluid += KindIsFluid(sim->P->kind[a]);
     PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &nfluid, 1, MPIU_INT, MPI_SUM, sim->comm));
@@ -174,9 +187,10 @@ PetscErrorCode SimSetUp(Sim sim)
   PetscCall(DecompMigrate(sim->decomp, sim->P)); /* wraps and checks every particle is inside */
   PetscCall(DecompPartition(sim->decomp, sim->P));
   PetscCall(SimRebuild(sim));
-  PetscCall(SimTotalMass(sim, KIND_FLUID, &sim->mass0));
-  if (sim->fluid == FLUID_ISPH) PetscCall(ISPHInitialize(sim));
-  else PetscCall(WCSPHRates(sim));
+  PetscCall(SimTotalMass(sim, &sim->mass0));
+  if (sim->has_fluid && sim->fluid == FLUID_ISPH) PetscCall(ISPHInitialize(sim));
+  else if (sim->has_fluid) PetscCall(WCSPHRates(sim));
+  if (sim->has_solid) PetscCall(SolidRates(sim));
   PetscCall(IOSetUp(sim));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -213,27 +227,50 @@ static PetscErrorCode CheckFinite(Sim sim)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* One step of the fluid, then the solid sub-cycled with its own step inside it (multi-rate). */
+static PetscErrorCode Step(Sim sim)
+{
+  PetscReal dts = PETSC_MAX_REAL;
+  PetscInt  nsub = 1;
+
+  PetscFunctionBeginUser;
+  if (sim->has_solid && !sim->dt_fixed) PetscCall(SolidTimeStep(sim, &dts));
+  if (sim->dt_fixed > 0) sim->dt = sim->dt_fixed;
+  else if (sim->isph) PetscCall(ISPHTimeStep(sim, &sim->dt));
+  else if (sim->has_fluid) PetscCall(WCSPHTimeStep(sim, &sim->dt));
+  else sim->dt = dts;
+  sim->dt = PetscMin(sim->dt, sim->t_end - sim->t);
+  if (sim->has_fluid) {
+    if (sim->isph) PetscCall(ISPHStep(sim));
+    else PetscCall(WCSPHStep(sim));
+  }
+  if (sim->has_solid) {
+    if (dts < sim->dt) nsub = (PetscInt)PetscCeilReal(sim->dt / dts * (1 - 1e-12));
+    if (sim->has_fluid) PetscCall(SolidRates(sim)); /* the fluid moved: new loads on the solid */
+    for (PetscInt k = 0; k < nsub; k++) PetscCall(SolidStep(sim, sim->dt / nsub));
+    sim->solid->nsub_last = nsub;
+    sim->solid->nsub_max  = PetscMax(sim->solid->nsub_max, nsub);
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 PetscErrorCode SimRun(Sim sim)
 {
   PetscLogDouble last, t1;
   const PetscReal eps = 1e-12 * sim->t_end;
 
   PetscFunctionBeginUser;
-  PetscCall(PetscViewerASCIIPrintf(PETSC_VIEWER_STDOUT_(sim->comm), "sphfsi: case %s, fluid %s, %d rank(s), dx %g, t_end %g, c0 %g\n", sim->scene->name, FluidSchemes[sim->fluid], sim->size, (double)sim->dx, (double)sim->t_end, (double)sim->fl.c0));
+  PetscCall(PetscViewerASCIIPrintf(PETSC_VIEWER_STDOUT_(sim->comm), "sphfsi: case %s, fluid %s, %d rank(s), dx %g, t_end %g, c0 %g\n", sim->scene->name, sim->has_fluid ? FluidSchemes[sim->fluid] : "none", sim->size, (double)sim->dx, (double)sim->t_end, (double)(sim->has_fluid ? sim->fl.c0 : sim->sl.c0)));
   PetscCall(ParticlesView(sim->P, PETSC_VIEWER_STDOUT_(sim->comm)));
   PetscCall(DecompView(sim->decomp, PETSC_VIEWER_STDOUT_(sim->comm)));
   if (sim->isph) PetscCall(ISPHView(sim, PETSC_VIEWER_STDOUT_(sim->comm)));
+  if (sim->solid) PetscCall(SolidView(sim, PETSC_VIEWER_STDOUT_(sim->comm)));
   PetscCall(PetscTime(&sim->wall_start));
   last = sim->wall_start;
   PetscCall(IOProbes(sim));
   if (sim->out_interval > 0) PetscCall(IOSnapshot(sim));
   while (sim->t < sim->t_end - eps && sim->step < sim->max_steps) {
-    if (sim->dt_fixed > 0) sim->dt = sim->dt_fixed;
-    else if (sim->isph) PetscCall(ISPHTimeStep(sim, &sim->dt));
-    else PetscCall(WCSPHTimeStep(sim, &sim->dt));
-    sim->dt = PetscMin(sim->dt, sim->t_end - sim->t);
-    if (sim->isph) PetscCall(ISPHStep(sim));
-    else PetscCall(WCSPHStep(sim));
+    PetscCall(Step(sim));
     sim->t += sim->dt;
     sim->step++;
     sim->particle_steps += (PetscReal)sim->nparticles;
@@ -245,7 +282,7 @@ PetscErrorCode SimRun(Sim sim)
   PetscCall(PetscTime(&t1));
   sim->wall_loop = t1 - sim->wall_start;
   PetscCall(Progress(sim, &last, PETSC_TRUE));
-  PetscCall(SimTotalMass(sim, KIND_FLUID, &sim->mass));
+  PetscCall(SimTotalMass(sim, &sim->mass));
   PetscCall(IOSummary(sim));
   PetscCall(PetscPrintf(sim->comm, "sphfsi: %" PetscInt_FMT " steps in %.2f s (%.3g particle-steps/s); output in %s\n", sim->step, (double)sim->wall_loop, (double)(sim->particle_steps / PetscMax(sim->wall_loop, 1e-9)), sim->outdir));
   PetscFunctionReturn(PETSC_SUCCESS);

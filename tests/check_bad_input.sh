@@ -31,5 +31,14 @@ check "-isph_beta"            -case dam_break -fluid isph -isph_beta 1.5
 check "-isph_source"          -case dam_break -fluid isph -isph_source magic
 check "DIVERGED_ITS"          -case hydrostatic -fluid isph -dx 0.01 -ksp_max_it 1 -ksp_error_if_not_converged
 check "DIVERGED_ITS"          -case hydrostatic -fluid isph -dx 0.01 -ksp_max_it 1
+check "-solid_K"              -case oscillating_plate -solid_K -1
+check "-solid_G"              -case oscillating_plate -solid_G -5
+check "-solid_art_stress"     -case oscillating_plate -solid_art_stress 2
+check "-solid_gradient"       -case oscillating_plate -solid_gradient magic
+check "-plate_ny"             -case oscillating_plate -plate_ny 2
+check "not both"              -case oscillating_plate -plate_ny 8 -dx 0.002
+check "-plate_vf"             -case oscillating_plate -plate_vf 0.5
+check "-clamp_columns"        -case oscillating_plate -clamp_columns 1
+check "-block_motion"         -case solid_block -block_motion spin
 echo "bad_input: $((n - bad)) of $n bad inputs rejected with a clear message"
 [ $bad -eq 0 ]

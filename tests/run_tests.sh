@@ -31,6 +31,8 @@ for t in "${BINDIR:-bin}"/test_*; do
 done
 # ISPH: 1 and 2 ranks agree to the solver tolerance (tight rtol; the bound is 100x that)
 run test_rank_agreement_isph $MPI "${BINDIR:-bin}"/test_rank_agreement -fluid isph -ksp_rtol 1e-10 -tol 1e-8
+# Solid (oscillating plate, ~1000 steps): explicit and per rank, so 1 and 2 ranks agree exactly
+run test_rank_agreement_solid $MPI "${BINDIR:-bin}"/test_rank_agreement -case oscillating_plate -plate_ny 6 -t_end 0.02
 
 if [ "${1:-}" != "--unit-only" ]; then
   # Physics regression tests against analytic and experimental references
@@ -44,6 +46,8 @@ if [ "${1:-}" != "--unit-only" ]; then
   run poiseuille_isph bash tests/check_poiseuille.sh "$MPI" "$OUT/poiseuille_isph" -fluid isph
   run taylor_green_isph bash tests/check_taylor_green.sh "$MPI" "$OUT/taylor_green_isph"
   run sluice_gate_wcsph bash tests/check_sluice_gate.sh "$MPI" "$OUT/sluice_gate_wcsph"
+  run solid_block bash tests/check_solid_block.sh "$MPI" "$OUT/solid_block"
+  run oscillating_plate bash tests/check_oscillating_plate.sh "$MPI" "$OUT/oscillating_plate"
   # Bad input: clear message, non-zero status, no crash
   run bad_input bash tests/check_bad_input.sh "$MPI" "$OUT/bad_input"
 fi

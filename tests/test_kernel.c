@@ -58,7 +58,7 @@ static PetscErrorCode CheckGradient(void)
   PetscCall(CellsBuild(C, P));
   PetscCall(PetscMalloc3(P->n, &f, 2 * P->n, &grad, 4 * P->n, &L));
   for (PetscInt a = 0; a < P->n; a++) f[a] = 3.0 * PField(P, FIELD_X)[2 * a] - 2.0 * PField(P, FIELD_X)[2 * a + 1] + 1;
-  PetscCall(SPHGradientCorrection(P, C, L));
+  PetscCall(SPHGradientCorrection(P, C, NULL, L));
   PetscCall(SPHGradient(P, C, L, f, grad));
   for (PetscInt a = 0; a < P->n; a++) {
     PetscReal *x = PField(P, FIELD_X) + 2 * a;

@@ -3,8 +3,9 @@
  * agreement is expected to be exact; the test allows round-off (-tol, default 1e-12 relative).
  * With -fluid isph the pressure comes from an iterative solve whose parallel preconditioner differs
  * between 1 and 2 ranks, so the runs agree to the solver tolerance: run with -ksp_rtol 1e-10 and
- * -tol 1e-6.  Run on 2 ranks. */
+ * -tol 1e-6.  Another scene with -case NAME and its options.  Run on 2 ranks. */
 #include <sphfsi/sim.h>
+#include <sphfsi/scene.h>
 
 static PetscErrorCode RunCase(MPI_Comm comm, const char *outdir, Sim *sim)
 {
@@ -23,16 +24,20 @@ int main(int argc, char **argv)
   PetscMPIInt rank, size;
   PetscInt    N;
   PetscReal  *ref = NULL, err = 0, scale = 0, tol = 1e-12;
+  PetscBool   other;
   PetscCall(PetscInitialize(&argc, &argv, NULL, NULL));
   PetscCall(PetscOptionsGetReal(NULL, NULL, "-tol", &tol, NULL));
   PetscCallMPI(MPI_Comm_rank(PETSC_COMM_WORLD, &rank));
   PetscCallMPI(MPI_Comm_size(PETSC_COMM_WORLD, &size));
-  PetscCall(PetscOptionsSetValue(NULL, "-case", "dam_break"));
-  PetscCall(PetscOptionsSetValue(NULL, "-dx", "0.004"));
-  PetscCall(PetscOptionsSetValue(NULL, "-t_end", "0.05"));
-  PetscCall(PetscOptionsSetValue(NULL, "-delta", "0.1"));
-  PetscCall(PetscOptionsSetValue(NULL, "-alpha", "0.1"));
-  PetscCall(PetscOptionsSetValue(NULL, "-xsph", "0.5"));
+  PetscCall(PetscOptionsHasName(NULL, NULL, "-case", &other));
+  if (!other) { /* the default: a short dam break with every WCSPH option on */
+    PetscCall(PetscOptionsSetValue(NULL, "-case", "dam_break"));
+    PetscCall(PetscOptionsSetValue(NULL, "-dx", "0.004"));
+    PetscCall(PetscOptionsSetValue(NULL, "-t_end", "0.05"));
+    PetscCall(PetscOptionsSetValue(NULL, "-delta", "0.1"));
+    PetscCall(PetscOptionsSetValue(NULL, "-alpha", "0.1"));
+    PetscCall(PetscOptionsSetValue(NULL, "-xsph", "0.5"));
+  }
   PetscCall(PetscOptionsSetValue(NULL, "-progress_every", "0"));
   PetscCall(RunCase(PETSC_COMM_WORLD, "out/test_rank_agreement/world", &world));
   if (!rank) PetscCall(RunCase(PETSC_COMM_SELF, "out/test_rank_agreement/self", &self));
@@ -66,7 +71,7 @@ int main(int argc, char **argv)
         for (PetscInt c = 1; c < 6; c++) { err = PetscMax(err, PetscAbsReal(w[c] - s[c]) / (c == 5 ? 1000.0 : c >= 3 ? 1.0 : 0.1)); }
         scale = PetscMax(scale, PetscAbsReal(s[3]) + PetscAbsReal(s[4]));
       }
-      PetscCall(PetscPrintf(PETSC_COMM_SELF, "rank agreement (%s): %d particles after %d steps, max scaled difference %.3e (bound %.0e; max speed %.3f m/s)\n", world->isph ? "isph" : "wcsph", (int)N, (int)world->step, (double)err, (double)tol, (double)scale));
+      PetscCall(PetscPrintf(PETSC_COMM_SELF, "rank agreement (%s %s): %d particles after %d steps, max scaled difference %.3e (bound %.0e; max speed %.3f m/s)\n", world->scene->name, !world->has_fluid ? "solid" : world->isph ? "isph" : "wcsph", (int)N, (int)world->step, (double)err, (double)tol, (double)scale));
       PetscCheck(err <= tol, PETSC_COMM_SELF, PETSC_ERR_PLIB, "1-rank and %d-rank runs differ by %g", size, (double)err);
       PetscCheck(scale > 0.5, PETSC_COMM_SELF, PETSC_ERR_PLIB, "The dam break did not move (max speed %g)", (double)scale);
       PetscCall(PetscFree(ref));

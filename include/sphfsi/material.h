@@ -11,6 +11,16 @@ typedef struct {
   PetscReal xsph;     /* XSPH epsilon, Eq. 44, 0 = off */
 } FluidMaterial;
 
+typedef struct {
+  PetscReal rho0;  /* reference density */
+  PetscReal K, G;  /* bulk and shear modulus */
+  PetscReal c0;    /* sqrt(K / rho0), Eq. 20 */
+  PetscReal alpha; /* artificial viscosity, Eq. 24 */
+  PetscReal eps;   /* artificial stress e, Eqs. 25-31 (0 = off) */
+  PetscReal n;     /* exponent of f = W_ab / W(dx, h) in Eq. 23 */
+} SolidMaterial;
+
 /* EOS, Eq. 20 */
 static inline PetscReal EOSPressure(const FluidMaterial *m, PetscReal rho) { return m->c0 * m->c0 * (rho - m->rho0); }
 static inline PetscReal EOSDensity(const FluidMaterial *m, PetscReal p) { return m->rho0 + p / (m->c0 * m->c0); }
+static inline PetscReal SolidEOSPressure(const SolidMaterial *m, PetscReal rho) { return m->c0 * m->c0 * (rho - m->rho0); }

@@ -28,6 +28,7 @@ typedef enum {
   FIELD_S,     /* solid deviatoric stress (3: xx, xy, yy) */
   FIELD_NORMAL,  /* interface normal (2) */
   FIELD_ROW,   /* ISPH: global row of the pressure equation (-1: none) */
+  FIELD_KCORR, /* solid: kernel-gradient correction matrix (4, row-major) */
   FIELD_COUNT
 } FieldId;
 

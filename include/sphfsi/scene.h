@@ -13,6 +13,9 @@ struct _SceneOps {
   PetscErrorCode (*create)(Sim sim);
   /* Add the particles (fields are allocated by then). */
   PetscErrorCode (*populate)(Sim sim);
+  /* Optional: overwrite the velocity of particles whose motion the scene prescribes (called in each
+   * solid step after the first half kick, so the drift and the strain rate see it). */
+  PetscErrorCode (*prescribe)(Sim sim);
   PetscInt    nprobes;
   const char *probe_names[SCENE_MAX_PROBES];
   /* Probe values (collective; every rank gets them). */

@@ -12,11 +12,12 @@
 typedef enum { FLUID_WCSPH = 0, FLUID_ISPH } FluidScheme;
 extern const char *const FluidSchemes[];
 
-typedef enum { STAGE_NEIGHBOUR, STAGE_HALO, STAGE_PHYSICS, STAGE_PPE_ASSEMBLY, STAGE_PPE_SOLVE, STAGE_OUTPUT, STAGE_COUNT } SimStage;
+typedef enum { STAGE_NEIGHBOUR, STAGE_HALO, STAGE_PHYSICS, STAGE_PPE_ASSEMBLY, STAGE_PPE_SOLVE, STAGE_SOLID, STAGE_OUTPUT, STAGE_COUNT } SimStage;
 
 typedef struct _p_Sim *Sim;
 typedef struct _SceneOps SceneOps;
 typedef struct _p_ISPH *ISPH;
+typedef struct _p_Solid *Solid;
 
 struct _p_Sim {
   MPI_Comm    comm;
@@ -31,10 +32,13 @@ struct _p_Sim {
   Cells     cells;
   Decomp    decomp;
   Halo      halo;
-  /* physics */
+  /* physics: the scene says which media it has */
+  PetscBool     has_fluid, has_solid;
   PetscReal     g[2];
   FluidMaterial fl;
-  ISPH          isph; /* NULL unless -fluid isph */
+  ISPH          isph;  /* NULL unless -fluid isph */
+  SolidMaterial sl;
+  Solid         solid; /* NULL unless the scene has solids */
   PetscReal     v_ref;      /* expected maximum speed: c0 = 10 v_ref when -c0 is not given */
   PetscReal     dx, h_max;  /* finest spacing, largest smoothing length */
   PetscReal     dom_lo[2], dom_hi[2];
@@ -64,5 +68,5 @@ PetscErrorCode SimRun(Sim sim);
 PetscErrorCode SimDestroy(Sim *sim);
 /* Migrate, rebalance, sort, build ghosts, cells and neighbour lists: after particles moved. */
 PetscErrorCode SimRebuild(Sim sim);
-/* Total mass of owned particles of one kind (collective). */
-PetscErrorCode SimTotalMass(Sim sim, PetscInt kind, PetscReal *M);
+/* Total mass of owned fluid and solid particles (collective). */
+PetscErrorCode SimTotalMass(Sim sim, PetscReal *M);

@@ -1,0 +1,154 @@
+/* Oscillating plate (paper section 3.2; Gray, Monaghan & Swift 2001): a plate of length L and
+ * thickness H, clamped at x < 0 and free at x = L, no gravity, started with the velocity of its
+ * first bending mode (Eqs. 52-53, kL = 1.875).  Reference: thin-plate (plane-strain
+ * Euler-Bernoulli) period and amplitude, omega^2 = E H^2 k^4 / (12 rho (1 - nu^2)),
+ * E = 9 K G / (3 K + G), nu = (3 K - 2 G) / (2 (3 K + G)), A = V_f c0 / omega. */
+#include <sphfsi/scene.h>
+#include <sphfsi/solid.h>
+#include <sphfsi/refdata.h>
+
+typedef struct {
+  PetscReal L, H, vf, kL;
+  PetscInt  ny, nx, nclamp;
+  Series    tip;            /* tip_y history for the period and amplitude */
+  PetscReal e0, de_max;     /* initial total energy and the largest relative drift */
+} Plate;
+
+static PetscErrorCode Create(Sim sim)
+{
+  Plate    *c;
+  PetscBool ny_set;
+  PetscFunctionBeginUser;
+  PetscCall(PetscNew(&c));
+  sim->scene_ctx = c;
+  c->L = 0.2; c->H = 0.02; c->vf = 0.01; c->kL = 1.875104069; c->ny = 10; c->nclamp = 4;
+  sim->sl.rho0 = 1000; sim->sl.K = 3.25e6; sim->sl.G = 7.15e5; /* Gray et al. 2001; G = 7.15e5 (the paper's 7.15e6 is a misprint) */
+  PetscOptionsBegin(sim->comm, NULL, "Scene oscillating_plate: clamped elastic plate in its first bending mode (Gray et al. 2001)", "");
+  PetscCall(PetscOptionsReal("-plate_length", "Plate length L outside the clamp (m)", "", c->L, &c->L, NULL));
+  PetscCall(PetscOptionsReal("-plate_thickness", "Plate thickness H (m)", "", c->H, &c->H, NULL));
+  PetscCall(PetscOptionsReal("-plate_vf", "Initial tip speed over the sound speed, V_f = v0L of Eq. 52", "", c->vf, &c->vf, NULL));
+  PetscCall(PetscOptionsInt("-plate_ny", "Particles across the thickness (sets dx = H / ny unless -dx is given)", "", c->ny, &c->ny, &ny_set));
+  PetscCall(PetscOptionsInt("-clamp_columns", "Columns of clamp particles at x < 0", "", c->nclamp, &c->nclamp, NULL));
+  PetscOptionsEnd();
+  PetscCheck(c->L > 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-plate_length %g must be > 0", (double)c->L);
+  PetscCheck(c->H > 0 && c->H < c->L, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-plate_thickness %g must be > 0 and less than the length %g", (double)c->H, (double)c->L);
+  PetscCheck(c->vf >= 0 && c->vf < 0.1, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-plate_vf %g must be in [0, 0.1) (small deflections)", (double)c->vf);
+  PetscCheck(c->nclamp >= 3, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-clamp_columns %" PetscInt_FMT " must be >= 3 (the clamp must fill the kernel support)", c->nclamp);
+  PetscCheck(!(ny_set && sim->dx > 0), sim->comm, PETSC_ERR_ARG_INCOMP, "Give -plate_ny or -dx, not both");
+  if (sim->dx > 0) c->ny = RoundToInt(c->H / sim->dx);
+  PetscCheck(c->ny >= 3, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "The plate needs >= 3 particles across its thickness (-plate_ny %" PetscInt_FMT " or -dx <= %g)", c->ny, (double)(c->H / 3));
+  sim->dx        = c->H / c->ny;
+  c->nx          = RoundToInt(c->L / sim->dx);
+  sim->has_fluid = PETSC_FALSE;
+  sim->has_solid = PETSC_TRUE;
+  sim->g[0] = sim->g[1] = 0;
+  if (sim->t_end < 0) sim->t_end = 0.8; /* about 3 analytic periods */
+  /* the tip sweeps |y| < ~A = V_f L c0 / (omega L) ~ 0.12 L at V_f = 0.01 */
+  sim->dom_lo[0] = -(c->nclamp + 2) * sim->dx;
+  sim->dom_hi[0] = c->L + 0.1 * c->L;
+  sim->dom_hi[1] = 0.5 * c->H + 0.15 * c->L + 50 * c->vf * c->L;
+  sim->dom_lo[1] = -sim->dom_hi[1];
+  PetscCall(ParticlesEnableField(sim->P, FIELD_X0, PETSC_FALSE));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* Eq. 53 */
+static PetscReal Mode(PetscReal k, PetscReal L, PetscReal x)
+{
+  PetscReal kL = k * L, kx = k * x;
+  return (PetscCosReal(kL) + PetscCoshReal(kL)) * (PetscCoshReal(kx) - PetscCosReal(kx)) + (PetscSinReal(kL) - PetscSinhReal(kL)) * (PetscSinhReal(kx) - PetscSinReal(kx));
+}
+
+static PetscErrorCode Populate(Sim sim)
+{
+  Plate     *c  = (Plate *)sim->scene_ctx;
+  PetscReal  dx = sim->dx, y0 = -0.5 * c->H + 0.5 * dx, k = c->kL / c->L, fL = Mode(k, c->L, c->L);
+  Particles  P  = sim->P;
+  PetscInt   n0 = P->n;
+  PetscReal *x, *v;
+  PetscFunctionBeginUser;
+  PetscCall(SceneAddLattice(sim, KIND_CLAMP, -(c->nclamp - 0.5) * dx, y0, c->nclamp, c->ny, dx, sim->sl.rho0));
+  n0 = P->n;
+  PetscCall(SceneAddLattice(sim, KIND_SOLID, 0.5 * dx, y0, c->nx, c->ny, dx, sim->sl.rho0));
+  x = PField(P, FIELD_X); v = PField(P, FIELD_V);
+  for (PetscInt a = n0; a < P->n; a++) v[2 * a + 1] = c->vf * sim->sl.c0 * Mode(k, c->L, x[2 * a]) / fL; /* Eq. 52 */
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* tip_y: mean vertical displacement of the last column (its mid-point by symmetry); energies. */
+static PetscErrorCode Probe(Sim sim, PetscReal *vals)
+{
+  Plate     *c = (Plate *)sim->scene_ctx;
+  Particles  P = sim->P;
+  PetscReal *x = PField(P, FIELD_X), *x0 = PField(P, FIELD_X0), s[2] = {0, 0}, e;
+  PetscFunctionBeginUser;
+  for (PetscInt a = 0; a < P->n; a++)
+    if (P->kind[a] == KIND_SOLID && x0[2 * a] > (c->nx - 1) * sim->dx) { s[0] += x[2 * a + 1] - x0[2 * a + 1]; s[1] += 1; }
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, s, 2, MPIU_REAL, MPI_SUM, sim->comm));
+  vals[0] = s[1] > 0 ? s[0] / s[1] : 0;
+  PetscCall(SolidEnergy(sim, &vals[1], &vals[2]));
+  e = vals[1] + vals[2];
+  if (sim->step == 0) c->e0 = e;
+  else if (c->e0 > 0) c->de_max = PetscMax(c->de_max, PetscAbsReal(e - c->e0) / c->e0);
+  PetscCall(SeriesAppend(&c->tip, sim->t, vals[0]));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* Period from the zero crossings of tip_y (linear interpolation), amplitude = first extremum. */
+static void Analyse(const Series *s, PetscReal *T, PetscReal *A, PetscReal *A_last, PetscInt *ncross)
+{
+  PetscReal t_first = 0, t_last = 0, peak = 0;
+  PetscInt  n = 0, npeak = 0;
+  *A = *A_last = 0;
+  for (PetscInt i = 1; i < s->n; i++) {
+    PetscReal y0 = s->y[i - 1], y1 = s->y[i];
+    peak = PetscMax(peak, PetscAbsReal(y1));
+    if ((y0 < 0 && y1 >= 0) || (y0 > 0 && y1 <= 0)) {
+      PetscReal tc = s->t[i - 1] + (s->t[i] - s->t[i - 1]) * y0 / (y0 - y1);
+      if (!n) t_first = tc;
+      t_last = tc;
+      n++;
+      if (!npeak++) *A = peak;
+      *A_last = peak;
+      peak    = 0;
+    }
+  }
+  *ncross = n;
+  *T      = n >= 2 ? 2 * (t_last - t_first) / (n - 1) : 0;
+}
+
+static PetscErrorCode Errors(Sim sim, FILE *f)
+{
+  Plate          *c = (Plate *)sim->scene_ctx;
+  const SolidMaterial *m = &sim->sl;
+  PetscReal       E = 9 * m->K * m->G / (3 * m->K + m->G), nu = (3 * m->K - 2 * m->G) / (2 * (3 * m->K + m->G)), k = c->kL / c->L;
+  PetscReal       omega = PetscSqrtReal(E * c->H * c->H * PetscPowReal(k, 4) / (12 * m->rho0 * (1 - nu * nu)));
+  PetscReal       Ta = 2 * PETSC_PI / omega, Aa = c->vf * m->c0 / omega, T, A, A_last, ek, es;
+  PetscInt        ncross;
+  PetscFunctionBeginUser;
+  PetscCall(SolidEnergy(sim, &ek, &es));
+  Analyse(&c->tip, &T, &A, &A_last, &ncross);
+  if (f) {
+    fprintf(f, "\"period_c0_over_L\": %.6g, \"period_c0_over_L_analytic\": %.6g, \"period_rel_err\": %.6g, ", (double)(T * m->c0 / c->L), (double)(Ta * m->c0 / c->L), (double)(T > 0 ? (T - Ta) / Ta : 1));
+    fprintf(f, "\"amplitude_over_L\": %.6g, \"amplitude_over_L_analytic\": %.6g, \"amplitude_rel_err\": %.6g, \"amplitude_last_over_first\": %.6g, ", (double)(A / c->L), (double)(Aa / c->L), (double)(Aa > 0 ? (A - Aa) / Aa : 0), (double)(A > 0 ? A_last / A : 0));
+    fprintf(f, "\"zero_crossings\": %d, \"energy_rel_drift_final\": %.6g, \"energy_rel_drift_max\": %.6g, \"period_s\": %.6g, \"period_s_analytic\": %.6g, ", (int)ncross, (double)(c->e0 > 0 ? (ek + es - c->e0) / c->e0 : 0), (double)c->de_max, (double)T, (double)Ta);
+    fprintf(f, "\"plate_ny\": %d, \"E\": %.6g, \"nu\": %.6g, \"reference\": \"thin-plate analytic (Gray et al. 2001); published SPH T c0/L 81-82, A/L 0.124-0.125 (paper Table 1)\"", (int)c->ny, (double)E, (double)nu);
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+static PetscErrorCode Destroy(Sim sim)
+{
+  Plate *c = (Plate *)sim->scene_ctx;
+  PetscFunctionBeginUser;
+  PetscCall(SeriesDestroy(&c->tip));
+  PetscCall(PetscFree(sim->scene_ctx));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+const SceneOps SceneOscillatingPlate = {
+  .name = "oscillating_plate", .help = "clamped elastic plate in its first bending mode (Gray et al. 2001)",
+  .create = Create, .populate = Populate,
+  .nprobes = 3, .probe_names = {"tip_y", "e_kin", "e_strain"},
+  .probe = Probe, .errors = Errors, .destroy = Destroy,
+};

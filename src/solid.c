@@ -1,0 +1,295 @@
+#include <sphfsi/solid.h>
+#include <sphfsi/solid_terms.h>
+#include <sphfsi/fluid_terms.h>
+#include <sphfsi/kernel.h>
+#include <sphfsi/operators.h>
+#include <sphfsi/scene.h>
+
+const char *const SolidGradients[] = {"standard", "corrected", "SolidGradient", "SOLID_GRAD_", NULL};
+
+PetscErrorCode SolidSetUp(Sim sim)
+{
+  SolidMaterial *m = &sim->sl;
+  Solid          s;
+  PetscInt       grad = SOLID_GRAD_CORRECTED;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscNew(&s));
+  sim->solid = s;
+  PetscOptionsBegin(sim->comm, NULL, "Hypo-elastic solid (WCSPH, Eqs. 20, 23-40)", "Solid");
+  PetscCall(PetscOptionsReal("-solid_rho", "Solid reference density (kg/m^3)", "", m->rho0, &m->rho0, NULL));
+  PetscCall(PetscOptionsReal("-solid_K", "Solid bulk modulus K (Pa); c0^2 = K / rho0, Eq. 20", "", m->K, &m->K, NULL));
+  PetscCall(PetscOptionsReal("-solid_G", "Solid shear modulus mu_s (Pa), Eq. 40", "", m->G, &m->G, NULL));
+  PetscCall(PetscOptionsReal("-solid_alpha", "Solid artificial viscosity coefficient, Eq. 24", "", m->alpha, &m->alpha, NULL));
+  PetscCall(PetscOptionsReal("-solid_art_stress", "Artificial stress coefficient e, Eqs. 25-31; 0 = off", "", m->eps, &m->eps, NULL));
+  PetscCall(PetscOptionsReal("-solid_art_stress_n", "Exponent n of f = W_ab / W(dx, h) in the artificial stress, Eq. 23", "", m->n, &m->n, NULL));
+  PetscCall(PetscOptionsEList("-solid_gradient", "Velocity gradient of the strain rate: standard (Eqs. 35-38) or corrected (Bonet-Lok, exact for linear fields)", "", SolidGradients, 2, SolidGradients[grad], &grad, NULL));
+  PetscOptionsEnd();
+  s->gradient = (SolidGradient)grad;
+  PetscCheck(m->rho0 > 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-solid_rho %g must be > 0", (double)m->rho0);
+  PetscCheck(m->K > 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-solid_K %g must be > 0", (double)m->K);
+  PetscCheck(m->G >= 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-solid_G %g must be >= 0", (double)m->G);
+  PetscCheck(m->alpha >= 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-solid_alpha %g must be >= 0", (double)m->alpha);
+  PetscCheck(m->eps >= 0 && m->eps < 1, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-solid_art_stress %g must be in [0, 1)", (double)m->eps);
+  PetscCheck(m->n > 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-solid_art_stress_n %g must be > 0", (double)m->n);
+  m->c0 = PetscSqrtReal(m->K / m->rho0);
+  PetscCall(ParticlesEnableField(sim->P, FIELD_S, PETSC_TRUE));
+  PetscCall(ParticlesEnableField(sim->P, FIELD_ACC, PETSC_FALSE));
+  PetscCall(ParticlesEnableField(sim->P, FIELD_DRHO, PETSC_FALSE));
+  if (s->gradient == SOLID_GRAD_CORRECTED) PetscCall(ParticlesEnableField(sim->P, FIELD_KCORR, PETSC_FALSE)); /* ghosts: refreshed when computed */
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode SolidDestroy(Solid *s)
+{
+  PetscFunctionBeginUser;
+  if (!*s) PetscFunctionReturn(PETSC_SUCCESS);
+  PetscCall(PetscFree((*s)->R));
+  PetscCall(PetscFree(*s));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* Pressure (Eq. 20) and artificial stress (Eqs. 25-34) of owned and ghost solids: both are
+ * functions of the particle's own density and stress, so ghosts compute theirs. */
+static PetscErrorCode PressureAndArtificialStress(Sim sim)
+{
+  Particles            P = sim->P;
+  Solid                s = sim->solid;
+  const SolidMaterial *m = &sim->sl;
+  const PetscReal     *rho = PField(P, FIELD_RHO), *S = PField(P, FIELD_S);
+  PetscReal           *p = PField(P, FIELD_P);
+  PetscInt             N = P->n + P->ng;
+
+  PetscFunctionBeginUser;
+  if (m->eps > 0 && s->cap_R < N) {
+    PetscCall(PetscFree(s->R));
+    s->cap_R = P->cap;
+    PetscCall(PetscMalloc1(3 * s->cap_R, &s->R));
+  }
+  for (PetscInt a = 0; a < N; a++) {
+    if (!KindIsSolid(P->kind[a])) continue;
+    p[a] = SolidEOSPressure(m, rho[a]);
+    if (m->eps > 0) ArtificialStress(m->eps, S[3 * a] - p[a], S[3 * a + 1], S[3 * a + 2] - p[a], rho[a], s->R + 3 * a);
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* (L v)_i for the 2x2 row-major L, or v itself without correction */
+static inline void Apply(const PetscReal *L, PetscReal gx, PetscReal gy, PetscReal out[2])
+{
+  if (L) { out[0] = L[0] * gx + L[1] * gy; out[1] = L[2] * gx + L[3] * gy; }
+  else { out[0] = gx; out[1] = gy; }
+}
+
+/* Eq. 23 for owned solids over every neighbour that is not a wall: stress of solids, pressure of
+ * fluids; artificial viscosity (Eq. 24) and artificial stress between solids; gravity.  Clamps do
+ * not accelerate.  With the corrected gradient each particle's stress acts through its own
+ * corrected kernel gradient, sigma_a L_a grad W + sigma_b L_b grad W (pair terms with the mean), which
+ * keeps the pair forces opposite; pairs with fluid use the plain gradient, as the fluid does. */
+static PetscErrorCode Momentum(Sim sim)
+{
+  Particles            P = sim->P;
+  Cells                C = sim->cells;
+  const SolidMaterial *m = &sim->sl;
+  const PetscReal     *x = PField(P, FIELD_X), *v = PField(P, FIELD_V), *rho = PField(P, FIELD_RHO), *p = PField(P, FIELD_P);
+  const PetscReal     *mass = PField(P, FIELD_M), *h = PField(P, FIELD_H), *S = PField(P, FIELD_S), *R = sim->solid->R, *L = PField(P, FIELD_KCORR);
+  PetscReal           *acc = PField(P, FIELD_ACC);
+
+  PetscFunctionBeginUser;
+  for (PetscInt a = 0; a < P->n; a++) {
+    PetscReal ax = 0, ay = 0, ra = rho[a], ia = 1.0 / (ra * ra), wdx;
+    PetscReal sxx = (S[3 * a] - p[a]) * ia, sxy = S[3 * a + 1] * ia, syy = (S[3 * a + 2] - p[a]) * ia;
+    if (P->kind[a] != KIND_SOLID) {
+      if (P->kind[a] == KIND_CLAMP) acc[2 * a] = acc[2 * a + 1] = 0;
+      continue;
+    }
+    wdx = KernelW(h[a] / SPH_H_FACTOR, h[a]);
+    for (PetscInt k = C->nstart[a]; k < C->nstart[a + 1]; k++) {
+      PetscInt  b = C->nbr[k];
+      PetscReal dx = x[2 * a] - x[2 * b], dy = x[2 * a + 1] - x[2 * b + 1], r2 = dx * dx + dy * dy;
+      PetscReal gx = C->f[k] * dx, gy = C->f[k] * dy, rb = rho[b], ib = 1.0 / (rb * rb), ga[2], gb[2], gm[2], txx, txy, tyy;
+      if (KindIsWall(P->kind[b])) continue;
+      if (KindIsSolid(P->kind[b])) {
+        PetscReal hab = PairH(h[a], h[b]);
+        PetscReal pi  = ArtificialViscosity(m->alpha, m->c0, hab, 0.5 * (ra + rb), (v[2 * a] - v[2 * b]) * dx + (v[2 * a + 1] - v[2 * b + 1]) * dy, r2);
+        Apply(L ? L + 4 * a : NULL, gx, gy, ga);
+        Apply(L ? L + 4 * b : NULL, gx, gy, gb);
+        gm[0] = 0.5 * (ga[0] + gb[0]); gm[1] = 0.5 * (ga[1] + gb[1]);
+        /* sigma_a / rho_a^2 through ga, sigma_b / rho_b^2 through gb, Pi (and R) through the mean */
+        ax += mass[b] * (sxx * ga[0] + sxy * ga[1] + ((S[3 * b] - p[b]) * gb[0] + S[3 * b + 1] * gb[1]) * ib - pi * gm[0]);
+        ay += mass[b] * (sxy * ga[0] + syy * ga[1] + (S[3 * b + 1] * gb[0] + (S[3 * b + 2] - p[b]) * gb[1]) * ib - pi * gm[1]);
+        if (R) {
+          PetscReal fn = PetscPowReal(C->w[k] / wdx, m->n);
+          txx = fn * (R[3 * a] + R[3 * b]);
+          txy = fn * (R[3 * a + 1] + R[3 * b + 1]);
+          tyy = fn * (R[3 * a + 2] + R[3 * b + 2]);
+          ax += mass[b] * (txx * gm[0] + txy * gm[1]);
+          ay += mass[b] * (txy * gm[0] + tyy * gm[1]);
+        }
+      } else { /* fluid: pressure only */
+        txx = sxx - p[b] * ib;
+        txy = sxy;
+        tyy = syy - p[b] * ib;
+        ax += mass[b] * (txx * gx + txy * gy);
+        ay += mass[b] * (txy * gx + tyy * gy);
+      }
+    }
+    acc[2 * a]     = ax + sim->g[0];
+    acc[2 * a + 1] = ay + sim->g[1];
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+static PetscBool KeepSolid(PetscInt kind) { return KindIsSolid(kind); }
+
+PetscErrorCode SolidRates(Sim sim)
+{
+  PetscFunctionBeginUser;
+  PetscCall(PetscLogStagePush(sim->stage[STAGE_SOLID]));
+  PetscCall(PressureAndArtificialStress(sim));
+  if (sim->solid->gradient == SOLID_GRAD_CORRECTED) {
+    const FieldId kc[] = {FIELD_KCORR};
+    PetscCall(SPHGradientCorrection(sim->P, sim->cells, KeepSolid, PField(sim->P, FIELD_KCORR)));
+    PetscCall(PetscLogStagePush(sim->stage[STAGE_HALO]));
+    PetscCall(HaloRefresh(sim->halo, sim->P, 1, kc));
+    PetscCall(PetscLogStagePop());
+  }
+  PetscCall(Momentum(sim));
+  PetscCall(PetscLogStagePop());
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* Velocity gradient g_ij = dv_i/dx_j of owned solid a from its solid neighbours: Eqs. 35-38 use
+ * g = sum V_b (v_b - v_a) (x) grad_a W; corrected, grad_a W becomes L_a grad_a W. */
+static void VelocityGradient(Sim sim, PetscInt a, PetscReal g[4])
+{
+  Particles        P = sim->P;
+  Cells            C = sim->cells;
+  const PetscReal *x = PField(P, FIELD_X), *v = PField(P, FIELD_V), *rho = PField(P, FIELD_RHO), *m = PField(P, FIELD_M), *L = PField(P, FIELD_KCORR);
+
+  g[0] = g[1] = g[2] = g[3] = 0;
+  for (PetscInt k = C->nstart[a]; k < C->nstart[a + 1]; k++) {
+    PetscInt  b = C->nbr[k];
+    PetscReal gw[2], V, dvx, dvy;
+    if (!KindIsSolid(P->kind[b])) continue;
+    Apply(L ? L + 4 * a : NULL, C->f[k] * (x[2 * a] - x[2 * b]), C->f[k] * (x[2 * a + 1] - x[2 * b + 1]), gw);
+    V   = m[b] / rho[b];
+    dvx = V * (v[2 * b] - v[2 * a]); dvy = V * (v[2 * b + 1] - v[2 * a + 1]);
+    g[0] += dvx * gw[0]; g[1] += dvx * gw[1]; g[2] += dvy * gw[0]; g[3] += dvy * gw[1];
+  }
+}
+
+/* Density (continuity, Eq. 18 as -rho div v) and deviatoric stress (Eqs. 35-40) of owned solids
+ * and clamps over dt, from the current velocities at the positions of the last SolidRates.  The
+ * density changes after the loop: neighbours' volumes m/rho must be those of the step's start,
+ * owned or ghost alike, or the answer would depend on the decomposition. */
+static PetscErrorCode Deform(Sim sim, PetscReal dt)
+{
+  Particles  P = sim->P;
+  PetscReal *rho = PField(P, FIELD_RHO), *S = PField(P, FIELD_S), *drho = PField(P, FIELD_DRHO);
+
+  PetscFunctionBeginUser;
+  for (PetscInt a = 0; a < P->n; a++) {
+    PetscReal g[4];
+    if (!KindIsSolid(P->kind[a])) continue;
+    VelocityGradient(sim, a, g);
+    drho[a] = -rho[a] * (g[0] + g[3]);
+    /* D_xy = (du/dy + dv/dx) / 2, spin W_xy = (du/dy - dv/dx) / 2 (Eqs. 37-38) */
+    JaumannUpdate(sim->sl.G, dt, g[0], 0.5 * (g[1] + g[2]), g[3], 0.5 * (g[1] - g[2]), S + 3 * a);
+  }
+  for (PetscInt a = 0; a < P->n; a++)
+    if (KindIsSolid(P->kind[a])) rho[a] += dt * drho[a];
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode SolidTimeStep(Sim sim, PetscReal *dt)
+{
+  Particles        P = sim->P;
+  const PetscReal *v = PField(P, FIELD_V), *acc = PField(P, FIELD_ACC), *h = PField(P, FIELD_H);
+  PetscReal        lim = PETSC_MAX_REAL;
+
+  PetscFunctionBeginUser;
+  for (PetscInt a = 0; a < P->n; a++) {
+    PetscReal vn, an;
+    if (P->kind[a] != KIND_SOLID) continue;
+    vn  = PetscSqrtReal(v[2 * a] * v[2 * a] + v[2 * a + 1] * v[2 * a + 1]);
+    an  = PetscSqrtReal(acc[2 * a] * acc[2 * a] + acc[2 * a + 1] * acc[2 * a + 1]);
+    lim = PetscMin(lim, sim->cfl * h[a] / (sim->sl.c0 + vn));
+    if (an > 0) lim = PetscMin(lim, 0.25 * PetscSqrtReal(h[a] / an));
+  }
+  PetscCall(MPIU_Allreduce(&lim, dt, 1, MPIU_REAL, MPIU_MIN, sim->comm));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+static void Kick(Sim sim, PetscReal dt)
+{
+  Particles  P = sim->P;
+  PetscReal *v = PField(P, FIELD_V), *acc = PField(P, FIELD_ACC);
+  for (PetscInt a = 0; a < P->n; a++) {
+    if (P->kind[a] != KIND_SOLID) continue;
+    v[2 * a] += dt * acc[2 * a];
+    v[2 * a + 1] += dt * acc[2 * a + 1];
+  }
+}
+
+/* Kick-drift-kick like WCSPHStep, with density and stress as position-like variables:
+ * v+ = v + dt/2 a;  (rho, S)' from the rates at (x, v+);  x' = x + dt v+;  v' = v+ + dt/2 a'. */
+PetscErrorCode SolidStep(Sim sim, PetscReal dt)
+{
+  Particles     P     = sim->P;
+  const FieldId vel[] = {FIELD_V};
+  PetscReal    *x = PField(P, FIELD_X), *v = PField(P, FIELD_V);
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscLogStagePush(sim->stage[STAGE_SOLID]));
+  Kick(sim, 0.5 * dt);
+  if (sim->scene->prescribe) PetscCall(sim->scene->prescribe(sim));
+  PetscCall(PetscLogStagePop());
+  PetscCall(PetscLogStagePush(sim->stage[STAGE_HALO]));
+  PetscCall(HaloRefresh(sim->halo, P, 1, vel));
+  PetscCall(PetscLogStagePop());
+  PetscCall(PetscLogStagePush(sim->stage[STAGE_SOLID]));
+  PetscCall(Deform(sim, dt));
+  for (PetscInt a = 0; a < P->n; a++) {
+    if (P->kind[a] != KIND_SOLID) continue;
+    x[2 * a] += dt * v[2 * a];
+    x[2 * a + 1] += dt * v[2 * a + 1];
+  }
+  PetscCall(PetscLogStagePop());
+  PetscCall(SimRebuild(sim));
+  PetscCall(SolidRates(sim));
+  PetscCall(PetscLogStagePush(sim->stage[STAGE_SOLID]));
+  Kick(sim, 0.5 * dt);
+  PetscCall(PetscLogStagePop());
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode SolidEnergy(Sim sim, PetscReal *ekin, PetscReal *estrain)
+{
+  Particles            P = sim->P;
+  const SolidMaterial *m = &sim->sl;
+  const PetscReal     *v = PField(P, FIELD_V), *rho = PField(P, FIELD_RHO), *mass = PField(P, FIELD_M), *S = PField(P, FIELD_S);
+  PetscReal            e[2] = {0, 0};
+
+  PetscFunctionBeginUser;
+  for (PetscInt a = 0; a < P->n; a++) {
+    PetscReal sxx, sxy, syy, szz, pa;
+    if (!KindIsSolid(P->kind[a])) continue;
+    sxx = S[3 * a]; sxy = S[3 * a + 1]; syy = S[3 * a + 2]; szz = -(sxx + syy);
+    pa  = SolidEOSPressure(m, rho[a]);
+    e[0] += 0.5 * mass[a] * (v[2 * a] * v[2 * a] + v[2 * a + 1] * v[2 * a + 1]);
+    e[1] += mass[a] / rho[a] * ((m->G > 0 ? (sxx * sxx + syy * syy + szz * szz + 2 * sxy * sxy) / (4 * m->G) : 0) + pa * pa / (2 * m->K));
+  }
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, e, 2, MPIU_REAL, MPI_SUM, sim->comm));
+  *ekin    = e[0];
+  *estrain = e[1];
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode SolidView(Sim sim, PetscViewer v)
+{
+  const SolidMaterial *m = &sim->sl;
+  PetscFunctionBeginUser;
+  PetscCall(PetscViewerASCIIPrintf(v, "Solid: rho0 %g, K %g Pa, G %g Pa, c0 %g m/s; artificial viscosity alpha %g; artificial stress e %g n %g%s; velocity gradient %s\n", (double)m->rho0, (double)m->K, (double)m->G, (double)m->c0, (double)m->alpha, (double)m->eps, (double)m->n, m->eps > 0 ? "" : " (off)", SolidGradients[sim->solid->gradient]));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}

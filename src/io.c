@@ -215,7 +215,9 @@ PetscErrorCode IOSummary(Sim sim)
     else fprintf(f, "  \"ksp_its_mean\": null,\n  \"ksp_its_max\": null,\n");
     fprintf(f, "  \"mass_rel_drift\": %.6g,\n", (double)(sim->mass0 > 0 ? (sim->mass - sim->mass0) / sim->mass0 : 0));
     if (sim->solid) fprintf(f, "  \"c0_solid\": %.6g,\n  \"solid_substeps_max\": %d,\n", (double)sim->sl.c0, (int)sim->solid->nsub_max);
-    fprintf(f, "  \"c0\": %.6g,\n  \"bytes_per_particle\": %d,\n  \"repartitions\": %d,\n", (double)sim->fl.c0, (int)ParticlesBytesPerParticle(sim->P), (int)sim->decomp->nrepartition);
+    if (sim->has_fluid) fprintf(f, "  \"c0\": %.6g,\n", (double)sim->fl.c0);
+    else fprintf(f, "  \"c0\": null,\n");
+    fprintf(f, "  \"bytes_per_particle\": %d,\n  \"repartitions\": %d,\n", (int)ParticlesBytesPerParticle(sim->P), (int)sim->decomp->nrepartition);
     fprintf(f, "  \"fields\": [");
     for (PetscInt k = 0, first = 1; k < FIELD_COUNT; k++)
       if (sim->P->f[k].on) { fprintf(f, "%s\"%s\"", first ? "" : ", ", sim->P->f[k].name); first = 0; }

@@ -206,6 +206,7 @@ static PetscErrorCode Progress(Sim sim, PetscLogDouble *last, PetscBool force)
     PetscReal el = now - sim->wall_start, left = sim->t > 0 ? el * (sim->t_end - sim->t) / sim->t : 0;
     char its[64] = "";
     if (sim->isph) PetscCall(PetscSNPrintf(its, sizeof(its), "  PPE its %" PetscInt_FMT " (free surface %" PetscInt_FMT ")", sim->isph->ppe->its_last, sim->isph->nfree));
+    if (sim->has_fluid && sim->solid) PetscCall(PetscSNPrintf(its + strlen(its), sizeof(its) - strlen(its), "  solid sub-steps %" PetscInt_FMT, sim->solid->nsub_last));
     PetscCall(PetscPrintf(sim->comm, "step %7" PetscInt_FMT "  t %.5e / %.4g s  dt %.3e  particles %" PetscInt_FMT "%s  wall %.1f s  left ~%.0f s\n", sim->step, (double)sim->t, (double)sim->t_end, (double)sim->dt, sim->nparticles, its, (double)el, (double)left));
   }
   PetscFunctionReturn(PETSC_SUCCESS);

@@ -103,7 +103,7 @@ static PetscErrorCode Momentum(Sim sim)
       if (P->kind[a] == KIND_CLAMP) acc[2 * a] = acc[2 * a + 1] = 0;
       continue;
     }
-    wdx = KernelW(h[a] / SPH_H_FACTOR, h[a]);
+    wdx = R ? KernelW(h[a] / SPH_H_FACTOR, h[a]) : 1;
     for (PetscInt k = C->nstart[a]; k < C->nstart[a + 1]; k++) {
       PetscInt  b = C->nbr[k];
       PetscReal dx = x[2 * a] - x[2 * b], dy = x[2 * a + 1] - x[2 * b + 1], r2 = dx * dx + dy * dy;
@@ -209,14 +209,8 @@ PetscErrorCode SolidTimeStep(Sim sim, PetscReal *dt)
   PetscReal        lim = PETSC_MAX_REAL;
 
   PetscFunctionBeginUser;
-  for (PetscInt a = 0; a < P->n; a++) {
-    PetscReal vn, an;
-    if (P->kind[a] != KIND_SOLID) continue;
-    vn  = PetscSqrtReal(v[2 * a] * v[2 * a] + v[2 * a + 1] * v[2 * a + 1]);
-    an  = PetscSqrtReal(acc[2 * a] * acc[2 * a] + acc[2 * a + 1] * acc[2 * a + 1]);
-    lim = PetscMin(lim, sim->cfl * h[a] / (sim->sl.c0 + vn));
-    if (an > 0) lim = PetscMin(lim, 0.25 * PetscSqrtReal(h[a] / an));
-  }
+  for (PetscInt a = 0; a < P->n; a++)
+    if (P->kind[a] == KIND_SOLID) lim = PetscMin(lim, SimAcousticStepLimit(sim->cfl, h[a], sim->sl.c0, v + 2 * a, acc + 2 * a));
   PetscCall(MPIU_Allreduce(&lim, dt, 1, MPIU_REAL, MPIU_MIN, sim->comm));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -238,7 +232,6 @@ PetscErrorCode SolidStep(Sim sim, PetscReal dt)
 {
   Particles     P     = sim->P;
   const FieldId vel[] = {FIELD_V};
-  PetscReal    *x = PField(P, FIELD_X), *v = PField(P, FIELD_V);
 
   PetscFunctionBeginUser;
   PetscCall(PetscLogStagePush(sim->stage[STAGE_SOLID]));
@@ -250,10 +243,13 @@ PetscErrorCode SolidStep(Sim sim, PetscReal dt)
   PetscCall(PetscLogStagePop());
   PetscCall(PetscLogStagePush(sim->stage[STAGE_SOLID]));
   PetscCall(Deform(sim, dt));
-  for (PetscInt a = 0; a < P->n; a++) {
-    if (P->kind[a] != KIND_SOLID) continue;
-    x[2 * a] += dt * v[2 * a];
-    x[2 * a + 1] += dt * v[2 * a + 1];
+  {
+    PetscReal *x = PField(P, FIELD_X), *v = PField(P, FIELD_V);
+    for (PetscInt a = 0; a < P->n; a++) {
+      if (P->kind[a] != KIND_SOLID) continue;
+      x[2 * a] += dt * v[2 * a];
+      x[2 * a + 1] += dt * v[2 * a + 1];
+    }
   }
   PetscCall(PetscLogStagePop());
   PetscCall(SimRebuild(sim));
@@ -268,15 +264,14 @@ PetscErrorCode SolidEnergy(Sim sim, PetscReal *ekin, PetscReal *estrain)
 {
   Particles            P = sim->P;
   const SolidMaterial *m = &sim->sl;
-  const PetscReal     *v = PField(P, FIELD_V), *rho = PField(P, FIELD_RHO), *mass = PField(P, FIELD_M), *S = PField(P, FIELD_S);
+  const PetscReal     *v = PField(P, FIELD_V), *rho = PField(P, FIELD_RHO), *mass = PField(P, FIELD_M), *S = PField(P, FIELD_S), *p = PField(P, FIELD_P);
   PetscReal            e[2] = {0, 0};
 
   PetscFunctionBeginUser;
   for (PetscInt a = 0; a < P->n; a++) {
-    PetscReal sxx, sxy, syy, szz, pa;
+    PetscReal sxx, sxy, syy, szz, pa = p[a];
     if (!KindIsSolid(P->kind[a])) continue;
     sxx = S[3 * a]; sxy = S[3 * a + 1]; syy = S[3 * a + 2]; szz = -(sxx + syy);
-    pa  = SolidEOSPressure(m, rho[a]);
     e[0] += 0.5 * mass[a] * (v[2 * a] * v[2 * a] + v[2 * a + 1] * v[2 * a + 1]);
     e[1] += mass[a] / rho[a] * ((m->G > 0 ? (sxx * sxx + syy * syy + szz * szz + 2 * sxy * sxy) / (4 * m->G) : 0) + pa * pa / (2 * m->K));
   }

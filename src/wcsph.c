@@ -117,12 +117,8 @@ PetscErrorCode WCSPHTimeStep(Sim sim, PetscReal *dt)
 
   PetscFunctionBeginUser;
   for (PetscInt a = 0; a < P->n; a++) {
-    PetscReal vn, an;
     if (!KindIsFluid(P->kind[a])) continue;
-    vn  = PetscSqrtReal(v[2 * a] * v[2 * a] + v[2 * a + 1] * v[2 * a + 1]);
-    an  = PetscSqrtReal(acc[2 * a] * acc[2 * a] + acc[2 * a + 1] * acc[2 * a + 1]);
-    lim = PetscMin(lim, sim->cfl * h[a] / (sim->fl.c0 + vn));                           /* CFL */
-    if (an > 0) lim = PetscMin(lim, 0.25 * PetscSqrtReal(h[a] / an));                   /* force */
+    lim = PetscMin(lim, SimAcousticStepLimit(sim->cfl, h[a], sim->fl.c0, v + 2 * a, acc + 2 * a));     /* CFL, force */
     if (sim->fl.mu > 0) lim = PetscMin(lim, 0.125 * h[a] * h[a] * rho[a] / sim->fl.mu); /* viscous */
   }
   PetscCall(MPIU_Allreduce(&lim, dt, 1, MPIU_REAL, MPIU_MIN, sim->comm));

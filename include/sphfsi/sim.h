@@ -68,5 +68,14 @@ PetscErrorCode SimRun(Sim sim);
 PetscErrorCode SimDestroy(Sim *sim);
 /* Migrate, rebalance, sort, build ghosts, cells and neighbour lists: after particles moved. */
 PetscErrorCode SimRebuild(Sim sim);
+/* Step limit of one particle of an explicit (weakly compressible) medium of sound speed c:
+ * CFL  cfl h / (c + |v|)  and the force limit  0.25 sqrt(h / |a|). */
+static inline PetscReal SimAcousticStepLimit(PetscReal cfl, PetscReal h, PetscReal c, const PetscReal v[2], const PetscReal acc[2])
+{
+  PetscReal vn = PetscSqrtReal(v[0] * v[0] + v[1] * v[1]), an = PetscSqrtReal(acc[0] * acc[0] + acc[1] * acc[1]);
+  PetscReal lim = cfl * h / (c + vn);
+  return an > 0 ? PetscMin(lim, 0.25 * PetscSqrtReal(h / an)) : lim;
+}
+
 /* Total mass of owned fluid and solid particles (collective). */
 PetscErrorCode SimTotalMass(Sim sim, PetscReal *M);

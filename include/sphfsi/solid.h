@@ -13,7 +13,7 @@ struct _p_Solid {
   SolidGradient gradient;
   PetscReal    *R;     /* artificial stress (xx, xy, yy) of owned + ghost particles, Eqs. 32-34 */
   PetscInt      cap_R;
-  PetscInt      nsub_last, nsub_max; /* solid sub-steps in the last / any fluid step */
+  PetscInt      nsub_last, nsub_max; /* solid sub-steps in the last / any fluid step (progress line, summary) */
 };
 
 /* Options (-solid_*; the scene's material defaults are in sim->sl) and fields (before
@@ -26,7 +26,8 @@ PetscErrorCode SolidRates(Sim sim);
 PetscErrorCode SolidTimeStep(Sim sim, PetscReal *dt);
 /* One kick-drift-kick step of length dt of the solids (fluids held still). */
 PetscErrorCode SolidStep(Sim sim, PetscReal dt);
-/* Kinetic and strain energy of owned solids (collective): strain energy density
+/* Kinetic and strain energy of owned solids at the state of the last SolidRates (collective):
+ * strain energy density
  * S:S / (4 G) + P^2 / (2 K), S_zz = -(S_xx + S_yy) in plane strain. */
 PetscErrorCode SolidEnergy(Sim sim, PetscReal *ekin, PetscReal *estrain);
 PetscErrorCode SolidView(Sim sim, PetscViewer v);

@@ -64,7 +64,7 @@ static PetscErrorCode Populate(Sim sim)
   Plate     *c  = (Plate *)sim->scene_ctx;
   PetscReal  dx = sim->dx, y0 = -0.5 * c->H + 0.5 * dx, k = c->kL / c->L, fL = Mode(k, c->L, c->L);
   Particles  P  = sim->P;
-  PetscInt   n0 = P->n;
+  PetscInt   n0;
   PetscReal *x, *v;
   PetscFunctionBeginUser;
   PetscCall(SceneAddLattice(sim, KIND_CLAMP, -(c->nclamp - 0.5) * dx, y0, c->nclamp, c->ny, dx, sim->sl.rho0));

@@ -1,20 +1,27 @@
 #include <sphfsi/boundary.h>
 
-/* Wall state from the fluid neighbours of each owned wall/dummy particle: the no-slip mirror
- * velocity always, the Adami pressure and EOS density when `pressure` is set (WCSPH). */
+/* Wall state from the fluid neighbours of each owned wall/dummy or solid particle: the no-slip
+ * mirror velocity always, the Adami pressure and EOS density when `pressure` is set (WCSPH; with
+ * ISPH the pressure equation gives it).  A solid's pressure goes to its fluid view.  Adami's
+ * moving-wall term rho_f a_w . r is left out for solids: a particle's own acceleration carries the
+ * solid's elastic waves (hundreds of g at the wetted surface when loaded), not the motion of the
+ * interface. */
 static PetscErrorCode WallState(Sim sim, PetscBool pressure)
 {
   Particles        P = sim->P;
   Cells            C = sim->cells;
   const PetscReal *x = PField(P, FIELD_X), *v = PField(P, FIELD_V);
-  PetscReal       *p = PField(P, FIELD_P), *rho = PField(P, FIELD_RHO), *vw = PField(P, FIELD_VWALL);
-  const FieldId    refresh[] = {FIELD_VWALL, FIELD_P, FIELD_RHO};
+  PetscReal       *p = PField(P, FIELD_P), *rho = PField(P, FIELD_RHO), *vw = PField(P, FIELD_VWALL), *fv = PField(P, FIELD_FVIEW);
+  const PetscReal *m = PField(P, FIELD_M);
+  const FieldId    refresh[] = {FIELD_VWALL, FIELD_P, FIELD_RHO, FIELD_FVIEW};
 
   PetscFunctionBeginUser;
   PetscCall(PetscLogStagePush(sim->stage[STAGE_PHYSICS]));
   for (PetscInt a = 0; a < P->n; a++) {
     PetscReal sw = 0, sp = 0, sgx = 0, sgy = 0, svx = 0, svy = 0;
-    if (!KindIsWall(P->kind[a])) continue;
+    PetscBool solid = KindIsSolid(P->kind[a]);
+    const PetscReal gx = sim->g[0], gy = sim->g[1];
+    if (!(KindIsWall(P->kind[a]) || (solid && fv))) continue;
     for (PetscInt k = C->nstart[a]; k < C->nstart[a + 1]; k++) {
       PetscInt  b = C->nbr[k];
       PetscReal dx, dy, w = C->w[k];
@@ -32,14 +39,19 @@ static PetscErrorCode WallState(Sim sim, PetscBool pressure)
       vw[2 * a]     = v[2 * a];
       vw[2 * a + 1] = v[2 * a + 1];
     }
-    if (pressure) {
+    if (solid) {
+      if (pressure) fv[3 * a] = sw > 0 ? PetscMax((sp + gx * sgx + gy * sgy) / sw, 0.0) : 0;
+      fv[3 * a + 1] = pressure ? EOSDensity(&sim->fl, fv[3 * a]) : sim->fl.rho0;
+      fv[3 * a + 2] = fv[3 * a + 1] * m[a] / rho[a];
+    } else if (pressure) {
       /* Adami et al. 2012, Eq. 27 (static wall): p_w = (sum p_f W + g . sum rho_f r_wf W) / sum W */
-      p[a]   = sw > 0 ? (sp + sim->g[0] * sgx + sim->g[1] * sgy) / sw : 0;
+      p[a]   = sw > 0 ? (sp + gx * sgx + gy * sgy) / sw : 0;
       rho[a] = EOSDensity(&sim->fl, p[a]);
     }
   }
   PetscCall(PetscLogStagePop());
   PetscCall(PetscLogStagePush(sim->stage[STAGE_HALO]));
+  if (fv) PetscCall(HaloRefresh(sim->halo, P, 1, refresh + 3));
   PetscCall(HaloRefresh(sim->halo, P, pressure ? 3 : 1, refresh));
   PetscCall(PetscLogStagePop());
   PetscFunctionReturn(PETSC_SUCCESS);

@@ -9,6 +9,13 @@ PetscErrorCode CellsCreate(const Grid *g, Cells *c)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+PetscErrorCode CellsCreateList(Cells *c)
+{
+  PetscFunctionBeginUser;
+  PetscCall(PetscNew(c));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 PetscErrorCode CellsDestroy(Cells *c)
 {
   PetscFunctionBeginUser;
@@ -35,8 +42,6 @@ PetscErrorCode CellsBuild(Cells c, Particles P)
     PetscCall(PetscFree2(c->list, c->cell));
     c->cap_part = (3 * ntot) / 2 + 16;
     PetscCall(PetscMalloc2(c->cap_part, &c->list, c->cap_part, &c->cell));
-    PetscCall(PetscFree(c->nstart));
-    PetscCall(PetscMalloc1(c->cap_part + 1, &c->nstart));
   }
   for (PetscInt a = 0; a < ntot; a++)
     for (PetscInt d = 0; d < 2; d++) {
@@ -76,21 +81,30 @@ PetscErrorCode CellsBuild(Cells c, Particles P)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode CellsBuildNeighbours(Cells c, Particles P)
+/* Neighbour list into `out` of the owned particles that `keep` accepts (NULL: all), using the
+ * binning of `bins`: pairs with r < 2 h_ab + skin, kernel values at r (zero beyond 2 h_ab). */
+static PetscErrorCode NeighbourPass(Cells bins, Particles P, PetscBool (*keep)(PetscInt), PetscReal skin, Cells out)
 {
+  Cells            c = bins;
   const PetscReal *x = PField(P, FIELD_X), *h = PField(P, FIELD_H);
   PetscInt         n = P->n, cnt = 0;
 
   PetscFunctionBeginUser;
-  if (!c->nbr) {
-    c->cap_nbr = PetscMax(64, 32 * n);
-    PetscCall(PetscMalloc3(c->cap_nbr, &c->nbr, c->cap_nbr, &c->w, c->cap_nbr, &c->f));
+  if (n + 1 > out->cap_start) {
+    PetscCall(PetscFree(out->nstart));
+    out->cap_start = (3 * (n + 1)) / 2 + 16;
+    PetscCall(PetscMalloc1(out->cap_start, &out->nstart));
   }
-  c->max_nbr = 0;
+  if (!out->nbr) {
+    out->cap_nbr = PetscMax(64, (keep ? 4 : 32) * n);
+    PetscCall(PetscMalloc3(out->cap_nbr, &out->nbr, out->cap_nbr, &out->w, out->cap_nbr, &out->f));
+  }
+  out->max_nbr = 0;
   for (PetscInt a = 0; a < n; a++) {
     PetscInt  ca = c->cell[a], ia = ca % c->n[0], ja = ca / c->n[0];
     PetscReal xa = x[2 * a], ya = x[2 * a + 1], ha = h[a];
-    c->nstart[a] = cnt;
+    out->nstart[a] = cnt;
+    if (keep && !keep(P->kind[a])) continue;
     for (PetscInt dj = -1; dj <= 1; dj++) {
       PetscInt j = ja + dj;
       if (j < 0 || j >= c->n[1]) continue;
@@ -98,32 +112,61 @@ PetscErrorCode CellsBuildNeighbours(Cells c, Particles P)
         PetscInt i = ia + di, cb;
         if (i < 0 || i >= c->n[0]) continue;
         cb = j * c->n[0] + i;
-        if (cnt + (c->start[cb + 1] - c->start[cb]) > c->cap_nbr) {
+        if (cnt + (c->start[cb + 1] - c->start[cb]) > out->cap_nbr) {
           PetscInt  *nb;
           PetscReal *nw, *nf;
-          c->cap_nbr = 2 * c->cap_nbr + (c->start[cb + 1] - c->start[cb]);
-          PetscCall(PetscMalloc3(c->cap_nbr, &nb, c->cap_nbr, &nw, c->cap_nbr, &nf));
-          PetscCall(PetscArraycpy(nb, c->nbr, cnt));
-          PetscCall(PetscArraycpy(nw, c->w, cnt));
-          PetscCall(PetscArraycpy(nf, c->f, cnt));
-          PetscCall(PetscFree3(c->nbr, c->w, c->f));
-          c->nbr = nb; c->w = nw; c->f = nf;
+          out->cap_nbr = 2 * out->cap_nbr + (c->start[cb + 1] - c->start[cb]);
+          PetscCall(PetscMalloc3(out->cap_nbr, &nb, out->cap_nbr, &nw, out->cap_nbr, &nf));
+          PetscCall(PetscArraycpy(nb, out->nbr, cnt));
+          PetscCall(PetscArraycpy(nw, out->w, cnt));
+          PetscCall(PetscArraycpy(nf, out->f, cnt));
+          PetscCall(PetscFree3(out->nbr, out->w, out->f));
+          out->nbr = nb; out->w = nw; out->f = nf;
         }
         for (PetscInt s = c->start[cb]; s < c->start[cb + 1]; s++) {
           PetscInt  b = c->list[s];
-          PetscReal dx = xa - x[2 * b], dy = ya - x[2 * b + 1], r2 = dx * dx + dy * dy, hab = PairH(ha, h[b]);
-          if (b != a && r2 < 4.0 * hab * hab) {
+          PetscReal dx = xa - x[2 * b], dy = ya - x[2 * b + 1], r2 = dx * dx + dy * dy, hab = PairH(ha, h[b]), rc = 2.0 * hab + skin;
+          if (b != a && r2 < rc * rc) {
             PetscReal r = PetscSqrtReal(r2);
-            c->nbr[cnt] = b;
-            c->w[cnt]   = KernelW(r, hab);
-            c->f[cnt]   = KernelF(r, hab);
+            out->nbr[cnt] = b;
+            out->w[cnt]   = KernelW(r, hab);
+            out->f[cnt]   = KernelF(r, hab);
             cnt++;
           }
         }
       }
     }
-    c->max_nbr = PetscMax(c->max_nbr, cnt - c->nstart[a]);
+    out->max_nbr = PetscMax(out->max_nbr, cnt - out->nstart[a]);
   }
-  c->nstart[n] = cnt;
+  out->nstart[n] = cnt;
+  out->npart     = n;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode CellsBuildNeighbours(Cells c, Particles P)
+{
+  PetscFunctionBeginUser;
+  PetscCall(NeighbourPass(c, P, NULL, 0.0, c));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode CellsBuildSubList(Cells c, Particles P, PetscBool (*keep)(PetscInt), PetscReal skin, Cells sub)
+{
+  PetscFunctionBeginUser;
+  PetscCall(NeighbourPass(c, P, keep, skin, sub));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode CellsUpdatePairs(Cells sub, Particles P)
+{
+  const PetscReal *x = PField(P, FIELD_X), *h = PField(P, FIELD_H);
+  PetscFunctionBeginUser;
+  for (PetscInt a = 0; a < sub->npart; a++)
+    for (PetscInt k = sub->nstart[a]; k < sub->nstart[a + 1]; k++) {
+      PetscInt  b = sub->nbr[k];
+      PetscReal dx = x[2 * a] - x[2 * b], dy = x[2 * a + 1] - x[2 * b + 1], r = PetscSqrtReal(dx * dx + dy * dy), hab = PairH(h[a], h[b]);
+      sub->w[k] = KernelW(r, hab);
+      sub->f[k] = KernelF(r, hab);
+    }
   PetscFunctionReturn(PETSC_SUCCESS);
 }

@@ -89,7 +89,7 @@ PetscErrorCode ISPHInitialize(Sim sim)
   PetscReal *rho = PField(P, FIELD_RHO);
   PetscFunctionBeginUser;
   for (PetscInt a = 0; a < P->n + P->ng; a++)
-    if (KindIsWall(P->kind[a])) rho[a] = sim->fl.rho0;
+    if (KindIsWall(P->kind[a])) rho[a] = sim->fl.rho0; /* solids' fluid view: BoundaryWallVelocity */
   PetscCall(BoundaryWallVelocity(sim));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -127,7 +127,7 @@ static PetscErrorCode Predictor(Sim sim)
 {
   Particles        P = sim->P;
   Cells            C = sim->cells;
-  const PetscReal *v = PField(P, FIELD_V), *rho = PField(P, FIELD_RHO), *m = PField(P, FIELD_M), *h = PField(P, FIELD_H), *vw = PField(P, FIELD_VWALL);
+  const PetscReal *v = PField(P, FIELD_V), *rho = PField(P, FIELD_RHO), *m = PField(P, FIELD_M), *h = PField(P, FIELD_H), *vw = PField(P, FIELD_VWALL), *fv = PField(P, FIELD_FVIEW);
   PetscReal       *x = PField(P, FIELD_X), *vs = PField(P, FIELD_VSTAR);
   const PetscReal  dt = sim->dt, mu = sim->fl.mu, alpha = sim->isph->alpha;
 
@@ -138,9 +138,11 @@ static PetscErrorCode Predictor(Sim sim)
       for (PetscInt k = C->nstart[a]; k < C->nstart[a + 1]; k++) {
         PetscInt        b = C->nbr[k];
         PetscReal       dx = x[2 * a] - x[2 * b], dy = x[2 * a + 1] - x[2 * b + 1], r2 = dx * dx + dy * dy, hab = PairH(h[a], h[b]);
-        const PetscReal *vb = KindIsWall(P->kind[b]) ? vw + 2 * b : v + 2 * b;
-        PetscReal       c = LaminarViscosity(m[b], mu, rho[a], rho[b], C->f[k] * r2, r2, hab);
-        PetscReal       av = alpha > 0 ? m[b] * ArtificialViscosity(alpha, sim->fl.c0, hab, 0.5 * (rho[a] + rho[b]), (v[2 * a] - v[2 * b]) * dx + (v[2 * a + 1] - v[2 * b + 1]) * dy, r2) * C->f[k] : 0;
+        const PetscReal *vb = KindIsBoundary(P->kind[b]) ? vw + 2 * b : v + 2 * b;
+        PetscReal       mb, rb, pb, c, av;
+        FluidView(fv, P->kind[b], b, m, rho, NULL, &mb, &rb, &pb);
+        c  = LaminarViscosity(mb, mu, rho[a], rb, C->f[k] * r2, r2, hab);
+        av = alpha > 0 ? mb * ArtificialViscosity(alpha, sim->fl.c0, hab, 0.5 * (rho[a] + rb), (v[2 * a] - v[2 * b]) * dx + (v[2 * a + 1] - v[2 * b + 1]) * dy, r2) * C->f[k] : 0;
         ax += c * (v[2 * a] - vb[0]) - av * dx;
         ay += c * (v[2 * a + 1] - vb[1]) - av * dy;
       }
@@ -161,7 +163,7 @@ static PetscErrorCode DensityFreeSurfaceSource(Sim sim)
   ISPH             s = sim->isph;
   Particles        P = sim->P;
   Cells            C = sim->cells;
-  const PetscReal *x = PField(P, FIELD_X), *m = PField(P, FIELD_M), *h = PField(P, FIELD_H), *vs = PField(P, FIELD_VSTAR);
+  const PetscReal *x = PField(P, FIELD_X), *m = PField(P, FIELD_M), *h = PField(P, FIELD_H), *vs = PField(P, FIELD_VSTAR), *fv = PField(P, FIELD_FVIEW);
   PetscReal       *rho = PField(P, FIELD_RHO), *fs = PField(P, FIELD_FS);
   const PetscReal  rho0 = sim->fl.rho0, dt = sim->dt, w = s->blend;
   const FieldId    refresh[] = {FIELD_RHO, FIELD_FS};
@@ -175,15 +177,18 @@ static PetscErrorCode DensityFreeSurfaceSource(Sim sim)
   }
   for (PetscInt a = 0; a < P->n; a++) {
     PetscReal sw, divr = 0, div = 0;
-    rho[a] = rho0; fs[a] = 0; s->src[a] = 0;
-    if (!KindIsFluid(P->kind[a])) continue;
+    fs[a] = 0; s->src[a] = 0;
+    if (!KindIsFluid(P->kind[a])) {
+      if (!KindIsSolid(P->kind[a])) rho[a] = rho0; /* a solid keeps its own */
+      continue;
+    }
     sw = m[a] * KernelW(0, h[a]);
     for (PetscInt k = C->nstart[a]; k < C->nstart[a + 1]; k++) {
       PetscInt  b = C->nbr[k];
-      PetscReal dx = x[2 * a] - x[2 * b], dy = x[2 * a + 1] - x[2 * b + 1], F = C->f[k];
-      sw += m[b] * C->w[k];
-      divr -= m[b] / rho0 * F * (dx * dx + dy * dy);
-      div += m[b] * F * ((vs[2 * b] - vs[2 * a]) * dx + (vs[2 * b + 1] - vs[2 * a + 1]) * dy);
+      PetscReal dx = x[2 * a] - x[2 * b], dy = x[2 * a + 1] - x[2 * b + 1], F = C->f[k], mb = KindIsSolid(P->kind[b]) && fv ? fv[3 * b + 2] : m[b];
+      sw += mb * C->w[k];
+      divr -= mb / rho0 * F * (dx * dx + dy * dy);
+      div += mb * F * ((vs[2 * b] - vs[2 * a]) * dx + (vs[2 * b + 1] - vs[2 * a + 1]) * dy);
     }
     rho[a] = sw / s->lat_w;
     divr *= 2.0 / s->lat_divr;
@@ -205,15 +210,16 @@ static PetscErrorCode DensityFreeSurfaceSource(Sim sim)
  * pass gathers both forms and whether a free-surface particle is in reach (hybrid). */
 static inline void PressureGradient(Particles P, Cells C, PetscInt a, ISPHGradient mode, PetscReal rho0, PetscReal g[2])
 {
-  const PetscReal *x = PField(P, FIELD_X), *m = PField(P, FIELD_M), *rho = PField(P, FIELD_RHO), *p = PField(P, FIELD_P), *fs = PField(P, FIELD_FS);
+  const PetscReal *x = PField(P, FIELD_X), *m = PField(P, FIELD_M), *rho = PField(P, FIELD_RHO), *p = PField(P, FIELD_P), *fs = PField(P, FIELD_FS), *fv = PField(P, FIELD_FVIEW);
   PetscReal        gs[2] = {0, 0}, gd[2] = {0, 0}, M[3] = {0, 0, 0}, pa = p[a] / (rho[a] * rho[a]), det;
   PetscBool        near = (PetscBool)(fs[a] > 0), corrected;
   for (PetscInt k = C->nstart[a]; k < C->nstart[a + 1]; k++) {
     PetscInt  b = C->nbr[k];
-    PetscReal dx = x[2 * a] - x[2 * b], dy = x[2 * a + 1] - x[2 * b + 1], F = C->f[k];
-    PetscReal cs = m[b] * (p[b] / (rho[b] * rho[b]) + pa) * F, vb = m[b] / rho0 * F;
+    PetscReal dx = x[2 * a] - x[2 * b], dy = x[2 * a + 1] - x[2 * b + 1], F = C->f[k], mb, rb, pb, cs, vb;
+    FluidView(fv, P->kind[b], b, m, rho, p, &mb, &rb, &pb);
+    cs = mb * (pb / (rb * rb) + pa) * F; vb = mb / rho0 * F;
     gs[0] += cs * dx; gs[1] += cs * dy;
-    gd[0] += vb * (p[b] - p[a]) / rho0 * dx; gd[1] += vb * (p[b] - p[a]) / rho0 * dy;
+    gd[0] += vb * (pb - p[a]) / rho0 * dx; gd[1] += vb * (pb - p[a]) / rho0 * dy;
     M[0] -= vb * dx * dx; M[1] -= vb * dx * dy; M[2] -= vb * dy * dy; /* (x_b - x_a) (x) V_b grad_a W */
     if (fs[b] > 0 && KindIsFluid(P->kind[b])) near = PETSC_TRUE;
   }
@@ -281,8 +287,13 @@ static PetscErrorCode Drift(Sim sim)
         sy -= w * (v[2 * a + 1] - v[2 * b + 1]);
         if (fs[b] > 0) near_fs = PETSC_TRUE;
       }
-      cx += m[b] / rho0 * C->f[k] * dx;
-      cy += m[b] / rho0 * C->f[k] * dy;
+      if (!KindIsSolid(P->kind[b])) { /* a solid's volume: its own mass over its own density */
+        cx += m[b] / rho0 * C->f[k] * dx;
+        cy += m[b] / rho0 * C->f[k] * dy;
+      } else {
+        cx += m[b] / rho[b] * C->f[k] * dx;
+        cy += m[b] / rho[b] * C->f[k] * dy;
+      }
     }
     xs[2 * a] = eps * sx; xs[2 * a + 1] = eps * sy;
     if (s->shift > 0 && fs[a] == 0) {

@@ -9,7 +9,8 @@ static const struct { const char *name; PetscInt width; } FieldInfo[FIELD_COUNT]
   [FIELD_XSPH] = {"xsph", 2},   [FIELD_VWALL] = {"vwall", 2}, [FIELD_VSTAR] = {"vstar", 2},
 [FIELD_FS] = {"free_surface", 1}, [FIELD_S] = {"stress", 3},
   [FIELD_NORMAL] = {"normal", 2},   [FIELD_ROW] = {"row", 1},
-  [FIELD_KCORR] = {"kernel_correction", 4},
+  [FIELD_KCORR] = {"kernel_correction", 4}, [FIELD_FVIEW] = {"fluid_view", 3},
+  [FIELD_VSTEP] = {"velocity_step", 4},
 };
 
 PetscErrorCode ParticlesCreate(MPI_Comm comm, Particles *P)
@@ -96,6 +97,24 @@ PetscErrorCode ParticlesAdd(Particles P, PetscInt id, ParticleKind kind, PetscRe
   if (P->f[FIELD_X0].on) { P->f[FIELD_X0].a[2 * i] = x; P->f[FIELD_X0].a[2 * i + 1] = y; }
   P->f[FIELD_M].a[i] = m; P->f[FIELD_H].a[i] = h; P->f[FIELD_RHO].a[i] = rho;
   P->n++;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode ParticlesRemove(Particles P, const PetscBool *drop)
+{
+  PetscInt k = 0;
+  PetscFunctionBeginUser;
+  P->ng = 0;
+  for (PetscInt i = 0; i < P->n; i++) {
+    if (drop[i]) continue;
+    if (k != i) {
+      P->id[k] = P->id[i]; P->kind[k] = P->kind[i];
+      for (PetscInt f = 0; f < FIELD_COUNT; f++)
+        if (P->f[f].on) PetscCall(PetscArraycpy(P->f[f].a + k * P->f[f].width, P->f[f].a + i * P->f[f].width, P->f[f].width));
+    }
+    k++;
+  }
+  P->n = k;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

@@ -1,6 +1,7 @@
 #include <sphfsi/ppe.h>
 #include <sphfsi/fluid_terms.h>
 #include <sphfsi/kernel.h>
+#include <sphfsi/boundary.h>
 
 PetscErrorCode PPECreate(MPI_Comm comm, PPE *ppe)
 {
@@ -48,13 +49,13 @@ PetscErrorCode PPEDestroy(PPE *ppe)
   PetscCall(VecDestroy(&(*ppe)->x));
   PetscCall(VecDestroy(&(*ppe)->b));
   PetscCall(MatNullSpaceDestroy(&(*ppe)->nullsp));
-  PetscCall(PetscFree3((*ppe)->rowpart, (*ppe)->dnnz, (*ppe)->onnz));
+  PetscCall(PetscFree4((*ppe)->rowpart, (*ppe)->dnnz, (*ppe)->onnz, (*ppe)->hyd));
   PetscCall(PetscFree2((*ppe)->cols, (*ppe)->vals));
   PetscCall(PetscFree(*ppe));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-/* Owned wall/dummy particles take part only when some fluid particle is within reach. */
+/* Owned wall/dummy and solid particles take part only when some fluid particle is within reach. */
 static PetscBool HasFluidNeighbour(Cells C, Particles P, PetscInt a)
 {
   for (PetscInt k = C->nstart[a]; k < C->nstart[a + 1]; k++)
@@ -71,12 +72,12 @@ PetscErrorCode PPENumber(PPE ppe, Sim sim)
 
   PetscFunctionBeginUser;
   if (P->n > ppe->cap_rows) {
-    PetscCall(PetscFree3(ppe->rowpart, ppe->dnnz, ppe->onnz));
+    PetscCall(PetscFree4(ppe->rowpart, ppe->dnnz, ppe->onnz, ppe->hyd));
     ppe->cap_rows = (PetscInt)(1.2 * P->n) + 16;
-    PetscCall(PetscMalloc3(ppe->cap_rows, &ppe->rowpart, ppe->cap_rows, &ppe->dnnz, ppe->cap_rows, &ppe->onnz));
+    PetscCall(PetscMalloc4(ppe->cap_rows, &ppe->rowpart, ppe->cap_rows, &ppe->dnnz, ppe->cap_rows, &ppe->onnz, ppe->cap_rows, &ppe->hyd));
   }
   for (PetscInt a = 0; a < P->n; a++) {
-    PetscBool r = KindIsFluid(P->kind[a]) || (KindIsWall(P->kind[a]) && HasFluidNeighbour(sim->cells, P, a));
+    PetscBool r = KindIsFluid(P->kind[a]) || (KindIsBoundary(P->kind[a]) && HasFluidNeighbour(sim->cells, P, a));
     row[a]      = -1;
     if (!r) continue;
     ppe->rowpart[n++] = a;
@@ -98,12 +99,12 @@ PetscErrorCode PPENumber(PPE ppe, Sim sim)
 typedef enum { NBR_SKIP, NBR_KNOWN, NBR_UNKNOWN } NbrRole;
 
 /* What neighbour b is in row a's equation: an unknown (column), a known pressure (free surface:
- * 0; a solid: its own pressure), or absent: a wall sees only fluid (its row is the implicit form
- * of the Adami extrapolation), a wall outside every fluid particle's reach, a periodic image of a. */
+ * 0), or absent: a wall or solid sees only fluid (its row is the implicit form of the Adami
+ * extrapolation), a wall or solid outside every fluid particle's reach, a periodic image of a. */
 static inline NbrRole Role(Particles P, const PetscReal *row, const PetscReal *fs, PetscInt a, PetscInt b)
 {
-  if (KindIsWall(P->kind[a]) && !KindIsFluid(P->kind[b])) return NBR_SKIP;
-  if (row[b] < 0) return KindIsSolid(P->kind[b]) ? NBR_KNOWN : NBR_SKIP;
+  if (KindIsBoundary(P->kind[a]) && !KindIsFluid(P->kind[b])) return NBR_SKIP;
+  if (row[b] < 0) return NBR_SKIP;
   if (fs[b] > 0) return NBR_KNOWN;
   if (row[b] == row[a]) return NBR_SKIP;
   return NBR_UNKNOWN;
@@ -183,8 +184,8 @@ PetscErrorCode PPEAssemble(PPE ppe, Sim sim, const PetscReal *src)
   Particles        P = sim->P;
   Cells            C = sim->cells;
   const PetscReal *row = PField(P, FIELD_ROW), *fs = PField(P, FIELD_FS), *x = PField(P, FIELD_X);
-  const PetscReal *rho = PField(P, FIELD_RHO), *m = PField(P, FIELD_M), *h = PField(P, FIELD_H), *p = PField(P, FIELD_P);
-  const PetscReal  rho0 = sim->fl.rho0, gx = sim->g[0], gy = sim->g[1];
+  const PetscReal *rho = PField(P, FIELD_RHO), *m = PField(P, FIELD_M), *h = PField(P, FIELD_H), *fv = PField(P, FIELD_FVIEW);
+  const PetscReal  rho0 = sim->fl.rho0;
   PetscScalar     *bb;
   MatInfo          info;
 
@@ -194,26 +195,30 @@ PetscErrorCode PPEAssemble(PPE ppe, Sim sim, const PetscReal *src)
   PetscCall(VecGetArrayWrite(ppe->b, &bb));
   for (PetscInt r = 0; r < ppe->nrow; r++) {
     PetscInt  a = ppe->rowpart[r], ga = ppe->rstart + r, nc = 1;
-    PetscReal va = m[a] / rho0, diag = 0, known = 0, hyd = 0;
-    PetscBool wall = KindIsWall(P->kind[a]), dir = IsDirichlet(fs, a);
+    PetscReal ma, ra, pa, va, diag = 0, hyd = 0;
+    const PetscReal gx = sim->g[0], gy = sim->g[1];
+    PetscBool wall = KindIsBoundary(P->kind[a]), dir = IsDirichlet(fs, a);
+    FluidView(fv, P->kind[a], a, m, rho, NULL, &ma, &ra, &pa);
+    va = ma / rho0;
     for (PetscInt k = C->nstart[a]; k < C->nstart[a + 1]; k++) {
       PetscInt  b = C->nbr[k];
       NbrRole   role = Role(P, row, fs, a, b);
-      PetscReal dx, dy, r2, c;
+      PetscReal dx, dy, r2, c, mb, rb, pb;
       if (role == NBR_SKIP) continue;
+      FluidView(fv, P->kind[b], b, m, rho, NULL, &mb, &rb, &pb);
       dx = x[2 * a] - x[2 * b]; dy = x[2 * a + 1] - x[2 * b + 1]; r2 = dx * dx + dy * dy;
-      c  = PPECoefficient(m[b], rho[a], rho[b], C->f[k], r2, PairH(h[a], h[b]));
+      c  = PPECoefficient(mb, ra, rb, C->f[k], r2, PairH(h[a], h[b]));
       diag += c;
       if (wall) hyd += c * rho0 * (gx * dx + gy * dy); /* L_a(rho0 g . r) */
-      if (dir) continue;
-      if (role == NBR_KNOWN) known += c * (KindIsSolid(P->kind[b]) ? p[b] : 0.0);
-      else { ppe->cols[nc] = (PetscInt)row[b]; ppe->vals[nc++] = va * c; }
+      if (dir || role == NBR_KNOWN) continue; /* free surface: P = 0 */
+      ppe->cols[nc] = (PetscInt)row[b]; ppe->vals[nc++] = va * c;
     }
     ppe->cols[0] = ga;
     ppe->vals[0] = -va * diag;
+    ppe->hyd[r]  = wall && diag != 0 ? hyd / diag : 0; /* P_a = mean_c(P_f) + hyd[r] */
     if (diag == 0) ppe->vals[0] = va / (rho0 * h[a] * h[a]); /* isolated free-surface particle */
     if (dir) { nc = 1; bb[r] = 0; }
-    else bb[r] = -va * ((wall ? hyd : src[a]) + known);
+    else bb[r] = -va * (wall ? hyd : src[a]);
     PetscCall(MatSetValues(ppe->A, 1, &ga, nc, ppe->cols, ppe->vals, INSERT_VALUES));
   }
   PetscCall(VecRestoreArrayWrite(ppe->b, &bb));
@@ -235,16 +240,19 @@ PetscErrorCode PPEAssemble(PPE ppe, Sim sim, const PetscReal *src)
 PetscErrorCode PPESolve(PPE ppe, Sim sim)
 {
   Particles          P = sim->P;
-  PetscReal         *p = PField(P, FIELD_P);
+  PetscReal         *p = PField(P, FIELD_P), *fv = PField(P, FIELD_FVIEW);
   PetscScalar       *xx;
   PetscInt           its;
   KSPConvergedReason reason;
-  const FieldId      refresh[] = {FIELD_P};
+  const FieldId      refresh[] = {FIELD_P, FIELD_FVIEW};
 
   PetscFunctionBeginUser;
   PetscCall(PetscLogStagePush(sim->stage[STAGE_PPE_SOLVE]));
   PetscCall(VecGetArrayWrite(ppe->x, &xx));
-  for (PetscInt r = 0; r < ppe->nrow; r++) xx[r] = p[ppe->rowpart[r]];
+  for (PetscInt r = 0; r < ppe->nrow; r++) {
+    PetscInt a = ppe->rowpart[r];
+    xx[r]      = KindIsSolid(P->kind[a]) ? fv[3 * a] : p[a];
+  }
   PetscCall(VecRestoreArrayWrite(ppe->x, &xx));
   PetscCall(KSPSetOperators(ppe->ksp, ppe->A, ppe->A));
   PetscCall(KSPSolve(ppe->ksp, ppe->b, ppe->x));
@@ -255,18 +263,24 @@ PetscErrorCode PPESolve(PPE ppe, Sim sim)
   ppe->its_last = its;
   ppe->its_sum += its;
   ppe->its_max = PetscMax(ppe->its_max, its);
-  for (PetscInt a = 0; a < P->n; a++)
-    if (KindIsWall(P->kind[a])) p[a] = 0; /* walls out of reach of the fluid */
+  for (PetscInt a = 0; a < P->n; a++) { /* walls and solids out of reach of the fluid */
+    if (KindIsWall(P->kind[a])) p[a] = 0;
+    if (fv && KindIsSolid(P->kind[a])) fv[3 * a] = 0;
+  }
   PetscCall(VecGetArrayRead(ppe->x, (const PetscScalar **)&xx));
   for (PetscInt r = 0; r < ppe->nrow; r++) {
     PetscInt a = ppe->rowpart[r];
     /* a wall above the water line extrapolates a negative pressure that would pull fluid onto it */
-    p[a] = KindIsWall(P->kind[a]) ? PetscMax(xx[r], 0.0) : xx[r];
+    /* a wall above the water line extrapolates a negative pressure that would pull fluid onto it:
+     * clip that, but not below the fluid's own (mean) pressure, which the solve balanced */
+    PetscReal pw = PetscMax(xx[r], PetscMin(xx[r] - ppe->hyd[r], 0.0));
+    if (KindIsSolid(P->kind[a])) fv[3 * a] = pw;
+    else p[a] = KindIsWall(P->kind[a]) ? pw : xx[r];
   }
   PetscCall(VecRestoreArrayRead(ppe->x, (const PetscScalar **)&xx));
   PetscCall(PetscLogStagePop());
   PetscCall(PetscLogStagePush(sim->stage[STAGE_HALO]));
-  PetscCall(HaloRefresh(sim->halo, P, 1, refresh));
+  PetscCall(HaloRefresh(sim->halo, P, fv ? 2 : 1, refresh));
   PetscCall(PetscLogStagePop());
   PetscFunctionReturn(PETSC_SUCCESS);
 }

@@ -132,6 +132,33 @@ PetscErrorCode SimTotalMass(Sim sim, PetscReal *M)
   for (PetscInt a = 0; a < sim->P->n; a++)
     if (KindIsFluid(sim->P->kind[a]) || sim->P->kind[a] == KIND_SOLID) s += m[a];
   PetscCall(MPIU_Allreduce(&s, M, 1, MPIU_REAL, MPI_SUM, sim->comm));
+  *M += sim->mass_out;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* Open boundary: owned fluid particles outside the domain box leave the simulation. */
+static PetscErrorCode Outflow(Sim sim)
+{
+  Particles        P = sim->P;
+  const PetscReal *x = PField(P, FIELD_X), *m = PField(P, FIELD_M);
+  PetscBool       *drop;
+  PetscReal        out = 0;
+  PetscInt         n = 0;
+  PetscFunctionBeginUser;
+  PetscCall(PetscMalloc1(P->n, &drop));
+  for (PetscInt a = 0; a < P->n; a++) {
+    drop[a] = PETSC_FALSE;
+    if (!KindIsFluid(P->kind[a])) continue;
+    for (PetscInt d = 0; d < 2; d++)
+      if (!sim->periodic[d] && (x[2 * a + d] < sim->grid.lo[d] || x[2 * a + d] >= sim->grid.hi[d])) drop[a] = PETSC_TRUE;
+    if (drop[a]) { out += m[a]; n++; }
+  }
+  if (n) PetscCall(ParticlesRemove(P, drop));
+  PetscCall(PetscFree(drop));
+  { PetscReal buf[2] = {out, (PetscReal)n};
+    PetscCall(MPIU_Allreduce(MPI_IN_PLACE, buf, 2, MPIU_REAL, MPI_SUM, sim->comm));
+    sim->mass_out += buf[0];
+    sim->nparticles -= (PetscInt)buf[1]; }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -140,6 +167,7 @@ PetscErrorCode SimRebuild(Sim sim)
   PetscBool rep;
   PetscFunctionBeginUser;
   PetscCall(PetscLogStagePush(sim->stage[STAGE_HALO]));
+  if (sim->outflow) PetscCall(Outflow(sim));
   PetscCall(DecompMigrate(sim->decomp, sim->P));
   PetscCall(DecompBalance(sim->decomp, sim->P, sim->step, &rep));
   PetscCall(PetscLogStagePop());
@@ -181,7 +209,8 @@ PetscErrorCode SimSetUp(Sim sim)
     PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &nfluid, 1, MPIU_INT, MPI_SUM, sim->comm));
     PetscCheck(nfluid > 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "The geometry leaves no fluid particle at -dx %g: choose a smaller -dx or a larger water region", (double)sim->dx);
   }
-  PetscCall(GridSetUp(&sim->grid, sim->dom_lo, sim->dom_hi, 2.0 * sim->h_max, sim->periodic));
+  /* solids keep their neighbour lists over sub-steps: cells wide enough for the skin */
+  PetscCall(GridSetUp(&sim->grid, sim->dom_lo, sim->dom_hi, 2.0 * sim->h_max + (sim->solid ? sim->solid->skin * sim->dx : 0), sim->periodic));
   PetscCall(DecompSetUp(sim->decomp, &sim->grid));
   PetscCall(CellsCreate(&sim->grid, &sim->cells));
   PetscCall(DecompMigrate(sim->decomp, sim->P)); /* wraps and checks every particle is inside */
@@ -190,7 +219,10 @@ PetscErrorCode SimSetUp(Sim sim)
   PetscCall(SimTotalMass(sim, &sim->mass0));
   if (sim->has_fluid && sim->fluid == FLUID_ISPH) PetscCall(ISPHInitialize(sim));
   else if (sim->has_fluid) PetscCall(WCSPHRates(sim));
-  if (sim->has_solid) PetscCall(SolidRates(sim));
+  if (sim->has_solid) {
+    PetscCall(SolidPrepare(sim));
+    PetscCall(SolidRates(sim));
+  }
   PetscCall(IOSetUp(sim));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -242,12 +274,16 @@ static PetscErrorCode Step(Sim sim)
   else sim->dt = dts;
   sim->dt = PetscMin(sim->dt, sim->t_end - sim->t);
   if (sim->has_fluid) {
+    if (sim->has_solid) PetscCall(SolidStartFluidStep(sim));
     if (sim->isph) PetscCall(ISPHStep(sim));
     else PetscCall(WCSPHStep(sim));
   }
   if (sim->has_solid) {
     if (dts < sim->dt) nsub = (PetscInt)PetscCeilReal(sim->dt / dts * (1 - 1e-12));
-    if (sim->has_fluid) PetscCall(SolidRates(sim)); /* the fluid moved: new loads on the solid */
+    if (sim->has_fluid) { /* the fluid moved and everything was rebuilt: new loads on the solid */
+      PetscCall(SolidPrepare(sim));
+      PetscCall(SolidRates(sim));
+    }
     for (PetscInt k = 0; k < nsub; k++) PetscCall(SolidStep(sim, sim->dt / nsub));
     sim->solid->nsub_last = nsub;
     sim->solid->nsub_max  = PetscMax(sim->solid->nsub_max, nsub);

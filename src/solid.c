@@ -4,6 +4,8 @@
 #include <sphfsi/kernel.h>
 #include <sphfsi/operators.h>
 #include <sphfsi/scene.h>
+#include <sphfsi/boundary.h>
+#include <sphfsi/isph.h>
 
 const char *const SolidGradients[] = {"standard", "corrected", "SolidGradient", "SOLID_GRAD_", NULL};
 
@@ -12,10 +14,13 @@ PetscErrorCode SolidSetUp(Sim sim)
   SolidMaterial *m = &sim->sl;
   Solid          s;
   PetscInt       grad = SOLID_GRAD_CORRECTED;
+  PetscBool      fluid = sim->has_fluid;
 
   PetscFunctionBeginUser;
   PetscCall(PetscNew(&s));
-  sim->solid = s;
+  sim->solid   = s;
+  s->skin      = 0.4;
+  s->repulsion = (PetscBool)(fluid && sim->fluid == FLUID_WCSPH);
   PetscOptionsBegin(sim->comm, NULL, "Hypo-elastic solid (WCSPH, Eqs. 20, 23-40)", "Solid");
   PetscCall(PetscOptionsReal("-solid_rho", "Solid reference density (kg/m^3)", "", m->rho0, &m->rho0, NULL));
   PetscCall(PetscOptionsReal("-solid_K", "Solid bulk modulus K (Pa); c0^2 = K / rho0, Eq. 20", "", m->K, &m->K, NULL));
@@ -24,8 +29,14 @@ PetscErrorCode SolidSetUp(Sim sim)
   PetscCall(PetscOptionsReal("-solid_art_stress", "Artificial stress coefficient e, Eqs. 25-31; 0 = off", "", m->eps, &m->eps, NULL));
   PetscCall(PetscOptionsReal("-solid_art_stress_n", "Exponent n of f = W_ab / W(dx, h) in the artificial stress, Eq. 23", "", m->n, &m->n, NULL));
   PetscCall(PetscOptionsEList("-solid_gradient", "Velocity gradient of the strain rate: standard (Eqs. 35-38) or corrected (Bonet-Lok, exact for linear fields)", "", SolidGradients, 2, SolidGradients[grad], &grad, NULL));
+  PetscCall(PetscOptionsReal("-solid_skin", "Neighbour-list skin of the solid sub-steps, in particle spacings", "", s->skin, &s->skin, NULL));
+  s->added_mass = fluid && sim->fluid == FLUID_ISPH ? sim->added_mass_length : 0;
+  if (fluid) PetscCall(PetscOptionsReal("-fsi_added_mass", "ISPH + solid: added-mass length L_a (m) of the Robin stabilisation of the staggered coupling; 0 = off", "", s->added_mass, &s->added_mass, NULL));
+  if (fluid) PetscCall(PetscOptionsBool("-fsi_repulsion", "Repulsive force Eq. 41 between fluid and solid particles (default: on with -fluid wcsph, off with isph)", "", s->repulsion, &s->repulsion, NULL));
   PetscOptionsEnd();
   s->gradient = (SolidGradient)grad;
+  PetscCheck(s->added_mass >= 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-fsi_added_mass %g must be >= 0", (double)s->added_mass);
+  PetscCheck(s->skin >= 0 && s->skin <= 2, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-solid_skin %g must be in [0, 2] particle spacings", (double)s->skin);
   PetscCheck(m->rho0 > 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-solid_rho %g must be > 0", (double)m->rho0);
   PetscCheck(m->K > 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-solid_K %g must be > 0", (double)m->K);
   PetscCheck(m->G >= 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-solid_G %g must be >= 0", (double)m->G);
@@ -37,6 +48,22 @@ PetscErrorCode SolidSetUp(Sim sim)
   PetscCall(ParticlesEnableField(sim->P, FIELD_ACC, PETSC_FALSE));
   PetscCall(ParticlesEnableField(sim->P, FIELD_DRHO, PETSC_FALSE));
   if (s->gradient == SOLID_GRAD_CORRECTED) PetscCall(ParticlesEnableField(sim->P, FIELD_KCORR, PETSC_FALSE)); /* ghosts: refreshed when computed */
+  if (fluid) {
+    PetscCall(ParticlesEnableField(sim->P, FIELD_FVIEW, PETSC_TRUE));
+    PetscCall(ParticlesEnableField(sim->P, FIELD_VWALL, PETSC_FALSE));
+  }
+  if (s->repulsion) PetscCall(ParticlesEnableField(sim->P, FIELD_NORMAL, PETSC_TRUE));
+  if (s->added_mass > 0) PetscCall(ParticlesEnableField(sim->P, FIELD_VSTEP, PETSC_FALSE));
+  PetscCall(CellsCreateList(&s->nl));
+  { /* |sum V grad W| of a particle on a flat surface of a lattice of spacing 1 */
+    PetscReal g = 0, hh = SPH_H_FACTOR;
+    for (PetscInt j = 0; j <= 3; j++)
+      for (PetscInt i = -3; i <= 3; i++) {
+        PetscReal r = PetscSqrtReal((PetscReal)(i * i + j * j));
+        g += KernelF(r, hh) * j;
+      }
+    s->nrm_min = 0.5 * PetscAbsReal(g);
+  }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -45,6 +72,9 @@ PetscErrorCode SolidDestroy(Solid *s)
   PetscFunctionBeginUser;
   if (!*s) PetscFunctionReturn(PETSC_SUCCESS);
   PetscCall(PetscFree((*s)->R));
+  PetscCall(PetscFree((*s)->xref));
+  PetscCall(PetscFree((*s)->kam));
+  PetscCall(CellsDestroy(&(*s)->nl));
   PetscCall(PetscFree(*s));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -81,23 +111,71 @@ static inline void Apply(const PetscReal *L, PetscReal gx, PetscReal gy, PetscRe
   else { out[0] = gx; out[1] = gy; }
 }
 
-/* Eq. 23 for owned solids over every neighbour that is not a wall: stress of solids, pressure of
- * fluids; artificial viscosity (Eq. 24) and artificial stress between solids; gravity.  Clamps do
- * not accelerate.  With the corrected gradient each particle's stress acts through its own
- * corrected kernel gradient, sigma_a L_a grad W + sigma_b L_b grad W (pair terms with the mean), which
- * keeps the pair forces opposite; pairs with fluid use the plain gradient, as the fluid does. */
+/* Acceleration of solid a from fluid neighbour b: the reverse of what the fluid gets from a
+ * (wcsph.c, isph.c), with a as the fluid sees it (boundary.h): pressure and artificial viscosity,
+ * laminar viscosity against a's no-slip velocity and, when on, the repulsive force Eq. 41. */
+static inline void FluidLoad(Sim sim, PetscInt a, PetscInt b, PetscReal F, PetscReal acc[2], PetscReal wet[2])
+{
+  Particles        P = sim->P;
+  const PetscReal *x = PField(P, FIELD_X), *v = PField(P, FIELD_V), *rho = PField(P, FIELD_RHO), *p = PField(P, FIELD_P), *m = PField(P, FIELD_M), *h = PField(P, FIELD_H);
+  const PetscReal *fv = PField(P, FIELD_FVIEW), *vw = PField(P, FIELD_VWALL), *nrm = PField(P, FIELD_NORMAL);
+  const PetscReal  alpha = sim->isph ? sim->isph->alpha : sim->fl.alpha;
+  PetscReal        dx = x[2 * b] - x[2 * a], dy = x[2 * b + 1] - x[2 * a + 1], r2 = dx * dx + dy * dy, hab = PairH(h[a], h[b]);
+  PetscReal        pa = fv[3 * a], ra = fv[3 * a + 1], ma = fv[3 * a + 2], rb = rho[b];
+  PetscReal        dvx = v[2 * b] - v[2 * a], dvy = v[2 * b + 1] - v[2 * a + 1];
+  PetscReal        pterm = p[b] / (rb * rb) + pa / (ra * ra) + ArtificialViscosity(alpha, sim->fl.c0, hab, 0.5 * (ra + rb), dvx * dx + dvy * dy, r2);
+  PetscReal        visc = LaminarViscosity(ma, sim->fl.mu, rb, ra, F * r2, r2, hab), s = m[b] / m[a];
+  PetscReal        fb[2]; /* the fluid's pair acceleration */
+  fb[0] = visc * (v[2 * b] - vw[2 * a]) - ma * pterm * F * dx;
+  fb[1] = visc * (v[2 * b + 1] - vw[2 * a + 1]) - ma * pterm * F * dy;
+  if (sim->solid->repulsion) {
+    PetscReal f = FSIRepulsion(dvx * nrm[2 * a] + dvy * nrm[2 * a + 1], PetscSqrtReal(r2) / (2 * hab), sim->dt);
+    fb[0] += f * nrm[2 * a]; fb[1] += f * nrm[2 * a + 1];
+  }
+  acc[0] -= s * fb[0];
+  acc[1] -= s * fb[1];
+  wet[0] -= m[b] / rb * F * dx; /* sum V_b grad_a W over the fluid */
+  wet[1] -= m[b] / rb * F * dy;
+}
+
+/* Robin (added-mass) stabilisation of the staggered ISPH-solid coupling.  The fluid's pressure of
+ * this step answered the solid's velocity change over the last step; a wetted particle whose
+ * velocity changes differently in this step meets the inertia the fluid would oppose,
+ * -alpha ((v - v_n) - (v_n - v_n-1)) / dt_f with alpha = rho_f L_a dx times the wetted fraction of
+ * the particle's surface.  It vanishes when the solid keeps accelerating as in the last step, and
+ * turns the explicit coupling's amplification M_a / m_s (about 10 for the rubber gate: unstable)
+ * into (alpha - M_a) / (alpha + m_s) (stable for any alpha > (M_a - m_s) / 2). */
+static inline PetscReal AddedMass(Sim sim, PetscInt a, const PetscReal wet[2])
+{
+  Particles        P = sim->P;
+  const PetscReal *m = PField(P, FIELD_M), *h = PField(P, FIELD_H);
+  PetscReal        dxa = h[a] / SPH_H_FACTOR, frac = PetscMin(1.0, PetscSqrtReal(wet[0] * wet[0] + wet[1] * wet[1]) * dxa / (2 * sim->solid->nrm_min));
+  if (frac <= 0 || sim->dt <= 0) return 0;
+  return sim->fl.rho0 * sim->solid->added_mass * dxa * frac / (m[a] * sim->dt);
+}
+
+/* Eq. 23 for owned solids over their solid neighbours: stress, artificial viscosity (Eq. 24) and
+ * artificial stress; the fluid's loads (FluidLoad); gravity.  Walls do not act; clamps do not
+ * accelerate.  With the corrected gradient each particle's stress acts through its own corrected
+ * kernel gradient, sigma_a L_a grad W + sigma_b L_b grad W (pair terms with the mean), which keeps
+ * the pair forces opposite. */
 static PetscErrorCode Momentum(Sim sim)
 {
   Particles            P = sim->P;
-  Cells                C = sim->cells;
+  Cells                C = sim->solid->nl;
   const SolidMaterial *m = &sim->sl;
   const PetscReal     *x = PField(P, FIELD_X), *v = PField(P, FIELD_V), *rho = PField(P, FIELD_RHO), *p = PField(P, FIELD_P);
   const PetscReal     *mass = PField(P, FIELD_M), *h = PField(P, FIELD_H), *S = PField(P, FIELD_S), *R = sim->solid->R, *L = PField(P, FIELD_KCORR);
   PetscReal           *acc = PField(P, FIELD_ACC);
 
   PetscFunctionBeginUser;
+  if (sim->solid->added_mass > 0 && sim->solid->cap_kam < P->n) {
+    PetscCall(PetscFree(sim->solid->kam));
+    sim->solid->cap_kam = (3 * P->n) / 2 + 16;
+    PetscCall(PetscCalloc1(sim->solid->cap_kam, &sim->solid->kam));
+  }
   for (PetscInt a = 0; a < P->n; a++) {
-    PetscReal ax = 0, ay = 0, ra = rho[a], ia = 1.0 / (ra * ra), wdx;
+    PetscReal ax = 0, ay = 0, ra = rho[a], ia = 1.0 / (ra * ra), wdx, fl[2] = {0, 0}, wet[2] = {0, 0};
     PetscReal sxx = (S[3 * a] - p[a]) * ia, sxy = S[3 * a + 1] * ia, syy = (S[3 * a + 2] - p[a]) * ia;
     if (P->kind[a] != KIND_SOLID) {
       if (P->kind[a] == KIND_CLAMP) acc[2 * a] = acc[2 * a + 1] = 0;
@@ -108,8 +186,10 @@ static PetscErrorCode Momentum(Sim sim)
       PetscInt  b = C->nbr[k];
       PetscReal dx = x[2 * a] - x[2 * b], dy = x[2 * a + 1] - x[2 * b + 1], r2 = dx * dx + dy * dy;
       PetscReal gx = C->f[k] * dx, gy = C->f[k] * dy, rb = rho[b], ib = 1.0 / (rb * rb), ga[2], gb[2], gm[2], txx, txy, tyy;
-      if (KindIsWall(P->kind[b])) continue;
-      if (KindIsSolid(P->kind[b])) {
+      if (C->f[k] == 0) continue; /* in the skin */
+      if (KindIsFluid(P->kind[b])) { FluidLoad(sim, a, b, C->f[k], fl, wet); continue; }
+      if (!KindIsSolid(P->kind[b])) continue;
+      {
         PetscReal hab = PairH(h[a], h[b]);
         PetscReal pi  = ArtificialViscosity(m->alpha, m->c0, hab, 0.5 * (ra + rb), (v[2 * a] - v[2 * b]) * dx + (v[2 * a + 1] - v[2 * b + 1]) * dy, r2);
         Apply(L ? L + 4 * a : NULL, gx, gy, ga);
@@ -126,30 +206,127 @@ static PetscErrorCode Momentum(Sim sim)
           ax += mass[b] * (txx * gm[0] + txy * gm[1]);
           ay += mass[b] * (txy * gm[0] + tyy * gm[1]);
         }
-      } else { /* fluid: pressure only */
-        txx = sxx - p[b] * ib;
-        txy = sxy;
-        tyy = syy - p[b] * ib;
-        ax += mass[b] * (txx * gx + txy * gy);
-        ay += mass[b] * (txy * gx + tyy * gy);
       }
     }
-    acc[2 * a]     = ax + sim->g[0];
-    acc[2 * a + 1] = ay + sim->g[1];
+    if (sim->solid->kam) sim->solid->kam[a] = AddedMass(sim, a, wet);
+    acc[2 * a]     = ax + fl[0] + sim->g[0];
+    acc[2 * a + 1] = ay + fl[1] + sim->g[1];
   }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* Outward normal of solid surface particles, -sum_b V_b grad_a W / |.| over solid neighbours (the
+ * kernel form of Eqs. 42-43's tangent turned by 90 degrees: it needs no ordering of the surface
+ * particles); zero inside the body. */
+static PetscErrorCode Normals(Sim sim)
+{
+  Particles        P = sim->P;
+  Cells            C = sim->solid->nl;
+  const PetscReal *x = PField(P, FIELD_X), *m = PField(P, FIELD_M), *rho = PField(P, FIELD_RHO), *h = PField(P, FIELD_H);
+  PetscReal       *nrm = PField(P, FIELD_NORMAL);
+  const FieldId    refresh[] = {FIELD_NORMAL};
+
+  PetscFunctionBeginUser;
+  for (PetscInt a = 0; a < P->n; a++) {
+    PetscReal gx = 0, gy = 0, gn, dxa = h[a] / SPH_H_FACTOR;
+    nrm[2 * a] = nrm[2 * a + 1] = 0;
+    if (!KindIsSolid(P->kind[a])) continue;
+    for (PetscInt k = C->nstart[a]; k < C->nstart[a + 1]; k++) {
+      PetscInt b = C->nbr[k];
+      if (!KindIsSolid(P->kind[b])) continue;
+      gx -= m[b] / rho[b] * C->f[k] * (x[2 * a] - x[2 * b]);
+      gy -= m[b] / rho[b] * C->f[k] * (x[2 * a + 1] - x[2 * b + 1]);
+    }
+    gn = PetscSqrtReal(gx * gx + gy * gy);
+    if (gn * dxa > sim->solid->nrm_min) { nrm[2 * a] = gx / gn; nrm[2 * a + 1] = gy / gn; }
+  }
+  PetscCall(PetscLogStagePush(sim->stage[STAGE_HALO]));
+  PetscCall(HaloRefresh(sim->halo, P, 1, refresh));
+  PetscCall(PetscLogStagePop());
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
 static PetscBool KeepSolid(PetscInt kind) { return KindIsSolid(kind); }
 
+PetscErrorCode SolidPrepare(Sim sim)
+{
+  Solid            s = sim->solid;
+  Particles        P = sim->P;
+  const PetscReal *x = PField(P, FIELD_X);
+  PetscFunctionBeginUser;
+  PetscCall(PetscLogStagePush(sim->stage[STAGE_NEIGHBOUR]));
+  PetscCall(CellsBuildSubList(sim->cells, P, KeepSolid, s->skin * sim->dx, s->nl));
+  if (2 * P->n > s->cap_xref) {
+    PetscCall(PetscFree(s->xref));
+    s->cap_xref = 3 * P->n + 16;
+    PetscCall(PetscMalloc1(s->cap_xref, &s->xref));
+  }
+  PetscCall(PetscArraycpy(s->xref, x, 2 * P->n));
+  PetscCall(PetscLogStagePop());
+  if (sim->has_fluid) { /* the fluid's last half kick came after its rebuild: the loads need its ghosts' velocities */
+    const FieldId vel[] = {FIELD_V};
+    PetscCall(PetscLogStagePush(sim->stage[STAGE_HALO]));
+    PetscCall(HaloRefresh(sim->halo, P, 1, vel));
+    PetscCall(PetscLogStagePop());
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode SolidStartFluidStep(Sim sim)
+{
+  Particles        P  = sim->P;
+  const PetscReal *v  = PField(P, FIELD_V);
+  PetscReal       *vs = PField(P, FIELD_VSTEP);
+  PetscFunctionBeginUser;
+  if (!vs) PetscFunctionReturn(PETSC_SUCCESS);
+  for (PetscInt a = 0; a < P->n; a++) {
+    if (P->kind[a] != KIND_SOLID) continue;
+    vs[4 * a + 2] = sim->step ? v[2 * a] - vs[4 * a] : 0;
+    vs[4 * a + 3] = sim->step ? v[2 * a + 1] - vs[4 * a + 1] : 0;
+    vs[4 * a]     = v[2 * a];
+    vs[4 * a + 1] = v[2 * a + 1];
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* After the drift: ghosts take the owners' new state, or, once some solid has moved half the
+ * skin since SolidPrepare, everything is rebuilt (collective decision). */
+static PetscErrorCode SolidRefresh(Sim sim)
+{
+  Solid            s = sim->solid;
+  Particles        P = sim->P;
+  const PetscReal *x = PField(P, FIELD_X);
+  const FieldId    state[] = {FIELD_X, FIELD_RHO, FIELD_S};
+  PetscReal        d2 = 0, lim = 0.5 * s->skin * sim->dx;
+  PetscFunctionBeginUser;
+  for (PetscInt a = 0; a < P->n; a++)
+    if (P->kind[a] == KIND_SOLID) {
+      PetscReal dx = x[2 * a] - s->xref[2 * a], dy = x[2 * a + 1] - s->xref[2 * a + 1];
+      d2 = PetscMax(d2, dx * dx + dy * dy);
+    }
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &d2, 1, MPIU_REAL, MPIU_MAX, sim->comm));
+  if (d2 >= lim * lim) {
+    PetscCall(SimRebuild(sim));
+    PetscCall(SolidPrepare(sim));
+    s->nrebuild++;
+  } else {
+    PetscCall(PetscLogStagePush(sim->stage[STAGE_HALO]));
+    PetscCall(HaloRefresh(sim->halo, P, 3, state));
+    PetscCall(PetscLogStagePop());
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 PetscErrorCode SolidRates(Sim sim)
 {
   PetscFunctionBeginUser;
   PetscCall(PetscLogStagePush(sim->stage[STAGE_SOLID]));
+  PetscCall(CellsUpdatePairs(sim->solid->nl, sim->P));
   PetscCall(PressureAndArtificialStress(sim));
+  if (sim->solid->repulsion) PetscCall(Normals(sim));
   if (sim->solid->gradient == SOLID_GRAD_CORRECTED) {
     const FieldId kc[] = {FIELD_KCORR};
-    PetscCall(SPHGradientCorrection(sim->P, sim->cells, KeepSolid, PField(sim->P, FIELD_KCORR)));
+    PetscCall(SPHGradientCorrection(sim->P, sim->solid->nl, KeepSolid, PField(sim->P, FIELD_KCORR)));
     PetscCall(PetscLogStagePush(sim->stage[STAGE_HALO]));
     PetscCall(HaloRefresh(sim->halo, sim->P, 1, kc));
     PetscCall(PetscLogStagePop());
@@ -164,14 +341,14 @@ PetscErrorCode SolidRates(Sim sim)
 static void VelocityGradient(Sim sim, PetscInt a, PetscReal g[4])
 {
   Particles        P = sim->P;
-  Cells            C = sim->cells;
+  Cells            C = sim->solid->nl;
   const PetscReal *x = PField(P, FIELD_X), *v = PField(P, FIELD_V), *rho = PField(P, FIELD_RHO), *m = PField(P, FIELD_M), *L = PField(P, FIELD_KCORR);
 
   g[0] = g[1] = g[2] = g[3] = 0;
   for (PetscInt k = C->nstart[a]; k < C->nstart[a + 1]; k++) {
     PetscInt  b = C->nbr[k];
     PetscReal gw[2], V, dvx, dvy;
-    if (!KindIsSolid(P->kind[b])) continue;
+    if (!KindIsSolid(P->kind[b]) || C->f[k] == 0) continue;
     Apply(L ? L + 4 * a : NULL, C->f[k] * (x[2 * a] - x[2 * b]), C->f[k] * (x[2 * a + 1] - x[2 * b + 1]), gw);
     V   = m[b] / rho[b];
     dvx = V * (v[2 * b] - v[2 * a]); dvy = V * (v[2 * b + 1] - v[2 * a + 1]);
@@ -215,14 +392,22 @@ PetscErrorCode SolidTimeStep(Sim sim, PetscReal *dt)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* v += dt acc, and the Robin term -k (v - v_n - (v_n - v_n-1)) implicitly (stable for any k dt). */
 static void Kick(Sim sim, PetscReal dt)
 {
-  Particles  P = sim->P;
-  PetscReal *v = PField(P, FIELD_V), *acc = PField(P, FIELD_ACC);
+  Particles        P = sim->P;
+  PetscReal       *v = PField(P, FIELD_V), *acc = PField(P, FIELD_ACC);
+  const PetscReal *k = sim->solid->kam, *vs = PField(P, FIELD_VSTEP);
   for (PetscInt a = 0; a < P->n; a++) {
     if (P->kind[a] != KIND_SOLID) continue;
-    v[2 * a] += dt * acc[2 * a];
-    v[2 * a + 1] += dt * acc[2 * a + 1];
+    if (k && k[a] > 0) {
+      PetscReal kd = k[a] * dt;
+      v[2 * a]     = (v[2 * a] + dt * acc[2 * a] + kd * (vs[4 * a] + vs[4 * a + 2])) / (1 + kd);
+      v[2 * a + 1] = (v[2 * a + 1] + dt * acc[2 * a + 1] + kd * (vs[4 * a + 1] + vs[4 * a + 3])) / (1 + kd);
+    } else {
+      v[2 * a] += dt * acc[2 * a];
+      v[2 * a + 1] += dt * acc[2 * a + 1];
+    }
   }
 }
 
@@ -252,7 +437,7 @@ PetscErrorCode SolidStep(Sim sim, PetscReal dt)
     }
   }
   PetscCall(PetscLogStagePop());
-  PetscCall(SimRebuild(sim));
+  PetscCall(SolidRefresh(sim));
   PetscCall(SolidRates(sim));
   PetscCall(PetscLogStagePush(sim->stage[STAGE_SOLID]));
   Kick(sim, 0.5 * dt);

@@ -2,6 +2,7 @@
 #include <sphfsi/boundary.h>
 #include <sphfsi/kernel.h>
 #include <sphfsi/fluid_terms.h>
+#include <sphfsi/solid.h>
 
 PetscErrorCode WCSPHSetUp(Sim sim)
 {
@@ -63,13 +64,15 @@ static PetscErrorCode Continuity(Sim sim)
 }
 
 /* Acceleration of owned fluid: pressure Eq. 19 with artificial viscosity Eq. 24, laminar viscosity
- * Eq. 16 (walls with their no-slip velocity), gravity. */
+ * Eq. 16 (walls and solids with their no-slip velocity), gravity; solids as the fluid sees them
+ * (boundary.h) and, when on, the repulsive force Eq. 41 along their normals. */
 static PetscErrorCode Momentum(Sim sim)
 {
   Particles            P = sim->P;
   Cells                C = sim->cells;
   const PetscReal     *x = PField(P, FIELD_X), *v = PField(P, FIELD_V), *rho = PField(P, FIELD_RHO), *p = PField(P, FIELD_P);
-  const PetscReal     *m = PField(P, FIELD_M), *h = PField(P, FIELD_H), *vw = PField(P, FIELD_VWALL);
+  const PetscReal     *m = PField(P, FIELD_M), *h = PField(P, FIELD_H), *vw = PField(P, FIELD_VWALL), *fv = PField(P, FIELD_FVIEW);
+  const PetscReal     *nrm = sim->solid && sim->solid->repulsion ? PField(P, FIELD_NORMAL) : NULL;
   PetscReal           *acc = PField(P, FIELD_ACC);
   const FluidMaterial *fl  = &sim->fl;
 
@@ -81,11 +84,16 @@ static PetscErrorCode Momentum(Sim sim)
     for (PetscInt k = C->nstart[a]; k < C->nstart[a + 1]; k++) {
       PetscInt  b = C->nbr[k];
       PetscReal dx = xa - x[2 * b], dy = ya - x[2 * b + 1], r2 = dx * dx + dy * dy, F = C->f[k];
-      PetscReal hab = PairH(ha, h[b]), rb = rho[b], mb = m[b];
+      PetscReal hab = PairH(ha, h[b]), rb, mb, pb;
       PetscReal dvx = vxa - v[2 * b], dvy = vya - v[2 * b + 1], pterm, visc;
-      pterm = pa + p[b] / (rb * rb) + ArtificialViscosity(fl->alpha, fl->c0, hab, 0.5 * (ra + rb), dvx * dx + dvy * dy, r2);
+      FluidView(fv, P->kind[b], b, m, rho, p, &mb, &rb, &pb);
+      pterm = pa + pb / (rb * rb) + ArtificialViscosity(fl->alpha, fl->c0, hab, 0.5 * (ra + rb), dvx * dx + dvy * dy, r2);
       visc  = LaminarViscosity(mb, fl->mu, ra, rb, F * r2, r2, hab);
-      if (KindIsWall(P->kind[b])) { dvx = vxa - vw[2 * b]; dvy = vya - vw[2 * b + 1]; }
+      if (nrm && KindIsSolid(P->kind[b])) {
+        PetscReal f = FSIRepulsion(dvx * nrm[2 * b] + dvy * nrm[2 * b + 1], PetscSqrtReal(r2) / (2 * hab), sim->dt);
+        ax += f * nrm[2 * b]; ay += f * nrm[2 * b + 1];
+      }
+      if (KindIsBoundary(P->kind[b])) { dvx = vxa - vw[2 * b]; dvy = vya - vw[2 * b + 1]; }
       ax += (visc * dvx - mb * pterm * F * dx);
       ay += (visc * dvy - mb * pterm * F * dy);
     }

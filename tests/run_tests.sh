@@ -33,6 +33,8 @@ done
 run test_rank_agreement_isph $MPI "${BINDIR:-bin}"/test_rank_agreement -fluid isph -ksp_rtol 1e-10 -tol 1e-8
 # Solid (oscillating plate, ~1000 steps): explicit and per rank, so 1 and 2 ranks agree exactly
 run test_rank_agreement_solid $MPI "${BINDIR:-bin}"/test_rank_agreement -case oscillating_plate -plate_ny 6 -t_end 0.02
+# FSI (elastic gate, WCSPH fluid + solid sub-steps, 123 steps): explicit, so exact agreement
+run test_rank_agreement_fsi $MPI "${BINDIR:-bin}"/test_rank_agreement -case elastic_gate -dx 0.00125 -t_end 0.003 -min_speed 0.05
 
 if [ "${1:-}" != "--unit-only" ]; then
   # Physics regression tests against analytic and experimental references
@@ -48,6 +50,7 @@ if [ "${1:-}" != "--unit-only" ]; then
   run sluice_gate_wcsph bash tests/check_sluice_gate.sh "$MPI" "$OUT/sluice_gate_wcsph"
   run solid_block bash tests/check_solid_block.sh "$MPI" "$OUT/solid_block"
   run oscillating_plate bash tests/check_oscillating_plate.sh "$MPI" "$OUT/oscillating_plate"
+  run elastic_gate_wcsph bash tests/check_elastic_gate.sh "$MPI" "$OUT/elastic_gate_wcsph"
   # Bad input: clear message, non-zero status, no crash
   run bad_input bash tests/check_bad_input.sh "$MPI" "$OUT/bad_input"
 fi

@@ -11,7 +11,7 @@ struct _p_Cells {
   PetscInt    lo[2], n[2];     /* local box of cells (global cell coordinates) */
   PetscInt   *start, cap_cell; /* particles of local cell c: list[start[c] .. start[c+1]) */
   PetscInt   *list, *cell, cap_part;
-  PetscInt   *nstart, *nbr, cap_nbr; /* neighbours of owned a: nbr[nstart[a] .. nstart[a+1]) */
+  PetscInt   *nstart, *nbr, cap_nbr, cap_start, npart; /* neighbours of owned a < npart: nbr[nstart[a] .. nstart[a+1]) */
   PetscReal  *w, *f;                  /* per pair: W_ab and F_ab = (dW/dr)/r, so grad_a W_ab = F_ab (x_a - x_b) */
   PetscInt    max_nbr;
 };
@@ -20,6 +20,14 @@ PetscErrorCode CellsCreate(const Grid *g, Cells *c);
 PetscErrorCode CellsDestroy(Cells *c);
 /* Bin owned + ghost particles and build the neighbour list (r < 2 h_ab) of owned particles. */
 PetscErrorCode CellsBuild(Cells c, Particles P);
+/* Cells with only a neighbour list (no bins of their own): for CellsBuildSubList. */
+PetscErrorCode CellsCreateList(Cells *c);
+/* Neighbour list in `sub` of the owned particles whose kind `keep` accepts, with the binning of
+ * `c` and radius 2 h_ab + skin (skin + 2 h_max <= cell size), so that it stays complete while the
+ * particles move less than skin / 2; kernel values at the current positions (zero beyond 2 h_ab). */
+PetscErrorCode CellsBuildSubList(Cells c, Particles P, PetscBool (*keep)(PetscInt), PetscReal skin, Cells sub);
+/* Kernel values of the pairs of a list at the current positions. */
+PetscErrorCode CellsUpdatePairs(Cells sub, Particles P);
 /* Neighbour list and pair kernel values only, for the same binning but new positions (e.g. ISPH
  * predictor); particles must not have left their cell's stencil. */
 PetscErrorCode CellsBuildNeighbours(Cells c, Particles P);

@@ -27,3 +27,12 @@ static inline PetscReal PPECoefficient(PetscReal mb, PetscReal rhoa, PetscReal r
 
 /* Eq. 44: XSPH weight of neighbour b, m_b W_ab / rho_ab with rho_ab the mean density */
 static inline PetscReal XSPHWeight(PetscReal W, PetscReal mb, PetscReal rhoa, PetscReal rhob) { return W * mb / (0.5 * (rhoa + rhob)); }
+
+/* Eq. 41: repulsive acceleration of a fluid particle along the outward normal n of a solid
+ * neighbour it approaches (u_n = (v_f - v_s) . n < 0), q = r / (2 h); the solid gets the
+ * reaction.  Zero when receding, and at q = 1. */
+static inline PetscReal FSIRepulsion(PetscReal un, PetscReal q, PetscReal dt)
+{
+  if (un >= 0 || q <= 0 || q >= 1 || dt <= 0) return 0.0;
+  return (1.0 / 3.0) * (-un / dt) * (1.0 - 0.5 * q) / (0.5 * q);
+}

@@ -29,6 +29,8 @@ typedef enum {
   FIELD_NORMAL,  /* interface normal (2) */
   FIELD_ROW,   /* ISPH: global row of the pressure equation (-1: none) */
   FIELD_KCORR, /* solid: kernel-gradient correction matrix (4, row-major) */
+  FIELD_FVIEW, /* solid next to fluid: the fluid's view of it (3: pressure, density, mass; boundary.h) */
+  FIELD_VSTEP, /* solid with ISPH: velocity at the start of the fluid step and its change over the last (4) */
   FIELD_COUNT
 } FieldId;
 
@@ -58,6 +60,8 @@ PetscErrorCode ParticlesSetUp(Particles P);
 PetscErrorCode ParticlesReserve(Particles P, PetscInt cap);
 /* Append an owned particle (ghosts must be absent); other fields start at zero. */
 PetscErrorCode ParticlesAdd(Particles P, PetscInt id, ParticleKind kind, PetscReal x, PetscReal y, PetscReal m, PetscReal h, PetscReal rho);
+/* Remove the owned particles with drop[i] set, keeping the order of the rest; drops ghosts. */
+PetscErrorCode ParticlesRemove(Particles P, const PetscBool *drop);
 /* Reorder owned particles: new[i] = old[perm[i]]; drops ghosts. */
 PetscErrorCode ParticlesPermute(Particles P, const PetscInt *perm);
 /* Bytes per particle of all allocated fields (id and kind included). */

@@ -4,8 +4,11 @@
  *   free-surface row a: P_a = 0                            (Dirichlet, section 2.5)
  *   wall row a:         L_a(P) = L_a(rho0 g . r)           (Neumann dP/dn = rho0 g . n, walls at rest)
  * with L_a(P) = sum_b c_ab (P_a - P_b) (Eq. 22); a wall row sums over fluid neighbours only (the
- * implicit form of the Adami extrapolation) and its solved pressure is clipped at 0 (above the
- * water line the extrapolation is negative and would pull fluid onto the wall).  Each row is multiplied by -V_a = -m_a/rho0,
+ * implicit form of the Adami extrapolation) and its solved pressure is clipped at min(0, the
+ * c-weighted mean of its fluid's pressure): above the water line the hydrostatic part makes it
+ * negative and would pull fluid onto the wall, but fluid in tension keeps its walls (clipped to 0,
+ * they left it a force the solve had not balanced: the pressure next to the wall then flipped sign
+ * and grew each step until particles went through the wall).  Each row is multiplied by -V_a = -m_a/rho0,
  * which makes the matrix symmetric positive (semi)definite: CG applies.  Free-surface columns are
  * eliminated (their P is 0), which keeps the symmetry.  Without any Dirichlet row (periodic or
  * closed domains) the constant is a null space and is attached to the matrix. */
@@ -22,6 +25,7 @@ struct _p_PPE {
   MatNullSpace nullsp;
   PetscInt     nrow, rstart, nrow_global, ndirichlet_global;
   PetscInt    *rowpart, *dnnz, *onnz, cap_rows; /* per local row: owned particle, preallocation */
+  PetscReal   *hyd;                             /* per local wall row: hydrostatic part of its P, L_a(rho0 g . r) / sum_b c_ab */
   PetscInt    *cols, cap_cols;
   PetscScalar *vals;
   /* statistics */

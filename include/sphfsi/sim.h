@@ -39,10 +39,12 @@ struct _p_Sim {
   ISPH          isph;  /* NULL unless -fluid isph */
   SolidMaterial sl;
   Solid         solid; /* NULL unless the scene has solids */
+  PetscReal     added_mass_length; /* scene's default of -fsi_added_mass (ISPH + solid) */
   PetscReal     v_ref;      /* expected maximum speed: c0 = 10 v_ref when -c0 is not given */
   PetscReal     dx, h_max;  /* finest spacing, largest smoothing length */
   PetscReal     dom_lo[2], dom_hi[2];
   PetscBool     periodic[2];
+  PetscBool     outflow;    /* fluid leaving the domain box is removed (open boundary) */
   /* time */
   PetscReal t, t_end, dt, dt_fixed, cfl;
   PetscInt  step, max_steps;
@@ -55,7 +57,7 @@ struct _p_Sim {
   PetscInt   snap_cap;
   /* statistics */
   PetscLogDouble wall_start, wall_loop;
-  PetscReal      particle_steps, mass0, mass;
+  PetscReal      particle_steps, mass0, mass, mass_out; /* mass_out: fluid removed by the outflow */
   PetscInt       nparticles;
   PetscLogStage  stage[STAGE_COUNT];
   PetscInt       next_id; /* global ids handed out by the scene */
@@ -77,5 +79,5 @@ static inline PetscReal SimAcousticStepLimit(PetscReal cfl, PetscReal h, PetscRe
   return an > 0 ? PetscMin(lim, 0.25 * PetscSqrtReal(h / an)) : lim;
 }
 
-/* Total mass of owned fluid and solid particles (collective). */
+/* Total mass of owned fluid and solid particles, plus the fluid that left (collective). */
 PetscErrorCode SimTotalMass(Sim sim, PetscReal *M);

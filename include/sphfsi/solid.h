@@ -11,6 +11,15 @@ extern const char *const SolidGradients[];
 
 struct _p_Solid {
   SolidGradient gradient;
+  Cells         nl;       /* neighbours of owned solids within 2 h + skin: valid while no solid moved skin / 2 */
+  PetscReal     skin;     /* in units of dx */
+  PetscReal    *xref;     /* positions of owned particles when nl was built */
+  PetscInt      cap_xref, nrebuild; /* rebuilds forced by solid motion */
+  PetscBool     repulsion; /* Eq. 41 on fluid-solid pairs (WCSPH fluid) */
+  PetscReal     nrm_min;   /* |sum V grad W| below this: not a surface particle, no normal */
+  PetscReal     added_mass; /* ISPH coupling: added-mass length of the Robin stabilisation (m); 0 = off */
+  PetscReal    *kam;        /* per owned particle: its Robin coefficient alpha / (m dt_f) (1/s), taken implicitly in the kicks */
+  PetscInt      cap_kam;
   PetscReal    *R;     /* artificial stress (xx, xy, yy) of owned + ghost particles, Eqs. 32-34 */
   PetscInt      cap_R;
   PetscInt      nsub_last, nsub_max; /* solid sub-steps in the last / any fluid step (progress line, summary) */
@@ -20,11 +29,19 @@ struct _p_Solid {
  * ParticlesSetUp). */
 PetscErrorCode SolidSetUp(Sim sim);
 PetscErrorCode SolidDestroy(Solid *s);
-/* Pressure, artificial stress and accelerations of solids at the current state (after a rebuild). */
+/* Neighbour list of the solids after a rebuild (SimRebuild): the sub-steps move the solids
+ * without a rebuild until one has moved half the skin. */
+PetscErrorCode SolidPrepare(Sim sim);
+/* Before a fluid step that the solid will follow in sub-steps: record the velocities the fluid sees
+ * (added-mass stabilisation, ISPH). */
+PetscErrorCode SolidStartFluidStep(Sim sim);
+/* Pressure, artificial stress and accelerations of solids at the current state (after
+ * SolidPrepare or a sub-step). */
 PetscErrorCode SolidRates(Sim sim);
 /* Step limit from the solid sound speed: cfl h / (c0 + |v|), and the force limit. */
 PetscErrorCode SolidTimeStep(Sim sim, PetscReal *dt);
-/* One kick-drift-kick step of length dt of the solids (fluids held still). */
+/* One kick-drift-kick step of length dt of the solids (fluids held still): ghosts refreshed, no
+ * rebuild unless a solid has moved half the skin since SolidPrepare. */
 PetscErrorCode SolidStep(Sim sim, PetscReal dt);
 /* Kinetic and strain energy of owned solids at the state of the last SolidRates (collective):
  * strain energy density

@@ -1,0 +1,149 @@
+/* Water column released through an elastic gate (paper section 3.3; Antoci, Gallati & Sibilla
+ * 2007).  Water W wide and H deep in a tank; on its right a rubber gate of length L and thickness
+ * t, clamped at its top into a rigid wall that holds the water above it, free at the bottom where
+ * it closes the outflow.  The water pushes the gate open and leaves through the opening: fluid
+ * that leaves the domain box is removed.  x points downstream, y up. */
+#include <sphfsi/scene.h>
+#include <sphfsi/solid.h>
+#include <sphfsi/refdata.h>
+
+typedef struct {
+  PetscReal W, H, L, t, top;   /* water width and depth, gate length and thickness, wall top */
+  PetscInt  rows, nclamp;      /* wall rows; clamp rows of the gate inside its support */
+  Series    dx_tip, dy_tip;
+} Gate;
+
+static PetscErrorCode Create(Sim sim)
+{
+  Gate *c;
+  PetscFunctionBeginUser;
+  PetscCall(PetscNew(&c));
+  sim->scene_ctx = c;
+  c->W = 0.1; c->H = 0.14; c->L = 0.079; c->t = 0.005; c->top = 0.16; c->rows = 3; c->nclamp = 4;
+  sim->sl.rho0 = 1100; sim->sl.K = 2.0e7; sim->sl.G = 4.27e6; /* rubber, paper section 3.3 */
+  sim->fl.mu   = 1.0e-3;
+  PetscOptionsBegin(sim->comm, NULL, "Scene elastic_gate: water column released through an elastic gate (Antoci et al. 2007)", "");
+  PetscCall(PetscOptionsReal("-water_width", "Width of the water column behind the gate (m)", "", c->W, &c->W, NULL));
+  PetscCall(PetscOptionsReal("-water_depth", "Initial water depth (m)", "", c->H, &c->H, NULL));
+  PetscCall(PetscOptionsReal("-gate_length", "Gate length below its clamp (m)", "", c->L, &c->L, NULL));
+  PetscCall(PetscOptionsReal("-gate_thickness", "Gate thickness (m)", "", c->t, &c->t, NULL));
+  PetscCall(PetscOptionsReal("-tank_height", "Height of the tank walls (m)", "", c->top, &c->top, NULL));
+  PetscCall(PetscOptionsInt("-wall_rows", "Rows of wall + dummy particles", "", c->rows, &c->rows, NULL));
+  PetscCall(PetscOptionsInt("-clamp_rows", "Rows of clamp particles at the top of the gate", "", c->nclamp, &c->nclamp, NULL));
+  PetscOptionsEnd();
+  PetscCheck(c->W > 0 && c->H > 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-water_width %g and -water_depth %g must be > 0", (double)c->W, (double)c->H);
+  PetscCheck(c->t > 0 && c->L > c->t, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-gate_length %g must exceed -gate_thickness %g > 0", (double)c->L, (double)c->t);
+  PetscCheck(c->L < c->H, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-gate_length %g must be less than -water_depth %g (the rigid wall above the gate holds the rest)", (double)c->L, (double)c->H);
+  PetscCheck(c->top > c->H, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-tank_height %g must exceed -water_depth %g", (double)c->top, (double)c->H);
+  PetscCheck(c->rows >= 1, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-wall_rows %" PetscInt_FMT " must be >= 1", c->rows);
+  PetscCheck(c->nclamp >= 3, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-clamp_rows %" PetscInt_FMT " must be >= 3 (the clamp must fill the kernel support)", c->nclamp);
+  sim->added_mass_length = 0.5 * c->L; /* of the order of the added mass of the gate's first mode */
+  if (sim->dx < 0) sim->dx = 0.001;
+  PetscCheck(c->t / sim->dx > 2.999, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dx %g leaves fewer than 3 particles across the gate thickness %g", (double)sim->dx, (double)c->t);
+  if (sim->t_end < 0) sim->t_end = 0.4;
+  sim->has_solid = PETSC_TRUE;
+  sim->outflow   = PETSC_TRUE;
+  sim->v_ref     = PetscSqrtReal(2 * 9.81 * c->H);
+  sim->dom_lo[0] = -(c->rows + 0.5) * sim->dx;
+  sim->dom_hi[0] = c->W + c->t + 0.1;  /* fluid beyond leaves */
+  sim->dom_lo[1] = -0.1;
+  sim->dom_hi[1] = c->top + sim->dx;
+  PetscCall(ParticlesEnableField(sim->P, FIELD_X0, PETSC_FALSE));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+static PetscErrorCode Populate(Sim sim)
+{
+  Gate     *c  = (Gate *)sim->scene_ctx;
+  PetscReal dx = sim->dx;
+  PetscInt  nx = RoundToInt(c->W / dx), ny = RoundToInt(c->H / dx), nt = RoundToInt(c->t / dx), nl = RoundToInt(c->L / dx);
+  PetscInt  ntop = RoundToInt(c->top / dx);
+  PetscReal xg = nx * dx; /* gate's upstream face */
+  PetscFunctionBeginUser;
+  PetscCall(SceneAddLattice(sim, KIND_FLUID, 0.5 * dx, 0.5 * dx, nx, ny, dx, sim->fl.rho0));
+  /* tank: floor under the water and the gate, wall behind the water */
+  PetscCall(SceneAddTank(sim, 0, xg + nt * dx, 0, ntop * dx, dx, c->rows, PETSC_TRUE, PETSC_FALSE));
+  /* the gate and its clamp */
+  PetscCall(SceneAddLattice(sim, KIND_SOLID, xg + 0.5 * dx, 0.5 * dx, nt, nl, dx, sim->sl.rho0));
+  PetscCall(SceneAddLattice(sim, KIND_CLAMP, xg + 0.5 * dx, (nl + 0.5) * dx, nt, c->nclamp, dx, sim->sl.rho0));
+  /* rigid wall above the clamp: the column facing the water is wall, the rest dummy */
+  for (PetscInt j = nl + c->nclamp; j < ntop; j++) {
+    PetscCall(SceneAddLattice(sim, KIND_WALL, xg + 0.5 * dx, (j + 0.5) * dx, 1, 1, dx, sim->fl.rho0));
+    PetscCall(SceneAddLattice(sim, KIND_DUMMY, xg + 1.5 * dx, (j + 0.5) * dx, nt - 1, 1, dx, sim->fl.rho0));
+  }
+  PetscCall(SceneHydrostaticDensity(sim, ny * dx));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* tip_dx, tip_dy: mean displacement of the gate's bottom row; water_level: highest fluid particle
+ * within 1.5 dx of the back wall + dx/2. */
+static PetscErrorCode Probe(Sim sim, PetscReal *vals)
+{
+  Gate      *c = (Gate *)sim->scene_ctx;
+  Particles  P = sim->P;
+  PetscReal *x = PField(P, FIELD_X), *x0 = PField(P, FIELD_X0), s[3] = {0, 0, 0}, top = 0;
+  PetscFunctionBeginUser;
+  for (PetscInt a = 0; a < P->n; a++) {
+    if (P->kind[a] == KIND_SOLID && x0[2 * a + 1] < sim->dx) {
+      s[0] += x[2 * a] - x0[2 * a];
+      s[1] += x[2 * a + 1] - x0[2 * a + 1];
+      s[2] += 1;
+    }
+    if (KindIsFluid(P->kind[a]) && x[2 * a] < 1.5 * sim->dx) top = PetscMax(top, x[2 * a + 1] + 0.5 * sim->dx);
+  }
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, s, 3, MPIU_REAL, MPI_SUM, sim->comm));
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &top, 1, MPIU_REAL, MPIU_MAX, sim->comm));
+  vals[0] = s[2] > 0 ? s[0] / s[2] : 0;
+  vals[1] = s[2] > 0 ? s[1] / s[2] : 0;
+  vals[2] = top;
+  PetscCall(SeriesAppend(&c->dx_tip, sim->t, vals[0]));
+  PetscCall(SeriesAppend(&c->dy_tip, sim->t, vals[1]));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* RMS and maximum of |sim - experiment| (m) at the experiment's times in [0, t], for one file. */
+static PetscErrorCode Compare(Sim sim, FILE *f, const Series *s, const char *file, const char *col, const char *key)
+{
+  Series    ref = {0};
+  PetscBool found;
+  PetscReal rms, max;
+  PetscInt  n;
+  PetscFunctionBeginUser;
+  PetscCall(RefDataLoad(sim, file, "t_s", col, &ref, &found));
+  if (found && f) {
+    PetscCall(SeriesCompare(s, &ref, 1.0, 1.0, 0, sim->t, PETSC_FALSE, &rms, &max, &n));
+    fprintf(f, "\"%s_err_rms\": %.6g, \"%s_err_max\": %.6g, \"%s_points\": %d, ", key, (double)rms, key, (double)max, key, (int)n);
+  }
+  PetscCall(SeriesDestroy(&ref));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* Against both digitisations of the experiment (Antoci et al. 2007, Figs. 11-12 of the paper). */
+static PetscErrorCode Errors(Sim sim, FILE *f)
+{
+  Gate *c = (Gate *)sim->scene_ctx;
+  PetscFunctionBeginUser;
+  PetscCall(Compare(sim, f, &c->dx_tip, "antoci2007_exp_tipdx__chrono.csv", "dx_m", "tip_dx"));
+  PetscCall(Compare(sim, f, &c->dy_tip, "antoci2007_exp_tipdy__chrono.csv", "dy_m", "tip_dy"));
+  PetscCall(Compare(sim, f, &c->dx_tip, "antoci2007_exp_tipdx__fsi_etvf.csv", "dx_m", "tip_dx_digitisation2"));
+  PetscCall(Compare(sim, f, &c->dy_tip, "antoci2007_exp_tipdy__fsi_etvf.csv", "dy_m", "tip_dy_digitisation2"));
+  if (f) fprintf(f, "\"tip_dx_final\": %.6g, \"tip_dy_final\": %.6g, \"fluid_mass_out\": %.6g, \"reference\": \"Antoci, Gallati & Sibilla 2007 experiment (errors in m)\"", (double)(c->dx_tip.n ? c->dx_tip.y[c->dx_tip.n - 1] : 0), (double)(c->dy_tip.n ? c->dy_tip.y[c->dy_tip.n - 1] : 0), (double)sim->mass_out);
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+static PetscErrorCode Destroy(Sim sim)
+{
+  Gate *c = (Gate *)sim->scene_ctx;
+  PetscFunctionBeginUser;
+  PetscCall(SeriesDestroy(&c->dx_tip));
+  PetscCall(SeriesDestroy(&c->dy_tip));
+  PetscCall(PetscFree(sim->scene_ctx));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+const SceneOps SceneElasticGate = {
+  .name = "elastic_gate", .help = "water column released through an elastic gate (Antoci et al. 2007)",
+  .create = Create, .populate = Populate,
+  .nprobes = 3, .probe_names = {"tip_dx", "tip_dy", "water_level"},
+  .probe = Probe, .errors = Errors, .destroy = Destroy,
+};

@@ -1,0 +1,37 @@
+#!/usr/bin/env python3
+"""Tip displacement of elastic-gate runs against the Antoci et al. (2007) experiment (both
+digitisations) and, for context, Antoci's own SPH.
+   tools/plot_gate.py PNG OUTDIR [OUTDIR ...]     (reference data: $SPHFSI_REFDATA or ../shared/refdata)"""
+import csv, json, os, sys
+import matplotlib
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt
+
+png, dirs = sys.argv[1], sys.argv[2:]
+ref = os.environ.get("SPHFSI_REFDATA", "../shared/refdata")
+
+def load(name, col):
+    path = os.path.join(ref, name)
+    if not os.path.exists(path):
+        return None
+    rows = list(csv.DictReader(l for l in open(path) if not l.startswith("#")))
+    return [float(r["t_s"]) for r in rows], [1000 * float(r[col]) for r in rows]
+
+fig, axes = plt.subplots(1, 2, figsize=(10, 3.8))
+for ax, comp in zip(axes, ("dx", "dy")):
+    for d in dirs:
+        rows = list(csv.DictReader(open(d + "/probes.csv")))
+        s = json.load(open(d + "/summary.json")); e = s["errors"]
+        rms = e.get(f"tip_{comp}_err_rms")
+        lab = f"{s['fluid']} + solid, dx {1000 * s['dx']:.3g} mm" + (f": RMS {1000 * rms:.1f} mm" if rms is not None else "")
+        ax.plot([float(r["t"]) for r in rows], [1000 * float(r[f"tip_{comp}"]) for r in rows], label=lab)
+    for name, style, lab in ((f"antoci2007_exp_tip{comp}__chrono.csv", "ko", "experiment"),
+                             (f"antoci2007_exp_tip{comp}__fsi_etvf.csv", "k^", "experiment (2nd digitisation)"),
+                             (f"antoci2007_SPHnum_tip{comp}__chrono.csv", "g:", "Antoci et al. SPH")):
+        r = load(name, f"{comp}_m")
+        if r:
+            ax.plot(*r, style, ms=4, label=lab)
+    ax.set_xlabel("t (s)"); ax.set_ylabel(f"tip_{comp} (mm)"); ax.set_xlim(0, 0.4); ax.grid(alpha=0.3)
+    ax.legend(fontsize=7, loc="lower right" if comp == "dx" else "upper right")
+fig.tight_layout(); fig.savefig(png, dpi=110)
+print("wrote", png)

@@ -83,7 +83,7 @@ tests: $(BIN) $(TEST_BIN)
 deps:
 	@bash tools/install-deps.sh
 
-CASE ?= dam_break
+CASE ?= elastic_gate
 run: deps
 	@$(MAKE) --no-print-directory all
 	$(MPIEXEC) $(MPIEXEC_FLAGS) -n $(NP) $(BIN) -options_file cases/$(CASE).opts $(ARGS)

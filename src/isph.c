@@ -185,7 +185,8 @@ static PetscErrorCode DensityFreeSurfaceSource(Sim sim)
     sw = m[a] * KernelW(0, h[a]);
     for (PetscInt k = C->nstart[a]; k < C->nstart[a + 1]; k++) {
       PetscInt  b = C->nbr[k];
-      PetscReal dx = x[2 * a] - x[2 * b], dy = x[2 * a + 1] - x[2 * b + 1], F = C->f[k], mb = KindIsSolid(P->kind[b]) && fv ? fv[3 * b + 2] : m[b];
+      PetscReal dx = x[2 * a] - x[2 * b], dy = x[2 * a + 1] - x[2 * b + 1], F = C->f[k], mb, rb, pb;
+      FluidView(fv, P->kind[b], b, m, rho, NULL, &mb, &rb, &pb);
       sw += mb * C->w[k];
       divr -= mb / rho0 * F * (dx * dx + dy * dy);
       div += mb * F * ((vs[2 * b] - vs[2 * a]) * dx + (vs[2 * b + 1] - vs[2 * a + 1]) * dy);

@@ -141,24 +141,24 @@ static PetscErrorCode Outflow(Sim sim)
 {
   Particles        P = sim->P;
   const PetscReal *x = PField(P, FIELD_X), *m = PField(P, FIELD_M);
-  PetscBool       *drop;
-  PetscReal        out = 0;
-  PetscInt         n = 0;
+  PetscBool       *drop = NULL;
+  PetscReal        buf[2] = {0, 0}; /* mass and count that left */
   PetscFunctionBeginUser;
-  PetscCall(PetscMalloc1(P->n, &drop));
   for (PetscInt a = 0; a < P->n; a++) {
-    drop[a] = PETSC_FALSE;
+    PetscBool out = PETSC_FALSE;
     if (!KindIsFluid(P->kind[a])) continue;
     for (PetscInt d = 0; d < 2; d++)
-      if (!sim->periodic[d] && (x[2 * a + d] < sim->grid.lo[d] || x[2 * a + d] >= sim->grid.hi[d])) drop[a] = PETSC_TRUE;
-    if (drop[a]) { out += m[a]; n++; }
+      if (!sim->periodic[d] && (x[2 * a + d] < sim->grid.lo[d] || x[2 * a + d] >= sim->grid.hi[d])) out = PETSC_TRUE;
+    if (!out) continue;
+    if (!drop) PetscCall(PetscCalloc1(P->n, &drop)); /* only in a step where fluid leaves */
+    drop[a] = PETSC_TRUE;
+    buf[0] += m[a]; buf[1] += 1;
   }
-  if (n) PetscCall(ParticlesRemove(P, drop));
+  if (drop) PetscCall(ParticlesRemove(P, drop));
   PetscCall(PetscFree(drop));
-  { PetscReal buf[2] = {out, (PetscReal)n};
-    PetscCall(MPIU_Allreduce(MPI_IN_PLACE, buf, 2, MPIU_REAL, MPI_SUM, sim->comm));
-    sim->mass_out += buf[0];
-    sim->nparticles -= (PetscInt)buf[1]; }
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, buf, 2, MPIU_REAL, MPI_SUM, sim->comm));
+  sim->mass_out += buf[0];
+  sim->nparticles -= (PetscInt)buf[1];
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

@@ -3,7 +3,8 @@
  *   fluid row a:        L_a(P) = src_a                     (src from isph.c: Eq. 13 or density)
  *   free-surface row a: P_a = 0                            (Dirichlet, section 2.5)
  *   wall row a:         L_a(P) = L_a(rho0 g . r)           (Neumann dP/dn = rho0 g . n, walls at rest)
- * with L_a(P) = sum_b c_ab (P_a - P_b) (Eq. 22); a wall row sums over fluid neighbours only (the
+ * with L_a(P) = sum_b c_ab (P_a - P_b) (Eq. 22); a solid particle next to fluid has a wall row too
+ * (its pressure goes to its fluid view, boundary.h); a wall row sums over fluid neighbours only (the
  * implicit form of the Adami extrapolation) and its solved pressure is clipped at min(0, the
  * c-weighted mean of its fluid's pressure): above the water line the hydrostatic part makes it
  * negative and would pull fluid onto the wall, but fluid in tension keeps its walls (clipped to 0,

@@ -1,4 +1,5 @@
 #include <sphfsi/isph.h>
+#include <sphfsi/solid.h>
 #include <sphfsi/boundary.h>
 #include <sphfsi/kernel.h>
 #include <sphfsi/fluid_terms.h>
@@ -54,7 +55,7 @@ PetscErrorCode ISPHSetUp(Sim sim)
   if (s->source == ISPH_SOURCE_DENSITY) s->blend = 1;
   LatticeSums(&s->lat_w, &s->lat_divr);
   PetscCall(PPECreate(sim->comm, &s->ppe));
-  PetscCall(PPESetFromOptions(s->ppe));
+  PetscCall(PPESetFromOptions(s->ppe, (PetscBool)!(sim->solid && sim->solid->implicit)));
   PetscCall(ParticlesEnableField(sim->P, FIELD_ACC, PETSC_FALSE));
   PetscCall(ParticlesEnableField(sim->P, FIELD_VWALL, PETSC_FALSE));
   PetscCall(ParticlesEnableField(sim->P, FIELD_VSTAR, PETSC_TRUE)); /* read by neighbours after the predictor's rebuild */
@@ -342,6 +343,7 @@ PetscErrorCode ISPHStep(Sim sim)
 {
   ISPH s = sim->isph;
   PetscFunctionBeginUser;
+  if (sim->has_solid) PetscCall(BoundaryWallVelocity(sim)); /* the solids moved (and may have rebuilt) since the last step */
   PetscCall(PetscLogStagePush(sim->stage[STAGE_PHYSICS]));
   PetscCall(Predictor(sim));
   PetscCall(PetscLogStagePop());

@@ -12,11 +12,12 @@ PetscErrorCode PPECreate(MPI_Comm comm, PPE *ppe)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode PPESetFromOptions(PPE ppe)
+PetscErrorCode PPESetFromOptions(PPE ppe, PetscBool symmetric)
 {
   PC pc;
   PetscFunctionBeginUser;
-  PetscCall(KSPSetType(ppe->ksp, KSPCG));
+  ppe->symmetric = symmetric;
+  PetscCall(KSPSetType(ppe->ksp, symmetric ? KSPCG : KSPGMRES));
   PetscCall(KSPGetPC(ppe->ksp, &pc));
 #if defined(PETSC_HAVE_HYPRE)
   PetscCall(PCSetType(pc, PCHYPRE));
@@ -27,6 +28,11 @@ PetscErrorCode PPESetFromOptions(PPE ppe)
   PetscCall(KSPSetTolerances(ppe->ksp, 1e-8, 1e-50, PETSC_DEFAULT, 200));
   PetscCall(KSPSetInitialGuessNonzero(ppe->ksp, PETSC_TRUE)); /* last step's pressure */
   PetscCall(KSPSetFromOptions(ppe->ksp));
+  { /* a direct solve (-ksp_type preonly -pc_type lu) takes no initial guess */
+    PetscBool preonly;
+    PetscCall(PetscObjectTypeCompare((PetscObject)ppe->ksp, KSPPREONLY, &preonly));
+    if (preonly) PetscCall(KSPSetInitialGuessNonzero(ppe->ksp, PETSC_FALSE));
+  }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -168,7 +174,7 @@ static PetscErrorCode Preallocate(PPE ppe, Sim sim)
   PetscCall(MatSetType(ppe->A, MATAIJ));
   PetscCall(MatXAIJSetPreallocation(ppe->A, 1, ppe->dnnz, ppe->onnz, NULL, NULL));
   PetscCall(MatSetOption(ppe->A, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_TRUE));
-  PetscCall(MatSetOption(ppe->A, MAT_SYMMETRIC, PETSC_TRUE));
+  PetscCall(MatSetOption(ppe->A, MAT_SYMMETRIC, ppe->symmetric));
   PetscCall(MatSetOption(ppe->A, MAT_SYMMETRY_ETERNAL, PETSC_FALSE));
   if (C->max_nbr + 1 > ppe->cap_cols) {
     PetscCall(PetscFree2(ppe->cols, ppe->vals));
@@ -177,6 +183,55 @@ static PetscErrorCode Preallocate(PPE ppe, Sim sim)
   }
   if (!ppe->x) PetscCall(MatCreateVecs(ppe->A, &ppe->x, &ppe->b));
   PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* Row of a solid particle that moves (ISPH + solid, -fsi_implicit): Adami's extrapolation with the
+ * particle's acceleration a_s, sum_f c (P_f - P_s) + rho0 (g - a_s) . sum_f c r_sf = 0, where
+ * a_s = a_last + A(P) - A(P_last): the particle's mean acceleration over the last fluid step,
+ * changed by what the change of the fluid's pressure does to it (A: the reverse of the fluid's pair
+ * pressure forces over its mass, solid.c; linear in P_f and P_s, taken implicitly).  A Robin
+ * condition in the manner of Fernandez et al. 2013: the pressure knows that the solid gives way,
+ * so the fluid's added mass enters the solve.  A solid held at rest during the solve (as a wall)
+ * makes the staggered coupling amplify by M_added / m_solid each step, which blows up for the
+ * rubber gate (about 10); in equilibrium both agree.  Returns the right-hand side; fills cols/vals. */
+static PetscReal MovingSolidRow(PPE ppe, Sim sim, PetscInt a, PetscReal va, PetscInt *nc)
+{
+  Particles        P = sim->P;
+  Cells            C = sim->cells;
+  const PetscReal *row = PField(P, FIELD_ROW), *fs = PField(P, FIELD_FS), *x = PField(P, FIELD_X), *am = PField(P, FIELD_AMEAN);
+  const PetscReal *rho = PField(P, FIELD_RHO), *m = PField(P, FIELD_M), *h = PField(P, FIELD_H), *fv = PField(P, FIELD_FVIEW), *p = PField(P, FIELD_P);
+  const PetscReal  rho0 = sim->fl.rho0;
+  PetscReal        ma, ra, pa, R[2] = {0, 0}, diag = 0, ediag = 0, kappa, rhs_last = 0;
+  PetscInt         n = 1;
+
+  FluidView(fv, P->kind[a], a, m, rho, p, &ma, &ra, &pa);
+  { /* the fluid's pair forces scale with its view of the mass; the response with the particle's
+     * effective mass over the step, m + dt^2 k / 4 (Newmark's, with k ~ (K + 4G/3) dx the stiffness
+     * of its bonds): a free particle when the step is short, held by the solid when it is long
+     * against the solid's own waves (a stiff plate under water barely moves in a step) */
+    const SolidMaterial *sm = &sim->sl;
+    PetscReal            k = (sm->K + 4.0 * sm->G / 3.0) * h[a] / SPH_H_FACTOR;
+    kappa = ma / (m[a] + 0.25 * sim->dt * sim->dt * k);
+  }
+  for (PetscInt pass = 0; pass < 2; pass++)
+    for (PetscInt k = C->nstart[a]; k < C->nstart[a + 1]; k++) {
+      PetscInt  b = C->nbr[k];
+      NbrRole   role = Role(P, row, fs, a, b);
+      PetscReal dx, dy, c, e;
+      if (role == NBR_SKIP) continue;
+      dx = x[2 * a] - x[2 * b]; dy = x[2 * a + 1] - x[2 * b + 1];
+      c  = PPECoefficient(m[b], ra, rho[b], C->f[k], dx * dx + dy * dy, PairH(h[a], h[b]));
+      if (!pass) { R[0] += c * dx; R[1] += c * dy; continue; }
+      e = rho0 * kappa * m[b] * C->f[k] * (R[0] * dx + R[1] * dy); /* -rho0 R . A(P) = sum_f e (P_f / rho_f^2 + P_s / rho_s^2) */
+      diag += c; ediag += e;
+      rhs_last += e * (role == NBR_KNOWN ? 0 : p[b]) / (rho[b] * rho[b]);
+      if (role == NBR_KNOWN) continue;
+      ppe->cols[n] = (PetscInt)row[b]; ppe->vals[n++] = va * (c + e / (rho[b] * rho[b]));
+    }
+  rhs_last += ediag * pa / (ra * ra); /* -rho0 R . A(P_last) */
+  ppe->vals[0] = diag != 0 ? va * (-diag + ediag / (ra * ra)) : va / (rho0 * h[a] * h[a]);
+  *nc          = n;
+  return -va * (rho0 * ((sim->g[0] - am[2 * a]) * R[0] + (sim->g[1] - am[2 * a + 1]) * R[1]) - rhs_last);
 }
 
 PetscErrorCode PPEAssemble(PPE ppe, Sim sim, const PetscReal *src)
@@ -200,6 +255,13 @@ PetscErrorCode PPEAssemble(PPE ppe, Sim sim, const PetscReal *src)
     PetscBool wall = KindIsBoundary(P->kind[a]), dir = IsDirichlet(fs, a);
     FluidView(fv, P->kind[a], a, m, rho, NULL, &ma, &ra, &pa);
     va = ma / rho0;
+    if (!ppe->symmetric && P->kind[a] == KIND_SOLID) {
+      ppe->cols[0] = ga;
+      ppe->hyd[r]  = 0;
+      bb[r]        = MovingSolidRow(ppe, sim, a, va, &nc);
+      PetscCall(MatSetValues(ppe->A, 1, &ga, nc, ppe->cols, ppe->vals, INSERT_VALUES));
+      continue;
+    }
     for (PetscInt k = C->nstart[a]; k < C->nstart[a + 1]; k++) {
       PetscInt  b = C->nbr[k];
       NbrRole   role = Role(P, row, fs, a, b);
@@ -270,11 +332,12 @@ PetscErrorCode PPESolve(PPE ppe, Sim sim)
   PetscCall(VecGetArrayRead(ppe->x, (const PetscScalar **)&xx));
   for (PetscInt r = 0; r < ppe->nrow; r++) {
     PetscInt a = ppe->rowpart[r];
-    /* a wall above the water line extrapolates a negative pressure that would pull fluid onto it */
     /* a wall above the water line extrapolates a negative pressure that would pull fluid onto it:
-     * clip that, but not below the fluid's own (mean) pressure, which the solve balanced */
+     * clip that, but not below the fluid's own (mean) pressure, which the solve balanced; a moving
+     * solid's pressure is what its motion needs */
     PetscReal pw = PetscMax(xx[r], PetscMin(xx[r] - ppe->hyd[r], 0.0));
-    if (KindIsSolid(P->kind[a])) fv[3 * a] = pw;
+    if (P->kind[a] == KIND_SOLID && !ppe->symmetric) fv[3 * a] = xx[r];
+    else if (KindIsSolid(P->kind[a])) fv[3 * a] = pw;
     else p[a] = KindIsWall(P->kind[a]) ? pw : xx[r];
   }
   PetscCall(VecRestoreArrayRead(ppe->x, (const PetscScalar **)&xx));

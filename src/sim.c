@@ -193,16 +193,21 @@ PetscErrorCode SimSetUp(Sim sim)
   PetscOptionsBegin(sim->comm, NULL, "Body force", "Sim");
   PetscCall(PetscOptionsRealArray("-gravity", "Gravity vector gx,gy (m/s^2)", "", sim->g, (PetscInt[]){2}, NULL));
   PetscOptionsEnd();
+  if (sim->has_fluid) PetscCall(FluidOptions(sim));
+  if (sim->has_solid) PetscCall(SolidSetUp(sim)); /* before ISPH: the coupling decides the PPE's symmetry */
   if (sim->has_fluid) {
-    PetscCall(FluidOptions(sim));
     if (sim->fluid == FLUID_ISPH) PetscCall(ISPHSetUp(sim));
     else PetscCall(WCSPHSetUp(sim));
   }
-  if (sim->has_solid) PetscCall(SolidSetUp(sim));
   PetscCall(ParticlesSetUp(sim->P));
-  sim->h_max = SPH_H_FACTOR * sim->dx;
   PetscCall(sim->scene->populate(sim));
   PetscCall(ParticlesGlobalCount(sim->P, &sim->nparticles));
+  { /* the largest smoothing length sets the cells (scenes may mix particle sizes) */
+    const PetscReal *h = PField(sim->P, FIELD_H);
+    sim->h_max = SPH_H_FACTOR * sim->dx;
+    for (PetscInt a = 0; a < sim->P->n; a++) sim->h_max = PetscMax(sim->h_max, h[a]);
+    PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &sim->h_max, 1, MPIU_REAL, MPIU_MAX, sim->comm));
+  }
   if (sim->has_fluid) {
     PetscInt nfluid = 0;
     for (PetscInt a = 0; a < sim->P->n; a++) nfluid += KindIsFluid(sim->P->kind[a]);
@@ -267,14 +272,14 @@ static PetscErrorCode Step(Sim sim)
   PetscInt  nsub = 1;
 
   PetscFunctionBeginUser;
-  if (sim->has_solid && !sim->dt_fixed) PetscCall(SolidTimeStep(sim, &dts));
+  if (sim->has_solid && (sim->has_fluid || !sim->dt_fixed)) PetscCall(SolidTimeStep(sim, &dts)); /* with a fluid, -dt is the fluid's: the solid sub-steps in it */
   if (sim->dt_fixed > 0) sim->dt = sim->dt_fixed;
   else if (sim->isph) PetscCall(ISPHTimeStep(sim, &sim->dt));
   else if (sim->has_fluid) PetscCall(WCSPHTimeStep(sim, &sim->dt));
   else sim->dt = dts;
+  if (sim->has_solid && !sim->solid->subcycle) sim->dt = PetscMin(sim->dt, dts); /* one step for all (the paper's way) */
   sim->dt = PetscMin(sim->dt, sim->t_end - sim->t);
   if (sim->has_fluid) {
-    if (sim->has_solid) PetscCall(SolidStartFluidStep(sim));
     if (sim->isph) PetscCall(ISPHStep(sim));
     else PetscCall(WCSPHStep(sim));
   }
@@ -284,6 +289,7 @@ static PetscErrorCode Step(Sim sim)
       PetscCall(SolidPrepare(sim));
       PetscCall(SolidRates(sim));
     }
+    PetscCall(SolidBeginSubsteps(sim));
     for (PetscInt k = 0; k < nsub; k++) PetscCall(SolidStep(sim, sim->dt / nsub));
     sim->solid->nsub_last = nsub;
     sim->solid->nsub_max  = PetscMax(sim->solid->nsub_max, nsub);

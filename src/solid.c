@@ -20,6 +20,7 @@ PetscErrorCode SolidSetUp(Sim sim)
   PetscCall(PetscNew(&s));
   sim->solid   = s;
   s->skin      = 0.4;
+  s->subcycle  = PETSC_TRUE;
   s->repulsion = (PetscBool)(fluid && sim->fluid == FLUID_WCSPH);
   PetscOptionsBegin(sim->comm, NULL, "Hypo-elastic solid (WCSPH, Eqs. 20, 23-40)", "Solid");
   PetscCall(PetscOptionsReal("-solid_rho", "Solid reference density (kg/m^3)", "", m->rho0, &m->rho0, NULL));
@@ -29,13 +30,13 @@ PetscErrorCode SolidSetUp(Sim sim)
   PetscCall(PetscOptionsReal("-solid_art_stress", "Artificial stress coefficient e, Eqs. 25-31; 0 = off", "", m->eps, &m->eps, NULL));
   PetscCall(PetscOptionsReal("-solid_art_stress_n", "Exponent n of f = W_ab / W(dx, h) in the artificial stress, Eq. 23", "", m->n, &m->n, NULL));
   PetscCall(PetscOptionsEList("-solid_gradient", "Velocity gradient of the strain rate: standard (Eqs. 35-38) or corrected (Bonet-Lok, exact for linear fields)", "", SolidGradients, 2, SolidGradients[grad], &grad, NULL));
+  if (fluid) PetscCall(PetscOptionsBool("-solid_subcycle", "Multi-rate: sub-cycle the solid with its own step inside each fluid step (off: one step, the smaller, for both)", "", s->subcycle, &s->subcycle, NULL));
   PetscCall(PetscOptionsReal("-solid_skin", "Neighbour-list skin of the solid sub-steps, in particle spacings", "", s->skin, &s->skin, NULL));
-  s->added_mass = fluid && sim->fluid == FLUID_ISPH ? sim->added_mass_length : 0;
-  if (fluid) PetscCall(PetscOptionsReal("-fsi_added_mass", "ISPH + solid: added-mass length L_a (m) of the Robin stabilisation of the staggered coupling; 0 = off", "", s->added_mass, &s->added_mass, NULL));
+  s->implicit = (PetscBool)(fluid && sim->fluid == FLUID_ISPH);
+  if (fluid && sim->fluid == FLUID_ISPH) PetscCall(PetscOptionsBool("-fsi_implicit", "ISPH + solid: the solid rows of the pressure equation answer the solid's acceleration under that pressure (implicit interface; off = the solid seen as a wall at rest during the solve, unstable for light solids)", "", s->implicit, &s->implicit, NULL));
   if (fluid) PetscCall(PetscOptionsBool("-fsi_repulsion", "Repulsive force Eq. 41 between fluid and solid particles (default: on with -fluid wcsph, off with isph)", "", s->repulsion, &s->repulsion, NULL));
   PetscOptionsEnd();
   s->gradient = (SolidGradient)grad;
-  PetscCheck(s->added_mass >= 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-fsi_added_mass %g must be >= 0", (double)s->added_mass);
   PetscCheck(s->skin >= 0 && s->skin <= 2, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-solid_skin %g must be in [0, 2] particle spacings", (double)s->skin);
   PetscCheck(m->rho0 > 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-solid_rho %g must be > 0", (double)m->rho0);
   PetscCheck(m->K > 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-solid_K %g must be > 0", (double)m->K);
@@ -53,7 +54,10 @@ PetscErrorCode SolidSetUp(Sim sim)
     PetscCall(ParticlesEnableField(sim->P, FIELD_VWALL, PETSC_FALSE));
   }
   if (s->repulsion) PetscCall(ParticlesEnableField(sim->P, FIELD_NORMAL, PETSC_TRUE));
-  if (s->added_mass > 0) PetscCall(ParticlesEnableField(sim->P, FIELD_VSTEP, PETSC_FALSE));
+  if (s->implicit) PetscCall(ParticlesEnableField(sim->P, FIELD_AMEAN, PETSC_FALSE));
+  /* ISPH: the solid's loads (after the step's last rebuild) and its PPE rows (after the predictor's)
+   * read the fluid ghosts' pressure, which nothing else recomputes there */
+  if (fluid && sim->fluid == FLUID_ISPH) PetscCall(ParticlesEnableField(sim->P, FIELD_P, PETSC_TRUE));
   PetscCall(CellsCreateList(&s->nl));
   { /* |sum V grad W| of a particle on a flat surface of a lattice of spacing 1 */
     PetscReal g = 0, hh = SPH_H_FACTOR;
@@ -73,7 +77,6 @@ PetscErrorCode SolidDestroy(Solid *s)
   if (!*s) PetscFunctionReturn(PETSC_SUCCESS);
   PetscCall(PetscFree((*s)->R));
   PetscCall(PetscFree((*s)->xref));
-  PetscCall(PetscFree((*s)->kam));
   PetscCall(CellsDestroy(&(*s)->nl));
   PetscCall(PetscFree(*s));
   PetscFunctionReturn(PETSC_SUCCESS);
@@ -114,7 +117,7 @@ static inline void Apply(const PetscReal *L, PetscReal gx, PetscReal gy, PetscRe
 /* Acceleration of solid a from fluid neighbour b: the reverse of what the fluid gets from a
  * (wcsph.c, isph.c), with a as the fluid sees it (boundary.h): pressure and artificial viscosity,
  * laminar viscosity against a's no-slip velocity and, when on, the repulsive force Eq. 41. */
-static inline void FluidLoad(Sim sim, PetscInt a, PetscInt b, PetscReal F, PetscReal acc[2], PetscReal wet[2])
+static inline void FluidLoad(Sim sim, PetscInt a, PetscInt b, PetscReal F, PetscReal acc[2])
 {
   Particles        P = sim->P;
   const PetscReal *x = PField(P, FIELD_X), *v = PField(P, FIELD_V), *rho = PField(P, FIELD_RHO), *p = PField(P, FIELD_P), *m = PField(P, FIELD_M), *h = PField(P, FIELD_H);
@@ -134,29 +137,11 @@ static inline void FluidLoad(Sim sim, PetscInt a, PetscInt b, PetscReal F, Petsc
   }
   acc[0] -= s * fb[0];
   acc[1] -= s * fb[1];
-  wet[0] -= m[b] / rb * F * dx; /* sum V_b grad_a W over the fluid */
-  wet[1] -= m[b] / rb * F * dy;
-}
-
-/* Robin (added-mass) stabilisation of the staggered ISPH-solid coupling.  The fluid's pressure of
- * this step answered the solid's velocity change over the last step; a wetted particle whose
- * velocity changes differently in this step meets the inertia the fluid would oppose,
- * -alpha ((v - v_n) - (v_n - v_n-1)) / dt_f with alpha = rho_f L_a dx times the wetted fraction of
- * the particle's surface.  It vanishes when the solid keeps accelerating as in the last step, and
- * turns the explicit coupling's amplification M_a / m_s (about 10 for the rubber gate: unstable)
- * into (alpha - M_a) / (alpha + m_s) (stable for any alpha > (M_a - m_s) / 2). */
-static inline PetscReal AddedMass(Sim sim, PetscInt a, const PetscReal wet[2])
-{
-  Particles        P = sim->P;
-  const PetscReal *m = PField(P, FIELD_M), *h = PField(P, FIELD_H);
-  PetscReal        dxa = h[a] / SPH_H_FACTOR, frac = PetscMin(1.0, PetscSqrtReal(wet[0] * wet[0] + wet[1] * wet[1]) * dxa / (2 * sim->solid->nrm_min));
-  if (frac <= 0 || sim->dt <= 0) return 0;
-  return sim->fl.rho0 * sim->solid->added_mass * dxa * frac / (m[a] * sim->dt);
 }
 
 /* Eq. 23 for owned solids over their solid neighbours: stress, artificial viscosity (Eq. 24) and
  * artificial stress; the fluid's loads (FluidLoad); gravity.  Walls do not act; clamps do not
- * accelerate.  With the corrected gradient each particle's stress acts through its own corrected
+ * accelerate: what would, the support takes (Solid.support).  With the corrected gradient each particle's stress acts through its own corrected
  * kernel gradient, sigma_a L_a grad W + sigma_b L_b grad W (pair terms with the mean), which keeps
  * the pair forces opposite. */
 static PetscErrorCode Momentum(Sim sim)
@@ -166,28 +151,20 @@ static PetscErrorCode Momentum(Sim sim)
   const SolidMaterial *m = &sim->sl;
   const PetscReal     *x = PField(P, FIELD_X), *v = PField(P, FIELD_V), *rho = PField(P, FIELD_RHO), *p = PField(P, FIELD_P);
   const PetscReal     *mass = PField(P, FIELD_M), *h = PField(P, FIELD_H), *S = PField(P, FIELD_S), *R = sim->solid->R, *L = PField(P, FIELD_KCORR);
-  PetscReal           *acc = PField(P, FIELD_ACC);
+  PetscReal           *acc = PField(P, FIELD_ACC), support[2] = {0, 0}, load[2] = {0, 0};
 
   PetscFunctionBeginUser;
-  if (sim->solid->added_mass > 0 && sim->solid->cap_kam < P->n) {
-    PetscCall(PetscFree(sim->solid->kam));
-    sim->solid->cap_kam = (3 * P->n) / 2 + 16;
-    PetscCall(PetscCalloc1(sim->solid->cap_kam, &sim->solid->kam));
-  }
   for (PetscInt a = 0; a < P->n; a++) {
-    PetscReal ax = 0, ay = 0, ra = rho[a], ia = 1.0 / (ra * ra), wdx, fl[2] = {0, 0}, wet[2] = {0, 0};
+    PetscReal ax = 0, ay = 0, ra = rho[a], ia = 1.0 / (ra * ra), wdx, fl[2] = {0, 0};
     PetscReal sxx = (S[3 * a] - p[a]) * ia, sxy = S[3 * a + 1] * ia, syy = (S[3 * a + 2] - p[a]) * ia;
-    if (P->kind[a] != KIND_SOLID) {
-      if (P->kind[a] == KIND_CLAMP) acc[2 * a] = acc[2 * a + 1] = 0;
-      continue;
-    }
+    if (!KindIsSolid(P->kind[a])) continue;
     wdx = R ? KernelW(h[a] / SPH_H_FACTOR, h[a]) : 1;
     for (PetscInt k = C->nstart[a]; k < C->nstart[a + 1]; k++) {
       PetscInt  b = C->nbr[k];
       PetscReal dx = x[2 * a] - x[2 * b], dy = x[2 * a + 1] - x[2 * b + 1], r2 = dx * dx + dy * dy;
       PetscReal gx = C->f[k] * dx, gy = C->f[k] * dy, rb = rho[b], ib = 1.0 / (rb * rb), ga[2], gb[2], gm[2], txx, txy, tyy;
       if (C->f[k] == 0) continue; /* in the skin */
-      if (KindIsFluid(P->kind[b])) { FluidLoad(sim, a, b, C->f[k], fl, wet); continue; }
+      if (KindIsFluid(P->kind[b])) { FluidLoad(sim, a, b, C->f[k], fl); continue; }
       if (!KindIsSolid(P->kind[b])) continue;
       {
         PetscReal hab = PairH(h[a], h[b]);
@@ -208,10 +185,20 @@ static PetscErrorCode Momentum(Sim sim)
         }
       }
     }
-    if (sim->solid->kam) sim->solid->kam[a] = AddedMass(sim, a, wet);
+    if (P->kind[a] == KIND_SOLID) { load[0] += mass[a] * fl[0]; load[1] += mass[a] * fl[1]; }
+    if (P->kind[a] == KIND_CLAMP) { /* held: the support takes what would accelerate it */
+      support[0] -= mass[a] * (ax + fl[0] + sim->g[0]);
+      support[1] -= mass[a] * (ay + fl[1] + sim->g[1]);
+      acc[2 * a] = acc[2 * a + 1] = 0;
+      continue;
+    }
     acc[2 * a]     = ax + fl[0] + sim->g[0];
     acc[2 * a + 1] = ay + fl[1] + sim->g[1];
   }
+  sim->solid->support[0] = support[0];
+  sim->solid->support[1] = support[1];
+  sim->solid->load[0]    = load[0];
+  sim->solid->load[1]    = load[1];
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -268,23 +255,6 @@ PetscErrorCode SolidPrepare(Sim sim)
     PetscCall(PetscLogStagePush(sim->stage[STAGE_HALO]));
     PetscCall(HaloRefresh(sim->halo, P, 1, vel));
     PetscCall(PetscLogStagePop());
-  }
-  PetscFunctionReturn(PETSC_SUCCESS);
-}
-
-PetscErrorCode SolidStartFluidStep(Sim sim)
-{
-  Particles        P  = sim->P;
-  const PetscReal *v  = PField(P, FIELD_V);
-  PetscReal       *vs = PField(P, FIELD_VSTEP);
-  PetscFunctionBeginUser;
-  if (!vs) PetscFunctionReturn(PETSC_SUCCESS);
-  for (PetscInt a = 0; a < P->n; a++) {
-    if (P->kind[a] != KIND_SOLID) continue;
-    vs[4 * a + 2] = sim->step ? v[2 * a] - vs[4 * a] : 0;
-    vs[4 * a + 3] = sim->step ? v[2 * a + 1] - vs[4 * a + 1] : 0;
-    vs[4 * a]     = v[2 * a];
-    vs[4 * a + 1] = v[2 * a + 1];
   }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -392,23 +362,35 @@ PetscErrorCode SolidTimeStep(Sim sim, PetscReal *dt)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-/* v += dt acc, and the Robin term -k (v - v_n - (v_n - v_n-1)) implicitly (stable for any k dt). */
+/* v += dt acc; the means over the fluid step (SolidBeginSubsteps) gain dt / dt_f of the current
+ * acceleration and support force. */
 static void Kick(Sim sim, PetscReal dt)
 {
   Particles        P = sim->P;
-  PetscReal       *v = PField(P, FIELD_V), *acc = PField(P, FIELD_ACC);
-  const PetscReal *k = sim->solid->kam, *vs = PField(P, FIELD_VSTEP);
+  Solid            s = sim->solid;
+  PetscReal       *v = PField(P, FIELD_V), *am = PField(P, FIELD_AMEAN), w = sim->dt > 0 ? dt / sim->dt : 0;
+  const PetscReal *acc = PField(P, FIELD_ACC);
   for (PetscInt a = 0; a < P->n; a++) {
     if (P->kind[a] != KIND_SOLID) continue;
-    if (k && k[a] > 0) {
-      PetscReal kd = k[a] * dt;
-      v[2 * a]     = (v[2 * a] + dt * acc[2 * a] + kd * (vs[4 * a] + vs[4 * a + 2])) / (1 + kd);
-      v[2 * a + 1] = (v[2 * a + 1] + dt * acc[2 * a + 1] + kd * (vs[4 * a + 1] + vs[4 * a + 3])) / (1 + kd);
-    } else {
-      v[2 * a] += dt * acc[2 * a];
-      v[2 * a + 1] += dt * acc[2 * a + 1];
-    }
+    v[2 * a] += dt * acc[2 * a];
+    v[2 * a + 1] += dt * acc[2 * a + 1];
+    if (am) { am[2 * a] += w * acc[2 * a]; am[2 * a + 1] += w * acc[2 * a + 1]; }
   }
+  s->support_mean[0] += w * s->support[0];
+  s->support_mean[1] += w * s->support[1];
+  s->load_mean[0] += w * s->load[0];
+  s->load_mean[1] += w * s->load[1];
+}
+
+PetscErrorCode SolidBeginSubsteps(Sim sim)
+{
+  Particles  P = sim->P;
+  PetscReal *am = PField(P, FIELD_AMEAN);
+  PetscFunctionBeginUser;
+  sim->solid->support_mean[0] = sim->solid->support_mean[1] = 0;
+  sim->solid->load_mean[0] = sim->solid->load_mean[1] = 0;
+  if (am) PetscCall(PetscArrayzero(am, 2 * P->n));
+  PetscFunctionReturn(PETSC_SUCCESS);
 }
 
 /* Kick-drift-kick like WCSPHStep, with density and stress as position-like variables:

@@ -18,12 +18,21 @@ static PetscErrorCode RunCase(MPI_Comm comm, const char *outdir, Sim *sim)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* kind of the particle with global id `id` (a 1-rank run holds them all) */
+static PetscInt KindOf(Particles P, PetscInt id)
+{
+  for (PetscInt a = 0; a < P->n; a++)
+    if (P->id[a] == id) return P->kind[a];
+  return 0;
+}
+
 int main(int argc, char **argv)
 {
   Sim         world, self = NULL;
   PetscMPIInt rank, size;
   PetscInt    N;
   PetscReal  *ref = NULL, err = 0, scale = 0, tol = 1e-12, vmin = 0.5;
+  PetscInt    worst = -1, wcomp = 0; /* particle id and component (x, y, vx, vy, rho) of the largest difference */
   PetscBool   other;
   PetscCall(PetscInitialize(&argc, &argv, NULL, NULL));
   PetscCall(PetscOptionsGetReal(NULL, NULL, "-tol", &tol, NULL));
@@ -69,10 +78,14 @@ int main(int argc, char **argv)
       }
       for (PetscInt k = 0; k < N; k++) {
         const PetscReal *w = buf + 6 * k, *s = ref + 6 * (PetscInt)w[0];
-        for (PetscInt c = 1; c < 6; c++) { err = PetscMax(err, PetscAbsReal(w[c] - s[c]) / (c == 5 ? 1000.0 : c >= 3 ? 1.0 : 0.1)); }
+        for (PetscInt c = 1; c < 6; c++) {
+          PetscReal e = PetscAbsReal(w[c] - s[c]) / (c == 5 ? 1000.0 : c >= 3 ? 1.0 : 0.1);
+          if (e > err) { err = e; worst = (PetscInt)w[0]; wcomp = c; }
+        }
         scale = PetscMax(scale, PetscAbsReal(s[3]) + PetscAbsReal(s[4]));
       }
       PetscCall(PetscPrintf(PETSC_COMM_SELF, "rank agreement (%s %s): %d particles after %d steps, max scaled difference %.3e (bound %.0e; max speed %.3f m/s)\n", world->scene->name, !world->has_fluid ? "solid" : world->isph ? "isph" : "wcsph", (int)N, (int)world->step, (double)err, (double)tol, (double)scale));
+      if (err > tol) PetscCall(PetscPrintf(PETSC_COMM_SELF, "largest difference: particle %d (%s) at (%g, %g), %s\n", (int)worst, ParticleKindNames[KindOf(self->P, worst)], (double)ref[6 * worst + 1], (double)ref[6 * worst + 2], (const char *[]){"", "x", "y", "vx", "vy", "rho"}[wcomp]));
       PetscCheck(err <= tol, PETSC_COMM_SELF, PETSC_ERR_PLIB, "1-rank and %d-rank runs differ by %g", size, (double)err);
       PetscCheck(scale > vmin, PETSC_COMM_SELF, PETSC_ERR_PLIB, "The run did not move: max speed %g <= -min_speed %g", (double)scale, (double)vmin);
       PetscCall(PetscFree(ref));

@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """Tip displacement of elastic-gate runs against the Antoci et al. (2007) experiment (both
-digitisations) and, for context, Antoci's own SPH.
+digitisations) and, for context, published numerical results (Antoci SPH, Yang SPH-FEM, Khayyer ISPH-SPH).
    tools/plot_gate.py PNG OUTDIR [OUTDIR ...]     (reference data: $SPHFSI_REFDATA or ../shared/refdata)"""
 import csv, json, os, sys
 import matplotlib
@@ -27,7 +27,9 @@ for ax, comp in zip(axes, ("dx", "dy")):
         ax.plot([float(r["t"]) for r in rows], [1000 * float(r[f"tip_{comp}"]) for r in rows], label=lab)
     for name, style, lab in ((f"antoci2007_exp_tip{comp}__chrono.csv", "ko", "experiment"),
                              (f"antoci2007_exp_tip{comp}__fsi_etvf.csv", "k^", "experiment (2nd digitisation)"),
-                             (f"antoci2007_SPHnum_tip{comp}__chrono.csv", "g:", "Antoci et al. SPH")):
+                             (f"antoci2007_SPHnum_tip{comp}__chrono.csv", "g:", "Antoci et al. SPH"),
+                             (f"yang2012_SPHFEM_tip{comp}__chrono.csv", "m:", "Yang et al. SPH-FEM"),
+                             (f"khayyer2018_ISPHSPH_tip{comp}__fsi_etvf.csv", "c:", "Khayyer et al. ISPH-SPH")):
         r = load(name, f"{comp}_m")
         if r:
             ax.plot(*r, style, ms=4, label=lab)

@@ -30,7 +30,7 @@ typedef enum {
   FIELD_ROW,   /* ISPH: global row of the pressure equation (-1: none) */
   FIELD_KCORR, /* solid: kernel-gradient correction matrix (4, row-major) */
   FIELD_FVIEW, /* solid next to fluid: the fluid's view of it (3: pressure, density, mass; boundary.h) */
-  FIELD_VSTEP, /* solid with ISPH: velocity at the start of the fluid step and its change over the last (4) */
+  FIELD_AMEAN, /* solid with ISPH: mean acceleration over the last fluid step (2; ppe.c) */
   FIELD_COUNT
 } FieldId;
 

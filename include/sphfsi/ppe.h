@@ -27,6 +27,7 @@ struct _p_PPE {
   PetscInt     nrow, rstart, nrow_global, ndirichlet_global;
   PetscInt    *rowpart, *dnnz, *onnz, cap_rows; /* per local row: owned particle, preallocation */
   PetscReal   *hyd;                             /* per local wall row: hydrostatic part of its P, L_a(rho0 g . r) / sum_b c_ab */
+  PetscBool    symmetric;                       /* no implicit solid rows (ppe.c): CG applies */
   PetscInt    *cols, cap_cols;
   PetscScalar *vals;
   /* statistics */
@@ -36,8 +37,9 @@ struct _p_PPE {
 };
 
 PetscErrorCode PPECreate(MPI_Comm comm, PPE *ppe);
-/* KSP defaults CG + hypre BoomerAMG (GAMG when PETSc lacks hypre), then the user's options. */
-PetscErrorCode PPESetFromOptions(PPE ppe);
+/* KSP defaults CG + hypre BoomerAMG (GAMG when PETSc lacks hypre), GMRES when the matrix is not
+ * symmetric (implicit solid rows), then the user's options. */
+PetscErrorCode PPESetFromOptions(PPE ppe, PetscBool symmetric);
 PetscErrorCode PPEView(PPE ppe, PetscViewer v);
 PetscErrorCode PPEDestroy(PPE *ppe);
 /* Give every row its global number (FIELD_ROW, ghosts refreshed).  Needs FIELD_FS and FIELD_RHO

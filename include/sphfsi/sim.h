@@ -39,7 +39,6 @@ struct _p_Sim {
   ISPH          isph;  /* NULL unless -fluid isph */
   SolidMaterial sl;
   Solid         solid; /* NULL unless the scene has solids */
-  PetscReal     added_mass_length; /* scene's default of -fsi_added_mass (ISPH + solid) */
   PetscReal     v_ref;      /* expected maximum speed: c0 = 10 v_ref when -c0 is not given */
   PetscReal     dx, h_max;  /* finest spacing, largest smoothing length */
   PetscReal     dom_lo[2], dom_hi[2];

@@ -17,11 +17,13 @@ struct _p_Solid {
   PetscInt      cap_xref, nrebuild; /* rebuilds forced by solid motion */
   PetscBool     repulsion; /* Eq. 41 on fluid-solid pairs (WCSPH fluid) */
   PetscReal     nrm_min;   /* |sum V grad W| below this: not a surface particle, no normal */
-  PetscReal     added_mass; /* ISPH coupling: added-mass length of the Robin stabilisation (m); 0 = off */
-  PetscReal    *kam;        /* per owned particle: its Robin coefficient alpha / (m dt_f) (1/s), taken implicitly in the kicks */
-  PetscInt      cap_kam;
+  PetscBool     subcycle;  /* multi-rate: solid sub-steps inside the fluid step */
+  PetscBool     implicit;  /* ISPH: the solid's rows of the pressure equation answer its acceleration (ppe.c) */
   PetscReal    *R;     /* artificial stress (xx, xy, yy) of owned + ghost particles, Eqs. 32-34 */
   PetscInt      cap_R;
+  PetscReal     support[2];      /* force of the supports on the owned clamp particles at the last rates (N/m; reduce to sum) */
+  PetscReal     support_mean[2]; /* its mean over the sub-steps of the last fluid step */
+  PetscReal     load[2], load_mean[2]; /* the fluid's force on the owned moving solid particles, the same way */
   PetscInt      nsub_last, nsub_max; /* solid sub-steps in the last / any fluid step (progress line, summary) */
 };
 
@@ -32,9 +34,8 @@ PetscErrorCode SolidDestroy(Solid *s);
 /* Neighbour list of the solids after a rebuild (SimRebuild): the sub-steps move the solids
  * without a rebuild until one has moved half the skin. */
 PetscErrorCode SolidPrepare(Sim sim);
-/* Before a fluid step that the solid will follow in sub-steps: record the velocities the fluid sees
- * (added-mass stabilisation, ISPH). */
-PetscErrorCode SolidStartFluidStep(Sim sim);
+/* Before the sub-steps of a fluid step: reset the means over them (acceleration, support). */
+PetscErrorCode SolidBeginSubsteps(Sim sim);
 /* Pressure, artificial stress and accelerations of solids at the current state (after
  * SolidPrepare or a sub-step). */
 PetscErrorCode SolidRates(Sim sim);

@@ -9,7 +9,8 @@
 
 typedef struct {
   PetscReal W, H, L, t, top;   /* water width and depth, gate length and thickness, wall top */
-  PetscInt  rows, nclamp;      /* wall rows; clamp rows of the gate inside its support */
+  PetscReal dxc, fine;         /* coarse spacing away from the gate; width of the fine zone before it */
+  PetscInt  rows, nclamp;      /* wall rows (coarse spacing); clamp rows of the gate inside its support */
   Series    dx_tip, dy_tip;
 } Gate;
 
@@ -19,7 +20,7 @@ static PetscErrorCode Create(Sim sim)
   PetscFunctionBeginUser;
   PetscCall(PetscNew(&c));
   sim->scene_ctx = c;
-  c->W = 0.1; c->H = 0.14; c->L = 0.079; c->t = 0.005; c->top = 0.16; c->rows = 3; c->nclamp = 4;
+  c->W = 0.1; c->H = 0.14; c->L = 0.079; c->t = 0.005; c->top = 0.16; c->rows = 3; c->nclamp = 4; c->dxc = -1; c->fine = 0.02;
   sim->sl.rho0 = 1100; sim->sl.K = 2.0e7; sim->sl.G = 4.27e6; /* rubber, paper section 3.3 */
   sim->fl.mu   = 1.0e-3;
   PetscOptionsBegin(sim->comm, NULL, "Scene elastic_gate: water column released through an elastic gate (Antoci et al. 2007)", "");
@@ -30,6 +31,8 @@ static PetscErrorCode Create(Sim sim)
   PetscCall(PetscOptionsReal("-tank_height", "Height of the tank walls (m)", "", c->top, &c->top, NULL));
   PetscCall(PetscOptionsInt("-wall_rows", "Rows of wall + dummy particles", "", c->rows, &c->rows, NULL));
   PetscCall(PetscOptionsInt("-clamp_rows", "Rows of clamp particles at the top of the gate", "", c->nclamp, &c->nclamp, NULL));
+  PetscCall(PetscOptionsReal("-dx_coarse", "Spacing of the fluid away from the gate (m); default -dx (uniform)", "", c->dxc, &c->dxc, NULL));
+  PetscCall(PetscOptionsReal("-fine_width", "Width of the fine fluid zone before the gate (m), with -dx_coarse", "", c->fine, &c->fine, NULL));
   PetscOptionsEnd();
   PetscCheck(c->W > 0 && c->H > 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-water_width %g and -water_depth %g must be > 0", (double)c->W, (double)c->H);
   PetscCheck(c->t > 0 && c->L > c->t, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-gate_length %g must exceed -gate_thickness %g > 0", (double)c->L, (double)c->t);
@@ -37,14 +40,22 @@ static PetscErrorCode Create(Sim sim)
   PetscCheck(c->top > c->H, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-tank_height %g must exceed -water_depth %g", (double)c->top, (double)c->H);
   PetscCheck(c->rows >= 1, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-wall_rows %" PetscInt_FMT " must be >= 1", c->rows);
   PetscCheck(c->nclamp >= 3, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-clamp_rows %" PetscInt_FMT " must be >= 3 (the clamp must fill the kernel support)", c->nclamp);
-  sim->added_mass_length = 0.5 * c->L; /* of the order of the added mass of the gate's first mode */
   if (sim->dx < 0) sim->dx = 0.001;
   PetscCheck(c->t / sim->dx > 2.999, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dx %g leaves fewer than 3 particles across the gate thickness %g", (double)sim->dx, (double)c->t);
+  if (c->dxc < 0) c->dxc = sim->dx;
+  PetscCheck(c->dxc >= sim->dx && c->dxc <= 4 * sim->dx, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dx_coarse %g must be between -dx %g and 4 dx", (double)c->dxc, (double)sim->dx);
+  if (c->dxc > sim->dx) { /* the zones tile the water: the coarse one whole coarse columns, the fine one the rest */
+    PetscInt nc = RoundToInt((c->W - c->fine) / c->dxc);
+    PetscCheck(c->fine > 0 && nc >= 1, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-fine_width %g must be in (0, -water_width %g) less a coarse column", (double)c->fine, (double)c->W);
+    c->fine = RoundToInt((c->W - nc * c->dxc) / sim->dx) * sim->dx;
+    c->W    = nc * c->dxc + c->fine;
+    c->H    = RoundToInt(c->H / c->dxc) * c->dxc; /* both zones' lattices reach the same surface */
+  } else c->fine = c->W;
   if (sim->t_end < 0) sim->t_end = 0.4;
   sim->has_solid = PETSC_TRUE;
   sim->outflow   = PETSC_TRUE;
   sim->v_ref     = PetscSqrtReal(2 * 9.81 * c->H);
-  sim->dom_lo[0] = -(c->rows + 0.5) * sim->dx;
+  sim->dom_lo[0] = -(c->rows + 0.5) * c->dxc;
   sim->dom_hi[0] = c->W + c->t + 0.1;  /* fluid beyond leaves */
   sim->dom_lo[1] = -0.1;
   sim->dom_hi[1] = c->top + sim->dx;
@@ -55,14 +66,19 @@ static PetscErrorCode Create(Sim sim)
 static PetscErrorCode Populate(Sim sim)
 {
   Gate     *c  = (Gate *)sim->scene_ctx;
-  PetscReal dx = sim->dx;
-  PetscInt  nx = RoundToInt(c->W / dx), ny = RoundToInt(c->H / dx), nt = RoundToInt(c->t / dx), nl = RoundToInt(c->L / dx);
-  PetscInt  ntop = RoundToInt(c->top / dx);
-  PetscReal xg = nx * dx; /* gate's upstream face */
+  PetscReal dx = sim->dx, dc = c->dxc, xf = c->W - c->fine; /* fine zone: [xf, W] */
+  PetscInt  nf = RoundToInt(c->fine / dx), ncx = RoundToInt(xf / dc), nt = RoundToInt(c->t / dx), nl = RoundToInt(c->L / dx);
+  PetscInt  ntop = RoundToInt(c->top / dx), rows_f = (PetscInt)PetscCeilReal(c->rows * dc / dx - 1e-9);
+  PetscReal xg = xf + nf * dx; /* gate's upstream face */
   PetscFunctionBeginUser;
-  PetscCall(SceneAddLattice(sim, KIND_FLUID, 0.5 * dx, 0.5 * dx, nx, ny, dx, sim->fl.rho0));
-  /* tank: floor under the water and the gate, wall behind the water */
-  PetscCall(SceneAddTank(sim, 0, xg + nt * dx, 0, ntop * dx, dx, c->rows, PETSC_TRUE, PETSC_FALSE));
+  PetscCall(SceneAddLattice(sim, KIND_FLUID, xf + 0.5 * dx, 0.5 * dx, nf, RoundToInt(c->H / dx), dx, sim->fl.rho0));
+  /* tank: wall behind the water, floor under the water and the gate (each zone's spacing; the fine
+   * floor as deep as the coarse one, for coarse particles that drift over it) */
+  if (ncx > 0) {
+    PetscCall(SceneAddLattice(sim, KIND_FLUID, 0.5 * dc, 0.5 * dc, ncx, RoundToInt(c->H / dc), dc, sim->fl.rho0));
+    PetscCall(SceneAddTank(sim, 0, xf, 0, RoundToInt(c->top / dc) * dc, dc, c->rows, PETSC_TRUE, PETSC_FALSE));
+    PetscCall(SceneAddTank(sim, xf, xg + nt * dx, 0, 0, dx, rows_f, PETSC_FALSE, PETSC_FALSE));
+  } else PetscCall(SceneAddTank(sim, 0, xg + nt * dx, 0, ntop * dx, dx, c->rows, PETSC_TRUE, PETSC_FALSE));
   /* the gate and its clamp */
   PetscCall(SceneAddLattice(sim, KIND_SOLID, xg + 0.5 * dx, 0.5 * dx, nt, nl, dx, sim->sl.rho0));
   PetscCall(SceneAddLattice(sim, KIND_CLAMP, xg + 0.5 * dx, (nl + 0.5) * dx, nt, c->nclamp, dx, sim->sl.rho0));
@@ -71,17 +87,19 @@ static PetscErrorCode Populate(Sim sim)
     PetscCall(SceneAddLattice(sim, KIND_WALL, xg + 0.5 * dx, (j + 0.5) * dx, 1, 1, dx, sim->fl.rho0));
     PetscCall(SceneAddLattice(sim, KIND_DUMMY, xg + 1.5 * dx, (j + 0.5) * dx, nt - 1, 1, dx, sim->fl.rho0));
   }
-  PetscCall(SceneHydrostaticDensity(sim, ny * dx));
+  PetscCall(SceneHydrostaticDensity(sim, RoundToInt(c->H / dx) * dx));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-/* tip_dx, tip_dy: mean displacement of the gate's bottom row; water_level: highest fluid particle
- * within 1.5 dx of the back wall + dx/2. */
+/* tip_dx, tip_dy: mean displacement of the gate's bottom row; water_level: the fluid's volume in a
+ * strip 4 dx wide at the back wall over the strip's width (a drop stuck to the wall above the
+ * surface moves it by dx / 4 only); load_x: the water's horizontal force on the gate (N/m; mean over
+ * the last step's solid sub-steps). */
 static PetscErrorCode Probe(Sim sim, PetscReal *vals)
 {
   Gate      *c = (Gate *)sim->scene_ctx;
   Particles  P = sim->P;
-  PetscReal *x = PField(P, FIELD_X), *x0 = PField(P, FIELD_X0), s[3] = {0, 0, 0}, top = 0;
+  PetscReal *x = PField(P, FIELD_X), *x0 = PField(P, FIELD_X0), *m = PField(P, FIELD_M), s[4] = {0, 0, 0, 0}, strip = 4 * sim->dx;
   PetscFunctionBeginUser;
   for (PetscInt a = 0; a < P->n; a++) {
     if (P->kind[a] == KIND_SOLID && x0[2 * a + 1] < sim->dx) {
@@ -89,13 +107,14 @@ static PetscErrorCode Probe(Sim sim, PetscReal *vals)
       s[1] += x[2 * a + 1] - x0[2 * a + 1];
       s[2] += 1;
     }
-    if (KindIsFluid(P->kind[a]) && x[2 * a] < 1.5 * sim->dx) top = PetscMax(top, x[2 * a + 1] + 0.5 * sim->dx);
+    if (KindIsFluid(P->kind[a]) && x[2 * a] < strip) s[3] += m[a] / sim->fl.rho0;
   }
-  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, s, 3, MPIU_REAL, MPI_SUM, sim->comm));
-  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &top, 1, MPIU_REAL, MPIU_MAX, sim->comm));
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, s, 4, MPIU_REAL, MPI_SUM, sim->comm));
   vals[0] = s[2] > 0 ? s[0] / s[2] : 0;
   vals[1] = s[2] > 0 ? s[1] / s[2] : 0;
-  vals[2] = top;
+  vals[2] = s[3] / strip;
+  vals[3] = sim->solid->load_mean[0];
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &vals[3], 1, MPIU_REAL, MPI_SUM, sim->comm));
   PetscCall(SeriesAppend(&c->dx_tip, sim->t, vals[0]));
   PetscCall(SeriesAppend(&c->dy_tip, sim->t, vals[1]));
   PetscFunctionReturn(PETSC_SUCCESS);
@@ -144,6 +163,6 @@ static PetscErrorCode Destroy(Sim sim)
 const SceneOps SceneElasticGate = {
   .name = "elastic_gate", .help = "water column released through an elastic gate (Antoci et al. 2007)",
   .create = Create, .populate = Populate,
-  .nprobes = 3, .probe_names = {"tip_dx", "tip_dy", "water_level"},
+  .nprobes = 4, .probe_names = {"tip_dx", "tip_dy", "water_level", "load_x"},
   .probe = Probe, .errors = Errors, .destroy = Destroy,
 };

@@ -141,9 +141,9 @@ static inline void FluidLoad(Sim sim, PetscInt a, PetscInt b, PetscReal F, Petsc
 
 /* Eq. 23 for owned solids over their solid neighbours: stress, artificial viscosity (Eq. 24) and
  * artificial stress; the fluid's loads (FluidLoad); gravity.  Walls do not act; clamps do not
- * accelerate: what would, the support takes (Solid.support).  With the corrected gradient each particle's stress acts through its own corrected
- * kernel gradient, sigma_a L_a grad W + sigma_b L_b grad W (pair terms with the mean), which keeps
- * the pair forces opposite. */
+ * accelerate: what would, the support takes (Solid.support).  With the corrected gradient each
+ * particle's stress acts through its own corrected kernel gradient, sigma_a L_a grad W +
+ * sigma_b L_b grad W (pair terms with the mean), which keeps the pair forces opposite. */
 static PetscErrorCode Momentum(Sim sim)
 {
   Particles            P = sim->P;

@@ -221,13 +221,13 @@ static void FindNonFinite(Particles P, PetscInt *bad, PetscInt *field, PetscReal
   }
 }
 
-PetscErrorCode GuardStepEnd(Sim sim)
+PetscErrorCode GuardStepEnd(Sim sim, PetscBool *progress)
 {
   Guard          g = sim->guard;
   PetscLogDouble now;
   PetscInt       bad, field = 0;
   PetscReal      val = 0;
-  int            flags[3];
+  int            flags[4];
 
   PetscFunctionBeginUser;
   PetscCall(PetscLogStagePush(sim->stage[STAGE_GUARD]));
@@ -237,7 +237,9 @@ PetscErrorCode GuardStepEnd(Sim sim)
   flags[0] = bad >= 0;
   flags[1] = (int)caught_signal;
   flags[2] = g->max_wall > 0 && now - g->t0 + g->step_max >= g->max_wall; /* the next step would end past it */
-  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, flags, 3, MPI_INT, MPI_MAX, sim->comm));
+  flags[3] = !sim->rank && *progress; /* rank 0's clock decides: what follows a progress line is collective */
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, flags, 4, MPI_INT, MPI_MAX, sim->comm));
+  *progress = (PetscBool)flags[3];
   if (flags[0]) {
     Where     mine, w;
     PetscBool found;

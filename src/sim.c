@@ -267,15 +267,11 @@ PetscErrorCode SimSetUp(Sim sim)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-static PetscErrorCode Progress(Sim sim, PetscLogDouble *last, PetscBool force, PetscBool *shown)
+static PetscErrorCode Progress(Sim sim)
 {
   PetscLogDouble now;
   PetscFunctionBeginUser;
-  *shown = PETSC_FALSE;
   PetscCall(PetscTime(&now));
-  if (!sim->progress_every || (!force && now - *last < sim->progress_every)) PetscFunctionReturn(PETSC_SUCCESS);
-  *last  = now;
-  *shown = PETSC_TRUE;
   {
     PetscReal el = now - sim->wall_start, left = sim->t > 0 ? el * (sim->t_end - sim->t) / sim->t : 0;
     char its[64] = "";
@@ -359,7 +355,9 @@ PetscErrorCode SimRun(Sim sim)
     sim->t += sim->dt;
     sim->step++;
     sim->particle_steps += (PetscReal)sim->nparticles;
-    PetscCall(GuardStepEnd(sim)); /* NaN/Inf, signals, wall time */
+    PetscCall(PetscTime(&t1));
+    shown = (PetscBool)(sim->progress_every && t1 - last >= sim->progress_every);
+    PetscCall(GuardStepEnd(sim, &shown)); /* NaN/Inf, signals, wall time, progress: agreed */
     if (g->state == GUARD_FAULT) break;
     if (sim->t >= sim->next_probe - eps) PetscCall(IOProbes(sim));
     if (sim->out_interval > 0 && sim->t >= sim->next_out - eps) {
@@ -371,12 +369,15 @@ PetscErrorCode SimRun(Sim sim)
       PetscCall(IOWriteProbes(sim));
     }
     if (g->state == GUARD_STOP) break;
-    PetscCall(Progress(sim, &last, PETSC_FALSE, &shown));
-    if (shown) PetscCall(IOWriteProbes(sim)); /* probes.csv is at most a progress interval old */
+    if (shown) {
+      last = t1;
+      PetscCall(Progress(sim));
+      PetscCall(IOWriteProbes(sim)); /* probes.csv is at most a progress interval old */
+    }
   }
   PetscCall(PetscTime(&t1));
   sim->wall_loop = t1 - sim->wall_start;
-  PetscCall(Progress(sim, &last, PETSC_TRUE, &shown));
+  if (sim->progress_every) PetscCall(Progress(sim));
   if (g->state == GUARD_STOP || (!g->state && sim->ckpt_interval > 0)) PetscCall(Checkpoint(sim));
   PetscCall(GuardFinish(sim));
   PetscCall(IOWriteProbes(sim));

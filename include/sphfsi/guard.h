@@ -38,8 +38,9 @@ PetscErrorCode GuardStepBegin(Sim sim);
 PetscErrorCode GuardStep(Sim sim, PetscErrorCode (*step)(Sim));
 /* Inside a step, before the state changes: dt of `medium` (0 fluid, 1 solid) against its floor. */
 PetscErrorCode GuardCheckDt(Sim sim, PetscInt medium, PetscReal dt);
-/* End of a step: NaN/Inf in any field of any owned particle, stop requests; one reduction. */
-PetscErrorCode GuardStepEnd(Sim sim);
+/* End of a step: NaN/Inf in any field of any owned particle, stop requests, and whether a progress
+ * line is due (in: rank 0's view; out: agreed); one reduction. */
+PetscErrorCode GuardStepEnd(Sim sim, PetscBool *progress);
 /* Record a fault (collective; every rank passes the same message).  state_ok: the current state is
  * still good (nothing changed yet), so it becomes the last good state. */
 PetscErrorCode GuardFault(Sim sim, PetscBool state_ok, const char *fmt, ...) PETSC_ATTRIBUTE_FORMAT(3, 4);

@@ -236,7 +236,7 @@ PetscErrorCode GuardStepEnd(Sim sim, PetscBool *progress)
   FindNonFinite(sim->P, &bad, &field, &val);
   flags[0] = bad >= 0;
   flags[1] = (int)caught_signal;
-  flags[2] = g->max_wall > 0 && now - g->t0 + g->step_max >= g->max_wall; /* the next step would end past it */
+  flags[2] = g->max_wall > 0 && now - g->t0 + 2 * g->step_max >= g->max_wall; /* the next step might end past it */
   flags[3] = !sim->rank && *progress; /* rank 0's clock decides: what follows a progress line is collective */
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, flags, 4, MPI_INT, MPI_MAX, sim->comm));
   *progress = (PetscBool)flags[3];

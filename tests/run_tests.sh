@@ -62,6 +62,8 @@ if [ "${1:-}" != "--unit-only" ]; then
   run elastic_gate_wcsph bash tests/check_elastic_gate.sh "$MPI" "$OUT/elastic_gate_wcsph" -fluid wcsph
   run water_on_plate_wcsph bash tests/check_water_on_plate.sh "$MPI" "$OUT/water_on_plate_wcsph" -fluid wcsph
   L_BOUND=0.05 run water_on_plate_isph bash tests/check_water_on_plate.sh "$MPI" "$OUT/water_on_plate_isph" -fluid isph
+  # Signals, -max_wall_time, faults, a rank failing at start (issue 8)
+  run reliability bash tests/check_reliability.sh "$MPI" "$OUT/reliability"
   # Bad input: clear message, non-zero status, no crash
   run bad_input bash tests/check_bad_input.sh "$MPI" "$OUT/bad_input"
 fi

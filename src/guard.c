@@ -221,6 +221,33 @@ static void FindNonFinite(Particles P, PetscInt *bad, PetscInt *field, PetscReal
   }
 }
 
+/* The fault of a non-finite value (collective; bad < 0 on ranks without one). */
+static PetscErrorCode NonFinite(Sim sim, PetscInt bad, PetscInt field, PetscReal val, PetscBool initial)
+{
+  Where     mine, w;
+  PetscBool found;
+  char      when[128], value[32];
+  PetscFunctionBeginUser;
+  WhereOf(sim, bad, field, val, &mine);
+  PetscCall(Gather(sim, &mine, &w, &found));
+  if (initial) PetscCall(PetscSNPrintf(when, sizeof(when), "in the initial state at step %" PetscInt_FMT " (t = %g): check the scene's options or the checkpoint", sim->step, (double)sim->t));
+  else PetscCall(PetscSNPrintf(when, sizeof(when), "after step %" PetscInt_FMT " (t = %g): the run is unstable (reduce -dt or -cfl)", sim->step, (double)sim->t));
+  snprintf(value, sizeof(value), "%g", (double)w.val); /* "nan", not PETSc's "nan." */
+  PetscCall(GuardFault(sim, PETSC_FALSE, "%s = %s at particle id %d (%s) at (%g, %g) %s", sim->P->f[(PetscInt)w.field].name, value, (int)w.id, ParticleKindNames[(PetscInt)w.kind], (double)w.x, (double)w.y, when));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode GuardCheckInitial(Sim sim)
+{
+  PetscInt  bad, field = 0, gbad;
+  PetscReal val = 0;
+  PetscFunctionBeginUser;
+  FindNonFinite(sim->P, &bad, &field, &val);
+  PetscCall(MPIU_Allreduce(&bad, &gbad, 1, MPIU_INT, MPI_MAX, sim->comm));
+  if (gbad >= 0) PetscCall(NonFinite(sim, bad, field, val, PETSC_TRUE));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 PetscErrorCode GuardStepEnd(Sim sim, PetscBool *progress)
 {
   Guard          g = sim->guard;
@@ -240,13 +267,8 @@ PetscErrorCode GuardStepEnd(Sim sim, PetscBool *progress)
   flags[3] = !sim->rank && *progress; /* rank 0's clock decides: what follows a progress line is collective */
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, flags, 4, MPI_INT, MPI_MAX, sim->comm));
   *progress = (PetscBool)flags[3];
-  if (flags[0]) {
-    Where     mine, w;
-    PetscBool found;
-    WhereOf(sim, bad, field, val, &mine);
-    PetscCall(Gather(sim, &mine, &w, &found));
-    PetscCall(GuardFault(sim, PETSC_FALSE, "%s = %g at particle id %d (%s) at (%g, %g) after step %" PetscInt_FMT " (t = %g): the run is unstable (reduce -dt or -cfl)", sim->P->f[(PetscInt)w.field].name, (double)w.val, (int)w.id, ParticleKindNames[(PetscInt)w.kind], (double)w.x, (double)w.y, sim->step, (double)sim->t));
-  } else if (flags[1]) {
+  if (flags[0]) PetscCall(NonFinite(sim, bad, field, val, PETSC_FALSE));
+  else if (flags[1]) {
     g->state = GUARD_STOP;
     PetscCall(PetscSNPrintf(g->msg, sizeof(g->msg), "received %s", SignalName(flags[1])));
   } else if (flags[2]) {
@@ -267,7 +289,11 @@ PetscErrorCode GuardFinish(Sim sim)
     sim->exit_status = SIM_EXIT_STOPPED;
   } else if (g->state == GUARD_FAULT) {
     PetscCall(PetscPrintf(sim->comm, "sphfsi: FAULT: %s\n", g->msg));
-    PetscCheck(g->have_good, sim->comm, PETSC_ERR_PLIB, "No good state was kept");
+    sim->exit_status = SIM_EXIT_FAULT;
+    if (!g->have_good) {
+      PetscCall(PetscPrintf(sim->comm, "sphfsi: the run has no good state to write (exit status %d)\n", SIM_EXIT_FAULT));
+      PetscFunctionReturn(PETSC_SUCCESS);
+    }
     PetscCall(PetscSNPrintf(path, sizeof(path), "%s/last_good.h5", sim->outdir));
     PetscCall(CheckpointWrite(sim, &g->good, path));
     PetscCall(PetscPrintf(sim->comm, "sphfsi: the last good state, step %" PetscInt_FMT " (t = %g), is in %s: a checkpoint with the datasets of a snapshot (x, v, p, rho, ...), to look at or to restart from with -restart %s and a smaller -dt or -cfl.  No NaN was written to any output file (exit status %d)\n", g->good.i[0], (double)g->good.r[0], path, path, SIM_EXIT_FAULT));

@@ -220,6 +220,7 @@ PetscErrorCode SimSetUp(Sim sim)
   PetscOptionsBegin(sim->comm, NULL, "Body force", "Sim");
   PetscCall(PetscOptionsRealArray("-gravity", "Gravity vector gx,gy (m/s^2)", "", sim->g, (PetscInt[]){2}, NULL));
   PetscOptionsEnd();
+  PetscCheck(!PetscIsInfOrNanReal(sim->g[0]) && !PetscIsInfOrNanReal(sim->g[1]), sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-gravity %g,%g must be finite", (double)sim->g[0], (double)sim->g[1]);
   if (sim->has_fluid) PetscCall(FluidOptions(sim));
   if (sim->has_solid) {
     PetscCall(SolidSetUp(sim)); /* before ISPH: the coupling decides the PPE's symmetry */
@@ -348,7 +349,8 @@ PetscErrorCode SimRun(Sim sim)
     PetscCall(IOProbes(sim));
     if (sim->out_interval > 0) PetscCall(IOSnapshot(sim));
   }
-  while (sim->t < sim->t_end - eps && sim->step < sim->max_steps) {
+  PetscCall(GuardCheckInitial(sim));
+  while (!g->state && sim->t < sim->t_end - eps && sim->step < sim->max_steps) {
     PetscCall(GuardStepBegin(sim));
     PetscCall(GuardStep(sim, Step));
     if (g->state) break; /* a fault inside the step: time does not advance */

@@ -31,6 +31,8 @@ PetscErrorCode GuardInstallSignals(void);
 PetscErrorCode GuardCreate(Guard *g);
 PetscErrorCode GuardDestroy(Guard *g);
 PetscErrorCode GuardSetFromOptions(Sim sim);
+/* Before the first step: a non-finite value in the initial (or restarted) state is a fault. */
+PetscErrorCode GuardCheckInitial(Sim sim);
 /* Start of a step: keep a copy of the state every GUARD_KEEP_EVERY steps. */
 PetscErrorCode GuardStepBegin(Sim sim);
 /* One step through step(); a PETSc error of kind PETSC_ERR_NOT_CONVERGED raised inside it (particle

@@ -210,7 +210,7 @@ PetscErrorCode CheckpointWrite(Sim sim, const SimState *s, const char *path)
   PetscCall(WriteInts(v, comm, "kind", s->n, s->kind));
   for (PetscInt f = 0; f < FIELD_COUNT; f++)
     if (P->f[f].on) PetscCall(WriteReals(v, comm, P->f[f].name, s->n, P->f[f].width, s->f[f]));
-  /* rank 0's: partition, probe rows, snapshot times, kept histories (empty ones are left out) */
+  /* rank 0's: partition, probe rows, snapshot times and sizes, kept histories (empty ones are left out) */
   if (!sim->rank) {
     PetscCall(PetscMalloc1(s->ncell, &owner));
     for (PetscInt c = 0; c < s->ncell; c++) owner[c] = s->owner[c];
@@ -218,7 +218,7 @@ PetscErrorCode CheckpointWrite(Sim sim, const SimState *s, const char *path)
   PetscCall(WriteInts(v, comm, "partition", sim->rank ? 0 : s->ncell, owner));
   PetscCall(PetscFree(owner));
   if (s->nrows) PetscCall(WriteReals(v, comm, "probe_table", sim->rank ? 0 : s->nrows * ncol, 1, sim->probe_rows));
-  if (s->nsnap) PetscCall(WriteReals(v, comm, "snapshot_times", sim->rank ? 0 : s->nsnap, 1, sim->snap_times));
+  if (s->nsnap) PetscCall(WriteReals(v, comm, "snapshot_table", sim->rank ? 0 : 2 * s->nsnap, 1, sim->snaps));
   for (PetscInt k = 0; k < sim->nkeep_series; k++) {
     const Series *se = sim->keep_series[k];
     PetscCall(PetscSNPrintf(name, sizeof(name), "kept_series_%d_n", (int)k));
@@ -325,10 +325,10 @@ static PetscErrorCode ReadRunState(Sim sim, PetscViewer v)
   sim->cap_probe_rows = sim->nprobe_rows + 64;
   PetscCall(PetscMalloc1(sim->cap_probe_rows * ncol, &sim->probe_rows));
   if (sim->nprobe_rows) PetscCall(ReadReals(v, sim->comm, "probe_table", sim->rank ? 0 : sim->nprobe_rows * ncol, 1, sim->probe_rows));
-  PetscCall(PetscFree(sim->snap_times));
+  PetscCall(PetscFree(sim->snaps));
   sim->snap_cap = sim->snap + 16;
-  PetscCall(PetscMalloc1(sim->snap_cap, &sim->snap_times));
-  if (sim->snap) PetscCall(ReadRootReals(sim, v, "snapshot_times", sim->snap, sim->snap_times));
+  PetscCall(PetscMalloc1(2 * sim->snap_cap, &sim->snaps));
+  if (sim->snap) PetscCall(ReadRootReals(sim, v, "snapshot_table", 2 * sim->snap, sim->snaps));
   for (PetscInt k = 0; k < sim->nkeep_series; k++) {
     Series    *se = sim->keep_series[k];
     PetscInt   n;

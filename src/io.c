@@ -150,7 +150,6 @@ static PetscErrorCode WriteXDMF(Sim sim)
 {
   char  path[PETSC_MAX_PATH_LEN], tmp[PETSC_MAX_PATH_LEN];
   FILE *f;
-  const PetscInt N = sim->nparticles;
 
   PetscFunctionBeginUser;
   int err = 0;
@@ -160,9 +159,10 @@ static PetscErrorCode WriteXDMF(Sim sim)
   if (!(f = fopen(tmp, "w"))) PetscFunctionReturn(RootCheck(sim, errno, "particles.xmf"));
   fprintf(f, "<?xml version=\"1.0\" ?>\n<Xdmf Version=\"2.0\">\n <Domain>\n  <Grid Name=\"particles\" GridType=\"Collection\" CollectionType=\"Temporal\">\n");
   for (PetscInt s = 0; s < sim->snap; s++) {
-    char h5[64];
+    char           h5[64];
+    const PetscInt N = (PetscInt)sim->snaps[2 * s + 1];
     PetscCall(PetscSNPrintf(h5, sizeof(h5), "particles_%05" PetscInt_FMT ".h5", s));
-    fprintf(f, "   <Grid Name=\"step%05d\" GridType=\"Uniform\">\n    <Time Value=\"%.9g\"/>\n", (int)s, (double)sim->snap_times[s]);
+    fprintf(f, "   <Grid Name=\"step%05d\" GridType=\"Uniform\">\n    <Time Value=\"%.9g\"/>\n", (int)s, (double)sim->snaps[2 * s]);
     fprintf(f, "    <Topology TopologyType=\"Polyvertex\" NumberOfElements=\"%d\"/>\n", (int)N);
     fprintf(f, "    <Geometry GeometryType=\"XY\">\n     <DataItem Dimensions=\"%d 2\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s:/x</DataItem>\n    </Geometry>\n", (int)N, h5);
     fprintf(f, "    <Attribute Name=\"id\" Center=\"Node\"><DataItem Dimensions=\"%d\" NumberType=\"Int\" Precision=\"%d\" Format=\"HDF\">%s:/id</DataItem></Attribute>\n", (int)N, (int)sizeof(PetscInt), h5);
@@ -195,12 +195,14 @@ PetscErrorCode IOSnapshot(Sim sim)
   if (sim->snap >= sim->snap_cap) {
     PetscReal *t;
     sim->snap_cap = 2 * sim->snap_cap + 16;
-    PetscCall(PetscMalloc1(sim->snap_cap, &t));
-    if (sim->snap) PetscCall(PetscArraycpy(t, sim->snap_times, sim->snap));
-    PetscCall(PetscFree(sim->snap_times));
-    sim->snap_times = t;
+    PetscCall(PetscMalloc1(2 * sim->snap_cap, &t));
+    if (sim->snap) PetscCall(PetscArraycpy(t, sim->snaps, 2 * sim->snap));
+    PetscCall(PetscFree(sim->snaps));
+    sim->snaps = t;
   }
-  sim->snap_times[sim->snap++] = sim->t;
+  sim->snaps[2 * sim->snap]     = sim->t;
+  sim->snaps[2 * sim->snap + 1] = (PetscReal)sim->nparticles;
+  sim->snap++;
   PetscCall(WriteXDMF(sim));
   while (sim->next_out <= sim->t + 1e-12 * sim->t_end) sim->next_out += sim->out_interval;
   PetscCall(PetscLogStagePop());

@@ -64,7 +64,7 @@ PetscErrorCode SimDestroy(Sim *sim)
   PetscCall(HaloDestroy(&s->halo));
   PetscCall(DecompDestroy(&s->decomp));
   PetscCall(ParticlesDestroy(&s->P));
-  PetscCall(PetscFree(s->snap_times));
+  PetscCall(PetscFree(s->snaps));
   PetscCall(GuardDestroy(&s->guard));
   PetscCall(PetscFree(*sim));
   PetscFunctionReturn(PETSC_SUCCESS);

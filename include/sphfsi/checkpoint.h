@@ -2,9 +2,9 @@
  * HDF5 file written collectively by all ranks under a temporary name and renamed when complete:
  * every owned particle with its id, kind and every field the scene allocates; the time loop's
  * counters (t, step, dt, next output/probe/checkpoint times, first adaptive steps); the cell
- * partition; every probe row so far, the snapshot times and the scene's kept histories and values
- * (SceneKeep*); solver and outflow counters.  Its snapshot datasets (id, kind, x, v, p, rho, m, h,
- * stress) have the names and shapes of a snapshot's, so ParaView reads it too.
+ * partition; every probe row so far; the snapshots' times and sizes; the scene's kept histories
+ * and values (SceneKeep*); solver and outflow counters.  Its snapshot datasets (id, kind, x, v, p,
+ * rho, m, h, stress) have the names and shapes of a snapshot's.
  *
  * A restart on the same number of ranks continues bit for bit: it restores the partition and
  * repeats the run's last rebuild at the positions it had then (FIELD_XREB: solids move after it),

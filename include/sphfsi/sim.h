@@ -54,7 +54,7 @@ struct _p_Sim {
   char      outdir[PETSC_MAX_PATH_LEN];
   PetscReal out_interval, next_out, probe_interval, next_probe;
   PetscInt  snap, progress_every;
-  PetscReal *snap_times;
+  PetscReal *snaps;     /* (t, particles) of each snapshot: the outflow removes particles */
   PetscInt   snap_cap;
   /* statistics */
   PetscLogDouble wall_start, wall_loop;

@@ -178,6 +178,10 @@ PetscErrorCode GuardCheckDt(Sim sim, PetscInt medium, PetscReal dt)
   if (!g->dt_first[medium]) g->dt_first[medium] = dt;
   floor = g->dt_min > 0 ? g->dt_min : 1e-3 * g->dt_first[medium];
   if (dt >= floor) PetscFunctionReturn(PETSC_SUCCESS);
+  if (PetscIsInfOrNanReal(dt)) { /* a state the end-of-step check passed cannot give this: a parameter */
+    PetscCall(GuardFault(sim, PETSC_TRUE, "the %s time step is not finite at step %" PetscInt_FMT ", t = %g", medium ? "solid" : "fluid", sim->step, (double)sim->t));
+    PetscFunctionReturn(PETSC_SUCCESS);
+  }
   /* where: the owned particle of this medium with the largest acceleration */
   for (PetscInt a = 0; a < P->n && acc; a++) {
     PetscReal an = PetscSqrtReal(acc[2 * a] * acc[2 * a] + acc[2 * a + 1] * acc[2 * a + 1]);

@@ -23,7 +23,7 @@ static int CheckOptionsFiles(int argc, char **argv)
 }
 
 /* PETSc's "Input string abc has no numeric value" does not say which option: name it, then let the
- * usual handler print the error. */
+ * usual handler print the error.  An error handler cannot raise errors: no PetscCall in it. */
 static PetscErrorCode NameTheOption(MPI_Comm comm, int line, const char *fun, const char *file, PetscErrorCode n, PetscErrorType p, const char *mess, void *ctx)
 {
   const char *forms[] = {"Input string %255s has no", "Unknown logical value: %255s"};

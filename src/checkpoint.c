@@ -196,6 +196,12 @@ PetscErrorCode CheckpointWrite(Sim sim, const SimState *s, const char *path)
   PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "cells", PETSC_INT, &s->ncell));
   PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "probe_columns", PETSC_INT, &ncol));
   PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "probe_rows", PETSC_INT, &s->nrows));
+  {
+    char *all;
+    PetscCall(PetscOptionsGetAll(NULL, &all));
+    PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "options", PETSC_STRING, all));
+    PetscCall(PetscFree(all));
+  }
   PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "kept_series", PETSC_INT, &sim->nkeep_series));
   PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "kept_values", PETSC_INT, &sim->nkeep_reals));
   for (PetscInt k = 0; k < STATE_NREAL; k++) PetscCall(PetscViewerHDF5WriteAttribute(v, "/", RealNames[k], PETSC_REAL, &s->r[k]));
@@ -305,6 +311,69 @@ static PetscErrorCode CheckHeader(Sim sim, PetscViewer v, PetscInt *ranks, Petsc
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* Options that may change at a restart (run control, output, diagnostics); a change of any other
+ * is reported. */
+static PetscBool RunControl(const char *name)
+{
+  const char *exact[]  = {"-restart", "-t_end", "-max_steps", "-max_wall_time", "-checkpoint_interval", "-output_dir", "-output_interval", "-probe_interval", "-progress_every", "-dt", "-cfl", "-dt_min", "-unused_options", "-refdata_dir", "-help"};
+  const char *prefix[] = {"-log", "-info", "-malloc", "-options_", "-ksp_monitor", "-ksp_view", "-ksp_converged"};
+  for (size_t k = 0; k < sizeof(exact) / sizeof(exact[0]); k++)
+    if (!strcmp(name, exact[k])) return PETSC_TRUE;
+  for (size_t k = 0; k < sizeof(prefix) / sizeof(prefix[0]); k++)
+    if (!strncmp(name, prefix[k], strlen(prefix[k]))) return PETSC_TRUE;
+  return PETSC_FALSE;
+}
+
+/* The value of option `name` in a PetscOptionsGetAll string ("" for a flag, NULL if absent). */
+static const char *ValueIn(char *all, const char *name, char *buf, size_t len)
+{
+  size_t n = strlen(name);
+  for (char *p = strstr(all, name); p; p = strstr(p + 1, name)) {
+    char *v;
+    if ((p != all && p[-1] != ' ') || (p[n] != ' ' && p[n] != 0)) continue;
+    v = p + n + (p[n] == ' ');
+    if (*v == '-' && !(v[1] >= '0' && v[1] <= '9') && v[1] != '.') return ""; /* a flag */
+    buf[0] = 0;
+    strncat(buf, v, PetscMin(len - 1, strcspn(v, " ")));
+    return buf;
+  }
+  return NULL;
+}
+
+/* Physics options that differ from the checkpointed run's: a warning (the run goes on, e.g. with a
+ * changed -alpha, but it is then no continuation of the same run). */
+static PetscErrorCode CompareOptions(Sim sim, PetscViewer v)
+{
+  char     *then = NULL, *now = NULL, diff[2048] = "", a[256], b[256];
+  PetscBool has;
+  PetscFunctionBeginUser;
+  PetscCall(PetscViewerHDF5HasAttribute(v, "/", "options", &has));
+  if (!has) PetscFunctionReturn(PETSC_SUCCESS);
+  PetscCall(PetscViewerHDF5ReadAttribute(v, "/", "options", PETSC_STRING, NULL, &then));
+  PetscCall(PetscOptionsGetAll(NULL, &now));
+  for (int pass = 0; pass < 2; pass++) { /* options of the checkpointed run, then this run's */
+    char *list = pass ? now : then;
+    for (char *p = list; (p = strchr(p, '-'));) {
+      char        name[256] = "";
+      const char *va, *vb;
+      size_t      n = strcspn(p, " ");
+      if ((p != list && p[-1] != ' ') || (p[1] >= '0' && p[1] <= '9') || p[1] == '.' || n >= sizeof(name)) { p++; continue; }
+      strncat(name, p, n);
+      p += n;
+      if (RunControl(name)) continue;
+      va = ValueIn(then, name, a, sizeof(a));
+      vb = ValueIn(now, name, b, sizeof(b));
+      if (pass && va) continue; /* compared in the first pass */
+      if (va && vb && !strcmp(va, vb)) continue;
+      PetscCall(PetscSNPrintf(diff + strlen(diff), sizeof(diff) - strlen(diff), " %s %s -> %s;", name, va ? (*va ? va : "(set)") : "(unset)", vb ? (*vb ? vb : "(set)") : "(unset)"));
+    }
+  }
+  if (diff[0]) PetscCall(PetscPrintf(sim->comm, "sphfsi: warning: options differ from the checkpointed run's:%s the run goes on with this run's values\n", diff));
+  PetscCall(PetscFree(then));
+  PetscCall(PetscFree(now));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 /* Scalars, probe rows, snapshot times and the scene's kept histories and values. */
 static PetscErrorCode ReadRunState(Sim sim, PetscViewer v)
 {
@@ -399,6 +468,7 @@ PetscErrorCode CheckpointRestart(Sim sim)
   PetscCheck(!err, sim->comm, PETSC_ERR_FILE_OPEN, "Cannot open the restart file -restart %s (%s)", sim->restart, strerror(err));
   PetscCall(PetscViewerHDF5Open(sim->comm, sim->restart, FILE_MODE_READ, &v));
   PetscCall(CheckHeader(sim, v, &ranks, &ncell));
+  PetscCall(CompareOptions(sim, v));
   PetscCall(ReadRunState(sim, v));
   PetscCheck(sim->t < sim->t_end * (1 - 1e-12), sim->comm, PETSC_ERR_USER_INPUT, "-restart %s is at t = %g, not before -t_end %g: give a later -t_end to continue the run", sim->restart, (double)sim->t, (double)sim->t_end);
   PetscCall(ReadParticles(sim, v, ranks));

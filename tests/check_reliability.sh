@@ -2,6 +2,7 @@
 # Reliability on a cluster (issue 8), through the program as a batch job runs it:
 #  - SIGTERM to one rank mid-run: all ranks stop after the step, write a checkpoint, say so, exit 3;
 #    the restart completes (exit 0) and its probes.csv equals the uninterrupted run's, byte for byte;
+#    a restart with another physics option (-alpha) says so;
 #  - -max_wall_time: the same by itself, stopping within the limit;
 #  - faults exit 4 with what, where and when, and a finite, restartable last good state:
 #    a -dt far too large (particle leaves the domain), the pressure solve not converging (ISPH,
@@ -39,6 +40,9 @@ grep -q '"status": "stopped"' "$OUT/sig/summary.json" || fail "SIGTERM: summary.
 tsig=$(grep -o "stopped at step [0-9]*, t = [0-9.e+-]*" "$OUT/sig.log")
 timeout 120 $MPI $RUN -t_end 1 -output_dir "$OUT/sig" -restart "$OUT/sig/checkpoint.h5" > "$OUT/sig_restart.log" 2>&1 || fail "restart after SIGTERM: status $?"
 cmp -s "$OUT/ref/probes.csv" "$OUT/sig/probes.csv" || fail "after SIGTERM and restart probes.csv differs from the uninterrupted run's"
+! grep -q "options differ" "$OUT/sig_restart.log" || fail "restart with the same options: $(grep -m1 'options differ' "$OUT/sig_restart.log")"
+timeout 60 $MPI $RUN -t_end 1 -alpha 0.3 -max_steps 1 -output_dir "$OUT/opts" -restart "$OUT/sig/checkpoint.h5" > "$OUT/opts.log" 2>&1 || fail "restart with another -alpha: status $?"
+grep -q "options differ from the checkpointed run's: -alpha (unset) -> 0.3;" "$OUT/opts.log" || fail "a changed -alpha at restart is not reported"
 
 # -max_wall_time by itself
 timeout 120 $MPI $RUN -t_end 5 -max_wall_time 2 -output_dir "$OUT/wall" > "$OUT/wall.log" 2>&1; rc=$?
@@ -71,4 +75,4 @@ timeout 60 $mpirun -n 1 -wdir "$here" "$here/bin/sphfsi" $args : -n 1 -wdir "$he
 [ $rc -ne 0 ] && [ $rc -lt 124 ] || fail "a rank failing at start: status $rc (124 = hung until the timeout)"
 grep -q "Rank 1 cannot see the output directory" "$OUT/start.log" || fail "a rank failing at start: no message"
 
-echo "reliability: SIGTERM ($tsig) and -max_wall_time stop with status 3 and a checkpoint, restarts equal the uninterrupted run (probes.csv); faults (dt too large, DIVERGED_ITS, dt floor) status 4 with a finite last good state; a rank failing at start stops all"
+echo "reliability: SIGTERM ($tsig) and -max_wall_time stop with status 3 and a checkpoint, restarts equal the uninterrupted run (probes.csv), a changed -alpha is reported; faults (dt too large, DIVERGED_ITS, dt floor) status 4 with a finite last good state; a rank failing at start stops all"

@@ -145,24 +145,26 @@ PetscErrorCode IOWriteParticles(Sim sim, const char *path)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-/* particles.xmf: a temporal collection of every snapshot so far (rewritten each time). */
-static PetscErrorCode WriteXDMF(Sim sim)
+/* OUTDIR/xmf: a temporal collection over n HDF5 files in OUTDIR (rewritten each time): the
+ * snapshots particles_NNNNN.h5 (one = NULL), or the one file `one`; tN: (t, particles) per file. */
+static PetscErrorCode WriteXDMF(Sim sim, const char *xmf, PetscInt n, const char *one, const PetscReal *tN)
 {
   char  path[PETSC_MAX_PATH_LEN], tmp[PETSC_MAX_PATH_LEN];
   FILE *f;
 
   PetscFunctionBeginUser;
   int err = 0;
-  if (sim->rank) PetscFunctionReturn(RootCheck(sim, 0, "particles.xmf"));
-  PetscCall(PetscSNPrintf(path, sizeof(path), "%s/particles.xmf", sim->outdir));
+  if (sim->rank) PetscFunctionReturn(RootCheck(sim, 0, xmf));
+  PetscCall(PetscSNPrintf(path, sizeof(path), "%s/%s", sim->outdir, xmf));
   PetscCall(PetscSNPrintf(tmp, sizeof(tmp), "%s.part", path));
-  if (!(f = fopen(tmp, "w"))) PetscFunctionReturn(RootCheck(sim, errno, "particles.xmf"));
+  if (!(f = fopen(tmp, "w"))) PetscFunctionReturn(RootCheck(sim, errno, xmf));
   fprintf(f, "<?xml version=\"1.0\" ?>\n<Xdmf Version=\"2.0\">\n <Domain>\n  <Grid Name=\"particles\" GridType=\"Collection\" CollectionType=\"Temporal\">\n");
-  for (PetscInt s = 0; s < sim->snap; s++) {
-    char           h5[64];
-    const PetscInt N = (PetscInt)sim->snaps[2 * s + 1];
-    PetscCall(PetscSNPrintf(h5, sizeof(h5), "particles_%05" PetscInt_FMT ".h5", s));
-    fprintf(f, "   <Grid Name=\"step%05d\" GridType=\"Uniform\">\n    <Time Value=\"%.9g\"/>\n", (int)s, (double)sim->snaps[2 * s]);
+  for (PetscInt s = 0; s < n; s++) {
+    char           h5[PETSC_MAX_PATH_LEN];
+    const PetscInt N = (PetscInt)tN[2 * s + 1];
+    if (one) PetscCall(PetscStrncpy(h5, one, sizeof(h5)));
+    else PetscCall(PetscSNPrintf(h5, sizeof(h5), "particles_%05" PetscInt_FMT ".h5", s));
+    fprintf(f, "   <Grid Name=\"step%05d\" GridType=\"Uniform\">\n    <Time Value=\"%.9g\"/>\n", (int)s, (double)tN[2 * s]);
     fprintf(f, "    <Topology TopologyType=\"Polyvertex\" NumberOfElements=\"%d\"/>\n", (int)N);
     fprintf(f, "    <Geometry GeometryType=\"XY\">\n     <DataItem Dimensions=\"%d 2\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s:/x</DataItem>\n    </Geometry>\n", (int)N, h5);
     fprintf(f, "    <Attribute Name=\"id\" Center=\"Node\"><DataItem Dimensions=\"%d\" NumberType=\"Int\" Precision=\"%d\" Format=\"HDF\">%s:/id</DataItem></Attribute>\n", (int)N, (int)sizeof(PetscInt), h5);
@@ -180,7 +182,15 @@ static PetscErrorCode WriteXDMF(Sim sim)
   fprintf(f, "  </Grid>\n </Domain>\n</Xdmf>\n");
   fclose(f);
   if (rename(tmp, path)) err = errno;
-  PetscCall(RootCheck(sim, err, "particles.xmf"));
+  PetscCall(RootCheck(sim, err, xmf));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode IOWriteXDMFOne(Sim sim, const char *xmf, const char *h5, PetscReal t, PetscInt N)
+{
+  const PetscReal tN[2] = {t, (PetscReal)N};
+  PetscFunctionBeginUser;
+  PetscCall(WriteXDMF(sim, xmf, 1, h5, tN));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -203,7 +213,7 @@ PetscErrorCode IOSnapshot(Sim sim)
   sim->snaps[2 * sim->snap]     = sim->t;
   sim->snaps[2 * sim->snap + 1] = (PetscReal)sim->nparticles;
   sim->snap++;
-  PetscCall(WriteXDMF(sim));
+  PetscCall(WriteXDMF(sim, "particles.xmf", sim->snap, NULL, sim->snaps));
   while (sim->next_out <= sim->t + 1e-12 * sim->t_end) sim->next_out += sim->out_interval;
   PetscCall(PetscLogStagePop());
   PetscFunctionReturn(PETSC_SUCCESS);

@@ -261,10 +261,11 @@ PetscErrorCode GuardStepEnd(Sim sim, PetscBool *progress)
   int            flags[4];
 
   PetscFunctionBeginUser;
-  PetscCall(PetscLogStagePush(sim->stage[STAGE_GUARD]));
   PetscCall(PetscTime(&now));
   g->step_max = PetscMax(g->step_max, now - g->step_start);
+  PetscCall(PetscLogStagePush(sim->stage[STAGE_GUARD])); /* the scan; the reduction's wait is the step's */
   FindNonFinite(sim->P, &bad, &field, &val);
+  PetscCall(PetscLogStagePop());
   flags[0] = bad >= 0;
   flags[1] = (int)caught_signal;
   flags[2] = g->max_wall > 0 && now - g->t0 + 2 * g->step_max >= g->max_wall; /* the next step might end past it */
@@ -279,7 +280,6 @@ PetscErrorCode GuardStepEnd(Sim sim, PetscBool *progress)
     g->state = GUARD_STOP;
     PetscCall(PetscSNPrintf(g->msg, sizeof(g->msg), "-max_wall_time %g s: %.1f s used, and a step takes up to %.2f s", (double)g->max_wall, (double)(now - g->t0), (double)g->step_max));
   }
-  PetscCall(PetscLogStagePop());
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

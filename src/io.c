@@ -10,27 +10,31 @@
 #include <errno.h>
 
 /* mkdir -p on rank 0; every rank learns whether it worked, and checks that it sees the directory
- * too (on a cluster the output must be on a file system that every node shares). */
+ * too (on a cluster the output must be on a file system that every node shares).  The probe file
+ * has a name of this run (no node can have it cached as absent), and a rank that does not see it
+ * looks again for a few seconds (network file systems cache directory entries). */
 static PetscErrorCode MakeDir(Sim sim, const char *dir)
 {
-  int  err = 0, blind = 0;
+  int  msg[2] = {0, (int)getpid()}, blind = 0; /* error, name of the probe */
   char probe[PETSC_MAX_PATH_LEN];
   PetscFunctionBeginUser;
-  PetscCall(PetscSNPrintf(probe, sizeof(probe), "%s/.write_test", dir));
+  PetscCallMPI(MPI_Bcast(&msg[1], 1, MPI_INT, 0, sim->comm));
+  PetscCall(PetscSNPrintf(probe, sizeof(probe), "%s/.sphfsi_probe_%d", dir, msg[1]));
   if (!sim->rank) {
     char path[PETSC_MAX_PATH_LEN];
     PetscCall(PetscStrncpy(path, dir, sizeof(path)));
     for (char *p = path + 1; *p; p++)
-      if (*p == '/') { *p = 0; if (mkdir(path, 0775) && errno != EEXIST) err = errno; *p = '/'; }
-    if (mkdir(path, 0775) && errno != EEXIST) err = errno;
-    if (!err) {
+      if (*p == '/') { *p = 0; if (mkdir(path, 0775) && errno != EEXIST) msg[0] = errno; *p = '/'; }
+    if (mkdir(path, 0775) && errno != EEXIST) msg[0] = errno;
+    if (!msg[0]) {
       FILE *f;
-      if (!(f = fopen(probe, "w"))) err = errno;
+      if (!(f = fopen(probe, "w"))) msg[0] = errno;
       else fclose(f);
     }
   }
-  PetscCallMPI(MPI_Bcast(&err, 1, MPI_INT, 0, sim->comm));
-  PetscCheck(!err, sim->comm, PETSC_ERR_FILE_OPEN, "Cannot create or write the output directory %s (%s): choose another -output_dir", dir, strerror(err));
+  PetscCallMPI(MPI_Bcast(msg, 1, MPI_INT, 0, sim->comm));
+  PetscCheck(!msg[0], sim->comm, PETSC_ERR_FILE_OPEN, "Cannot create or write the output directory %s (%s): choose another -output_dir", dir, strerror(msg[0]));
+  for (int k = 0; sim->rank && k < 20 && access(probe, R_OK); k++) PetscCall(PetscSleep(0.25));
   if (sim->rank && access(probe, R_OK)) blind = sim->rank;
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &blind, 1, MPI_INT, MPI_MAX, sim->comm));
   if (!sim->rank) remove(probe);

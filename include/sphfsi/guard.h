@@ -11,7 +11,7 @@
 
 #define SIM_EXIT_STOPPED 3 /* stopped by a signal or -max_wall_time; checkpoint written */
 #define SIM_EXIT_FAULT   4 /* numerical fault; last good state written */
-#define GUARD_KEEP_EVERY 10 /* steps between copies of the last good state (a copy costs ~ a tenth of a step) */
+#define GUARD_KEEP_EVERY 10 /* steps between copies of the last good state (a copy of every field: a fraction of a step) */
 
 typedef enum { GUARD_RUNNING = 0, GUARD_STOP, GUARD_FAULT } GuardState;
 

@@ -255,7 +255,7 @@ PetscErrorCode CheckpointSave(Sim sim)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-/* A real or integer read on rank 0 and broadcast (a history or a table on rank 0 only in the file). */
+/* n reals that rank 0 wrote (a history or a table), read on rank 0 and broadcast. */
 static PetscErrorCode ReadRootReals(Sim sim, PetscViewer v, const char *name, PetscInt n, PetscReal *out)
 {
   PetscFunctionBeginUser;
@@ -365,6 +365,7 @@ static PetscErrorCode CompareOptions(Sim sim, PetscViewer v)
       vb = ValueIn(now, name, b, sizeof(b));
       if (pass && va) continue; /* compared in the first pass */
       if (va && vb && !strcmp(va, vb)) continue;
+      if (strlen(diff) + strlen(name) + (va ? strlen(va) : 7) + (vb ? strlen(vb) : 7) + 16 >= sizeof(diff)) break; /* enough said */
       PetscCall(PetscSNPrintf(diff + strlen(diff), sizeof(diff) - strlen(diff), " %s %s -> %s;", name, va ? (*va ? va : "(set)") : "(unset)", vb ? (*vb ? vb : "(set)") : "(unset)"));
     }
   }

@@ -313,6 +313,13 @@ static PetscErrorCode Step(Sim sim)
     }
     PetscCall(SolidBeginSubsteps(sim));
     for (PetscInt k = 0; k < nsub; k++) PetscCall(SolidStep(sim, sim->dt / nsub));
+    if (sim->has_fluid) { /* the last half kick left the solids' ghosts a half kick behind their owners,
+                            and the next fluid step reads them (ISPH's predictor before any refresh) */
+      const FieldId vel[] = {FIELD_V};
+      PetscCall(PetscLogStagePush(sim->stage[STAGE_HALO]));
+      PetscCall(HaloRefresh(sim->halo, sim->P, 1, vel));
+      PetscCall(PetscLogStagePop());
+    }
     sim->solid->nsub_last = nsub;
     sim->solid->nsub_max  = PetscMax(sim->solid->nsub_max, nsub);
   }

@@ -195,10 +195,17 @@ PetscErrorCode DecompMigrate(Decomp d, Particles P)
     if (dest[a] != d->rank) { scnt[dest[a]]++; nsend++; }
   }
   PetscCall(MPIU_Allreduce(&nbad, &gbad, 1, MPIU_INT, MPI_SUM, d->comm));
-  if (gbad) {
+  if (gbad) { /* name one of them in the message every rank raises */
+    PetscReal mine[4] = {-1, 0, 0, 0}, *all;
+    PetscInt  r = 0;
+    for (PetscInt a = 0; a < P->n && nbad; a++)
+      if (GridCellOf(g, x + 2 * a) < 0) { mine[0] = P->id[a]; mine[1] = P->kind[a]; mine[2] = x[2 * a]; mine[3] = x[2 * a + 1]; break; }
+    PetscCall(PetscMalloc1(4 * size, &all));
+    PetscCallMPI(MPI_Allgather(mine, 4, MPIU_REAL, all, 4, MPIU_REAL, d->comm));
+    while (all[4 * r] < 0) r++;
     PetscCall(PetscFree(dest));
     PetscCall(PetscFree4(scnt, rcnt, sdisp, rdisp));
-    SETERRQ(d->comm, PETSC_ERR_NOT_CONVERGED, "%" PetscInt_FMT " particle(s) left the domain: the run is unstable (try a smaller -dt or -cfl) or the geometry lets particles escape", gbad);
+    SETERRQ(d->comm, PETSC_ERR_NOT_CONVERGED, "%" PetscInt_FMT " particle(s) left the domain [%g, %g] x [%g, %g], e.g. id %d (%s) at (%g, %g): the run is unstable (try a smaller -dt or -cfl) or the geometry lets particles escape", gbad, (double)g->lo[0], (double)g->hi[0], (double)g->lo[1], (double)g->hi[1], (int)all[4 * r], ParticleKindNames[(PetscInt)all[4 * r + 1]], (double)all[4 * r + 2], (double)all[4 * r + 3]);
   }
   if (size == 1) { PetscCall(PetscFree(dest)); PetscCall(PetscFree4(scnt, rcnt, sdisp, rdisp)); PetscFunctionReturn(PETSC_SUCCESS); }
   PetscCallMPI(MPI_Alltoall(scnt, 1, MPI_INT, rcnt, 1, MPI_INT, d->comm));

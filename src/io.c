@@ -3,31 +3,42 @@
 #include <sphfsi/wcsph.h>
 #include <sphfsi/isph.h>
 #include <sphfsi/solid.h>
+#include <sphfsi/guard.h>
+#include <unistd.h>
 #include <petscviewerhdf5.h>
 #include <sys/stat.h>
 #include <errno.h>
 
-/* mkdir -p on rank 0; every rank learns whether it worked */
+/* mkdir -p on rank 0; every rank learns whether it worked, and checks that it sees the directory
+ * too (on a cluster the output must be on a file system that every node shares).  The probe file
+ * has a name of this run (no node can have it cached as absent), and a rank that does not see it
+ * looks again for a few seconds (network file systems cache directory entries). */
 static PetscErrorCode MakeDir(Sim sim, const char *dir)
 {
-  int err = 0;
+  int  msg[2] = {0, (int)getpid()}, blind = 0; /* error, name of the probe */
+  char probe[PETSC_MAX_PATH_LEN];
   PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Bcast(&msg[1], 1, MPI_INT, 0, sim->comm));
+  PetscCall(PetscSNPrintf(probe, sizeof(probe), "%s/.sphfsi_probe_%d", dir, msg[1]));
   if (!sim->rank) {
     char path[PETSC_MAX_PATH_LEN];
     PetscCall(PetscStrncpy(path, dir, sizeof(path)));
     for (char *p = path + 1; *p; p++)
-      if (*p == '/') { *p = 0; if (mkdir(path, 0775) && errno != EEXIST) err = errno; *p = '/'; }
-    if (mkdir(path, 0775) && errno != EEXIST) err = errno;
-    if (!err) {
-      char probe[PETSC_MAX_PATH_LEN];
+      if (*p == '/') { *p = 0; if (mkdir(path, 0775) && errno != EEXIST) msg[0] = errno; *p = '/'; }
+    if (mkdir(path, 0775) && errno != EEXIST) msg[0] = errno;
+    if (!msg[0]) {
       FILE *f;
-      PetscCall(PetscSNPrintf(probe, sizeof(probe), "%s/.write_test", path));
-      if (!(f = fopen(probe, "w"))) err = errno;
-      else { fclose(f); remove(probe); }
+      if (!(f = fopen(probe, "w"))) msg[0] = errno;
+      else fclose(f);
     }
   }
-  PetscCallMPI(MPI_Bcast(&err, 1, MPI_INT, 0, sim->comm));
-  PetscCheck(!err, sim->comm, PETSC_ERR_FILE_OPEN, "Cannot create or write the output directory %s (%s): choose another -output_dir", dir, strerror(err));
+  PetscCallMPI(MPI_Bcast(msg, 1, MPI_INT, 0, sim->comm));
+  PetscCheck(!msg[0], sim->comm, PETSC_ERR_FILE_OPEN, "Cannot create or write the output directory %s (%s): choose another -output_dir", dir, strerror(msg[0]));
+  for (int k = 0; sim->rank && k < 20 && access(probe, R_OK); k++) PetscCall(PetscSleep(0.25));
+  if (sim->rank && access(probe, R_OK)) blind = sim->rank;
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &blind, 1, MPI_INT, MPI_MAX, sim->comm));
+  if (!sim->rank) remove(probe);
+  PetscCheck(!blind, sim->comm, PETSC_ERR_FILE_OPEN, "Rank %d cannot see the output directory %s that rank 0 created: on a cluster, -output_dir must be on a file system that every node shares (give an absolute path there)", blind, dir);
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -40,31 +51,54 @@ static PetscErrorCode RootCheck(Sim sim, int err, const char *what)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+PetscErrorCode IORenameOnRoot(Sim sim, const char *tmp, const char *path)
+{
+  PetscFunctionBeginUser;
+  PetscCall(RootCheck(sim, sim->rank || !rename(tmp, path) ? 0 : errno, path));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* probes.csv from every row so far, under a temporary name renamed when complete: the file is
+ * always whole, and after a restart it holds the rows up to the checkpoint and on from there. */
+PetscErrorCode IOWriteProbes(Sim sim)
+{
+  char     path[PETSC_MAX_PATH_LEN], tmp[PETSC_MAX_PATH_LEN];
+  FILE    *f;
+  int      err = 0;
+  PetscInt ncol = 1 + sim->scene->nprobes;
+  PetscFunctionBeginUser;
+  if (sim->rank) PetscFunctionReturn(RootCheck(sim, 0, "probes.csv"));
+  PetscCall(PetscSNPrintf(path, sizeof(path), "%s/probes.csv", sim->outdir));
+  PetscCall(PetscSNPrintf(tmp, sizeof(tmp), "%s.part", path));
+  if (!(f = fopen(tmp, "w"))) PetscFunctionReturn(RootCheck(sim, errno, "probes.csv"));
+  fprintf(f, "t");
+  for (PetscInt k = 0; k < sim->scene->nprobes; k++) fprintf(f, ",%s", sim->scene->probe_names[k]);
+  fprintf(f, "\n");
+  for (PetscInt r = 0; r < sim->nprobe_rows; r++) {
+    const PetscReal *row = sim->probe_rows + r * ncol;
+    for (PetscInt k = 0; k < ncol; k++) fprintf(f, k ? ",%.9g" : "%.9g", (double)row[k]);
+    fprintf(f, "\n");
+  }
+  if (ferror(f)) err = EIO;
+  if (fclose(f) && !err) err = errno;
+  if (!err && rename(tmp, path)) err = errno;
+  PetscCall(RootCheck(sim, err, "probes.csv"));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 PetscErrorCode IOSetUp(Sim sim)
 {
   PetscFunctionBeginUser;
-  int err = 0;
   PetscCall(MakeDir(sim, sim->outdir));
-  if (!sim->rank) {
-    char path[PETSC_MAX_PATH_LEN];
-    PetscCall(PetscSNPrintf(path, sizeof(path), "%s/probes.csv", sim->outdir));
-    if ((sim->probes = fopen(path, "w"))) {
-      fprintf(sim->probes, "t");
-      for (PetscInt k = 0; k < sim->scene->nprobes; k++) fprintf(sim->probes, ",%s", sim->scene->probe_names[k]);
-      fprintf(sim->probes, "\n");
-    } else err = errno;
-  }
-  PetscCall(RootCheck(sim, err, "probes.csv"));
-  sim->next_probe = 0;
-  sim->next_out   = 0;
+  PetscCall(IOWriteProbes(sim)); /* the header, or the restarted run's rows */
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
 PetscErrorCode IOFinalize(Sim sim)
 {
   PetscFunctionBeginUser;
-  if (sim->probes) fclose(sim->probes);
-  sim->probes = NULL;
+  PetscCall(PetscFree(sim->probe_rows));
+  sim->nprobe_rows = sim->cap_probe_rows = 0;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -111,28 +145,30 @@ PetscErrorCode IOWriteParticles(Sim sim, const char *path)
   PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "time", PETSC_REAL, &sim->t));
   PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "step", PETSC_INT, &sim->step));
   PetscCall(PetscViewerDestroy(&v));
-  PetscCall(RootCheck(sim, sim->rank || !rename(tmp, path) ? 0 : errno, path));
+  PetscCall(IORenameOnRoot(sim, tmp, path));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-/* particles.xmf: a temporal collection of every snapshot so far (rewritten each time). */
-static PetscErrorCode WriteXDMF(Sim sim)
+/* OUTDIR/xmf: a temporal collection over n HDF5 files in OUTDIR (rewritten each time): the
+ * snapshots particles_NNNNN.h5 (one = NULL), or the one file `one`; tN: (t, particles) per file. */
+static PetscErrorCode WriteXDMF(Sim sim, const char *xmf, PetscInt n, const char *one, const PetscReal *tN)
 {
   char  path[PETSC_MAX_PATH_LEN], tmp[PETSC_MAX_PATH_LEN];
   FILE *f;
-  const PetscInt N = sim->nparticles;
 
   PetscFunctionBeginUser;
   int err = 0;
-  if (sim->rank) PetscFunctionReturn(RootCheck(sim, 0, "particles.xmf"));
-  PetscCall(PetscSNPrintf(path, sizeof(path), "%s/particles.xmf", sim->outdir));
+  if (sim->rank) PetscFunctionReturn(RootCheck(sim, 0, xmf));
+  PetscCall(PetscSNPrintf(path, sizeof(path), "%s/%s", sim->outdir, xmf));
   PetscCall(PetscSNPrintf(tmp, sizeof(tmp), "%s.part", path));
-  if (!(f = fopen(tmp, "w"))) PetscFunctionReturn(RootCheck(sim, errno, "particles.xmf"));
+  if (!(f = fopen(tmp, "w"))) PetscFunctionReturn(RootCheck(sim, errno, xmf));
   fprintf(f, "<?xml version=\"1.0\" ?>\n<Xdmf Version=\"2.0\">\n <Domain>\n  <Grid Name=\"particles\" GridType=\"Collection\" CollectionType=\"Temporal\">\n");
-  for (PetscInt s = 0; s < sim->snap; s++) {
-    char h5[64];
-    PetscCall(PetscSNPrintf(h5, sizeof(h5), "particles_%05" PetscInt_FMT ".h5", s));
-    fprintf(f, "   <Grid Name=\"step%05d\" GridType=\"Uniform\">\n    <Time Value=\"%.9g\"/>\n", (int)s, (double)sim->snap_times[s]);
+  for (PetscInt s = 0; s < n; s++) {
+    char           h5[PETSC_MAX_PATH_LEN];
+    const PetscInt N = (PetscInt)tN[2 * s + 1];
+    if (one) PetscCall(PetscStrncpy(h5, one, sizeof(h5)));
+    else PetscCall(PetscSNPrintf(h5, sizeof(h5), "particles_%05" PetscInt_FMT ".h5", s));
+    fprintf(f, "   <Grid Name=\"step%05d\" GridType=\"Uniform\">\n    <Time Value=\"%.9g\"/>\n", (int)s, (double)tN[2 * s]);
     fprintf(f, "    <Topology TopologyType=\"Polyvertex\" NumberOfElements=\"%d\"/>\n", (int)N);
     fprintf(f, "    <Geometry GeometryType=\"XY\">\n     <DataItem Dimensions=\"%d 2\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s:/x</DataItem>\n    </Geometry>\n", (int)N, h5);
     fprintf(f, "    <Attribute Name=\"id\" Center=\"Node\"><DataItem Dimensions=\"%d\" NumberType=\"Int\" Precision=\"%d\" Format=\"HDF\">%s:/id</DataItem></Attribute>\n", (int)N, (int)sizeof(PetscInt), h5);
@@ -150,7 +186,15 @@ static PetscErrorCode WriteXDMF(Sim sim)
   fprintf(f, "  </Grid>\n </Domain>\n</Xdmf>\n");
   fclose(f);
   if (rename(tmp, path)) err = errno;
-  PetscCall(RootCheck(sim, err, "particles.xmf"));
+  PetscCall(RootCheck(sim, err, xmf));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode IOWriteXDMFOne(Sim sim, const char *xmf, const char *h5, PetscReal t, PetscInt N)
+{
+  const PetscReal tN[2] = {t, (PetscReal)N};
+  PetscFunctionBeginUser;
+  PetscCall(WriteXDMF(sim, xmf, 1, h5, tN));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -165,13 +209,15 @@ PetscErrorCode IOSnapshot(Sim sim)
   if (sim->snap >= sim->snap_cap) {
     PetscReal *t;
     sim->snap_cap = 2 * sim->snap_cap + 16;
-    PetscCall(PetscMalloc1(sim->snap_cap, &t));
-    if (sim->snap) PetscCall(PetscArraycpy(t, sim->snap_times, sim->snap));
-    PetscCall(PetscFree(sim->snap_times));
-    sim->snap_times = t;
+    PetscCall(PetscMalloc1(2 * sim->snap_cap, &t));
+    if (sim->snap) PetscCall(PetscArraycpy(t, sim->snaps, 2 * sim->snap));
+    PetscCall(PetscFree(sim->snaps));
+    sim->snaps = t;
   }
-  sim->snap_times[sim->snap++] = sim->t;
-  PetscCall(WriteXDMF(sim));
+  sim->snaps[2 * sim->snap]     = sim->t;
+  sim->snaps[2 * sim->snap + 1] = (PetscReal)sim->nparticles;
+  sim->snap++;
+  PetscCall(WriteXDMF(sim, "particles.xmf", sim->snap, NULL, sim->snaps));
   while (sim->next_out <= sim->t + 1e-12 * sim->t_end) sim->next_out += sim->out_interval;
   PetscCall(PetscLogStagePop());
   PetscFunctionReturn(PETSC_SUCCESS);
@@ -180,19 +226,49 @@ PetscErrorCode IOSnapshot(Sim sim)
 PetscErrorCode IOProbes(Sim sim)
 {
   PetscReal vals[SCENE_MAX_PROBES];
+  PetscInt  ncol = 1 + sim->scene->nprobes;
   PetscFunctionBeginUser;
   PetscCall(PetscLogStagePush(sim->stage[STAGE_OUTPUT]));
   PetscCall(sim->scene->probe(sim, vals));
-  if (sim->probes) {
-    fprintf(sim->probes, "%.9g", (double)sim->t);
-    for (PetscInt k = 0; k < sim->scene->nprobes; k++) fprintf(sim->probes, ",%.9g", (double)vals[k]);
-    fprintf(sim->probes, "\n");
-    fflush(sim->probes);
+  for (PetscInt k = 0; k < sim->scene->nprobes; k++) /* the state is finite (guard.h); a probe may still not be */
+    if (PetscIsInfOrNanReal(vals[k])) PetscCall(PetscPrintf(sim->comm, "sphfsi: warning: probe %s is %g at t = %g (written so to probes.csv)\n", sim->scene->probe_names[k], (double)vals[k], (double)sim->t));
+  if (!sim->rank) {
+    PetscReal *row;
+    if (sim->nprobe_rows == sim->cap_probe_rows) {
+      PetscReal *rows;
+      sim->cap_probe_rows = 2 * sim->cap_probe_rows + 256;
+      PetscCall(PetscMalloc1(sim->cap_probe_rows * ncol, &rows));
+      if (sim->nprobe_rows) PetscCall(PetscArraycpy(rows, sim->probe_rows, sim->nprobe_rows * ncol));
+      PetscCall(PetscFree(sim->probe_rows));
+      sim->probe_rows = rows;
+    }
+    row    = sim->probe_rows + sim->nprobe_rows * ncol;
+    row[0] = sim->t;
+    PetscCall(PetscArraycpy(row + 1, vals, sim->scene->nprobes));
   }
+  sim->nprobe_rows++;
   if (sim->probe_interval > 0)
     while (sim->next_probe <= sim->t + 1e-12 * sim->t_end) sim->next_probe += sim->probe_interval;
   PetscCall(PetscLogStagePop());
   PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* A JSON number, or null when it is not finite (JSON has no NaN). */
+static void JsonReal(FILE *f, const char *key, PetscReal v)
+{
+  if (PetscIsInfOrNanReal(v)) fprintf(f, "  \"%s\": null,\n", key);
+  else fprintf(f, "  \"%s\": %.9g,\n", key, (double)v);
+}
+
+static void JsonString(FILE *f, const char *key, const char *v)
+{
+  fprintf(f, "  \"%s\": \"", key);
+  for (const char *c = v; *c; c++) {
+    if (*c == '"' || *c == '\\') fputc('\\', f);
+    if (*c == '\n') fputs("\\n", f);
+    else if ((unsigned char)*c >= 32) fputc(*c, f);
+  }
+  fprintf(f, "\",\n");
 }
 
 PetscErrorCode IOSummary(Sim sim)
@@ -209,11 +285,18 @@ PetscErrorCode IOSummary(Sim sim)
   PetscCall(RootCheck(sim, err, "summary.json"));
   if (!sim->rank) {
     fprintf(f, "{\n  \"case\": \"%s\",\n  \"fluid\": \"%s\",\n  \"ranks\": %d,\n", sim->scene->name, sim->has_fluid ? FluidSchemes[sim->fluid] : "none", sim->size);
-    fprintf(f, "  \"particles\": %d,\n  \"steps\": %d,\n  \"t_end\": %.9g,\n  \"dx\": %.9g,\n", (int)sim->nparticles, (int)sim->step, (double)sim->t, (double)sim->dx);
-    fprintf(f, "  \"wall_s\": %.6g,\n  \"particle_steps_per_s\": %.6g,\n", (double)sim->wall_loop, (double)(sim->particle_steps / PetscMax(sim->wall_loop, 1e-9)));
+    JsonString(f, "status", !sim->guard->state ? "completed" : sim->guard->state == GUARD_STOP ? "stopped" : "fault");
+    if (sim->guard->state) JsonString(f, "message", sim->guard->msg);
+    if (sim->restart[0]) JsonString(f, "restarted_from", sim->restart);
+    fprintf(f, "  \"checkpoints\": %d,\n", (int)sim->nckpt);
+    fprintf(f, "  \"particles\": %d,\n  \"steps\": %d,\n", (int)sim->nparticles, (int)sim->step);
+    JsonReal(f, "t_end", sim->t);
+    JsonReal(f, "dx", sim->dx);
+    JsonReal(f, "wall_s", sim->wall_used + sim->wall_loop);
+    JsonReal(f, "particle_steps_per_s", sim->particle_steps / PetscMax(sim->wall_used + sim->wall_loop, 1e-9));
     if (sim->isph && sim->isph->ppe->nsolve) fprintf(f, "  \"ksp_its_mean\": %.4g,\n  \"ksp_its_max\": %d,\n", (double)(sim->isph->ppe->its_sum / sim->isph->ppe->nsolve), (int)sim->isph->ppe->its_max);
     else fprintf(f, "  \"ksp_its_mean\": null,\n  \"ksp_its_max\": null,\n");
-    fprintf(f, "  \"mass_rel_drift\": %.6g,\n", (double)(sim->mass0 > 0 ? (sim->mass - sim->mass0) / sim->mass0 : 0));
+    JsonReal(f, "mass_rel_drift", sim->mass0 > 0 ? (sim->mass - sim->mass0) / sim->mass0 : 0);
     if (sim->solid) fprintf(f, "  \"c0_solid\": %.6g,\n  \"solid_substeps_max\": %d,\n", (double)sim->sl.c0, (int)sim->solid->nsub_max);
     if (sim->has_fluid) fprintf(f, "  \"c0\": %.6g,\n", (double)sim->fl.c0);
     else fprintf(f, "  \"c0\": null,\n");

@@ -10,7 +10,7 @@ static const struct { const char *name; PetscInt width; } FieldInfo[FIELD_COUNT]
 [FIELD_FS] = {"free_surface", 1}, [FIELD_S] = {"stress", 3},
   [FIELD_NORMAL] = {"normal", 2},   [FIELD_ROW] = {"row", 1},
   [FIELD_KCORR] = {"kernel_correction", 4}, [FIELD_FVIEW] = {"fluid_view", 3},
-  [FIELD_AMEAN] = {"mean_acc", 2},
+  [FIELD_AMEAN] = {"mean_acc", 2},         [FIELD_XREB] = {"x_rebuild", 2},
 };
 
 PetscErrorCode ParticlesCreate(MPI_Comm comm, Particles *P)

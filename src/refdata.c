@@ -42,8 +42,8 @@ PetscErrorCode RefDataLoad(Sim sim, const char *file, const char *xcol, const ch
 
   PetscFunctionBeginUser;
   *found = PETSC_FALSE;
-  if (env) PetscCall(PetscStrncpy(dir, env, sizeof(dir)));
-  PetscCall(PetscOptionsGetString(NULL, NULL, "-refdata_dir", dir, sizeof(dir), NULL));
+  if (sim->refdata_dir[0]) PetscCall(PetscStrncpy(dir, sim->refdata_dir, sizeof(dir))); /* -refdata_dir */
+  else if (env) PetscCall(PetscStrncpy(dir, env, sizeof(dir)));
   if (sim->rank) PetscFunctionReturn(PETSC_SUCCESS);
   PetscCall(PetscSNPrintf(path, sizeof(path), "%s/%s", dir, file));
   if (!(f = fopen(path, "r"))) {

@@ -17,6 +17,22 @@ PetscErrorCode SceneFind(const char *name, const SceneOps **ops)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+PetscErrorCode SceneKeepSeries(Sim sim, Series *s)
+{
+  PetscFunctionBeginUser;
+  PetscCheck(sim->nkeep_series < SIM_MAX_KEEP, sim->comm, PETSC_ERR_PLIB, "More than %d kept series: raise SIM_MAX_KEEP", SIM_MAX_KEEP);
+  sim->keep_series[sim->nkeep_series++] = s;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode SceneKeepReal(Sim sim, PetscReal *r)
+{
+  PetscFunctionBeginUser;
+  PetscCheck(sim->nkeep_reals < SIM_MAX_KEEP, sim->comm, PETSC_ERR_PLIB, "More than %d kept values: raise SIM_MAX_KEEP", SIM_MAX_KEEP);
+  sim->keep_reals[sim->nkeep_reals++] = r;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 PetscErrorCode SceneListNames(char *buf, size_t len)
 {
   PetscFunctionBeginUser;

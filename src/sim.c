@@ -6,6 +6,8 @@
 #include <sphfsi/boundary.h>
 #include <sphfsi/io.h>
 #include <sphfsi/kernel.h>
+#include <sphfsi/checkpoint.h>
+#include <sphfsi/guard.h>
 
 const char *const FluidSchemes[] = {"wcsph", "isph", "FluidScheme", "FLUID_", NULL};
 
@@ -24,6 +26,7 @@ PetscErrorCode SimCreate(MPI_Comm comm, Sim *sim)
   s->dx             = -1;
   s->max_steps      = PETSC_MAX_INT;
   s->progress_every = 5;
+  s->ckpt_step      = -1;
   s->fl.rho0        = 1000.0;
   s->fl.mu          = 1.0e-3;
   s->fl.alpha       = 0.02;
@@ -35,12 +38,13 @@ PetscErrorCode SimCreate(MPI_Comm comm, Sim *sim)
   s->sl.eps         = 0.3;
   s->sl.n           = 4.0;
   {
-    const char *names[STAGE_COUNT] = {"Neighbours", "Halo+migrate", "Physics", "PPE assembly", "PPE solve", "Solid", "Output"};
+    const char *names[STAGE_COUNT] = {"Neighbours", "Halo+migrate", "Physics", "PPE assembly", "PPE solve", "Solid", "Output", "Guard"};
     for (PetscInt k = 0; k < STAGE_COUNT; k++) { /* a second Sim in one program shares the stages */
       PetscCall(PetscLogStageGetId(names[k], &s->stage[k]));
       if (s->stage[k] < 0) PetscCall(PetscLogStageRegister(names[k], &s->stage[k]));
     }
   }
+  PetscCall(GuardCreate(&s->guard));
   PetscCall(ParticlesCreate(comm, &s->P));
   PetscCall(DecompCreate(comm, &s->decomp));
   PetscCall(HaloCreate(comm, &s->halo));
@@ -60,7 +64,8 @@ PetscErrorCode SimDestroy(Sim *sim)
   PetscCall(HaloDestroy(&s->halo));
   PetscCall(DecompDestroy(&s->decomp));
   PetscCall(ParticlesDestroy(&s->P));
-  PetscCall(PetscFree(s->snap_times));
+  PetscCall(PetscFree(s->snaps));
+  PetscCall(GuardDestroy(&s->guard));
   PetscCall(PetscFree(*sim));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -86,6 +91,9 @@ PetscErrorCode SimSetFromOptions(Sim sim)
   PetscCall(PetscOptionsReal("-output_interval", "Snapshot interval in physical time (s); 0 = none", "", sim->out_interval, &sim->out_interval, NULL));
   PetscCall(PetscOptionsReal("-probe_interval", "probes.csv row interval in physical time (s); 0 = every step", "", sim->probe_interval, &sim->probe_interval, NULL));
   PetscCall(PetscOptionsInt("-progress_every", "Seconds of wall time between progress lines; 0 = none", "", sim->progress_every, &sim->progress_every, NULL));
+  PetscCall(PetscOptionsReal("-checkpoint_interval", "Checkpoint interval in physical time (s), OUTDIR/checkpoint.h5, also at the end; 0 = none (a stop by signal or -max_wall_time writes one anyway)", "", sim->ckpt_interval, &sim->ckpt_interval, NULL));
+  PetscCall(PetscOptionsString("-restart", "Continue the run of this checkpoint (OUTDIR/checkpoint.h5 or last_good.h5), with the options it was written with", "", sim->restart, sim->restart, sizeof(sim->restart), NULL));
+  PetscCall(PetscOptionsString("-refdata_dir", "Reference data for the errors in summary.json (default $SPHFSI_REFDATA, else ../shared/refdata)", "", sim->refdata_dir, sim->refdata_dir, sizeof(sim->refdata_dir), NULL));
   PetscOptionsEnd();
   sim->fluid = (FluidScheme)fluid;
   PetscCheck(set && name[0], sim->comm, PETSC_ERR_USER_INPUT, "No scene given: use -case NAME with NAME one of: %s (or -options_file cases/NAME.opts)", names);
@@ -98,6 +106,8 @@ PetscErrorCode SimSetFromOptions(Sim sim)
   PetscCheck(sim->out_interval >= 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-output_interval %g must be >= 0", (double)sim->out_interval);
   PetscCheck(sim->probe_interval >= 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-probe_interval %g must be >= 0", (double)sim->probe_interval);
   PetscCheck(sim->max_steps >= 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-max_steps must be >= 0");
+  PetscCheck(sim->ckpt_interval >= 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-checkpoint_interval %g must be >= 0 (s of physical time; 0 = none)", (double)sim->ckpt_interval);
+  PetscCall(GuardSetFromOptions(sim));
   if (!sim->outdir[0]) PetscCall(PetscSNPrintf(sim->outdir, sizeof(sim->outdir), "out/%s", sim->scene->name));
   PetscCall(DecompSetFromOptions(sim->decomp));
   PetscFunctionReturn(PETSC_SUCCESS);
@@ -162,24 +172,41 @@ static PetscErrorCode Outflow(Sim sim)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode SimRebuild(Sim sim)
+/* full: outflow and rebalancing first (every rebuild of a run; a restart repeats one without). */
+static PetscErrorCode Rebuild(Sim sim, PetscBool full)
 {
   PetscBool rep;
+  Particles P = sim->P;
   PetscFunctionBeginUser;
   PetscCall(PetscLogStagePush(sim->stage[STAGE_HALO]));
-  if (sim->outflow) PetscCall(Outflow(sim));
-  PetscCall(DecompMigrate(sim->decomp, sim->P));
-  PetscCall(DecompBalance(sim->decomp, sim->P, sim->step, &rep));
+  if (full && sim->outflow) PetscCall(Outflow(sim));
+  PetscCall(DecompMigrate(sim->decomp, P));
+  if (full) PetscCall(DecompBalance(sim->decomp, P, sim->step, &rep));
   PetscCall(PetscLogStagePop());
   PetscCall(PetscLogStagePush(sim->stage[STAGE_NEIGHBOUR]));
-  PetscCall(DecompSortOwned(sim->decomp, sim->P));
+  PetscCall(DecompSortOwned(sim->decomp, P));
   PetscCall(PetscLogStagePop());
   PetscCall(PetscLogStagePush(sim->stage[STAGE_HALO]));
-  PetscCall(HaloBuild(sim->halo, sim->decomp, sim->P));
+  PetscCall(HaloBuild(sim->halo, sim->decomp, P));
   PetscCall(PetscLogStagePop());
   PetscCall(PetscLogStagePush(sim->stage[STAGE_NEIGHBOUR]));
-  PetscCall(CellsBuild(sim->cells, sim->P));
+  PetscCall(CellsBuild(sim->cells, P));
+  if (full && P->f[FIELD_XREB].on) PetscCall(PetscArraycpy(PField(P, FIELD_XREB), PField(P, FIELD_X), 2 * P->n)); /* a restart has them */
   PetscCall(PetscLogStagePop());
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode SimRebuild(Sim sim)
+{
+  PetscFunctionBeginUser;
+  PetscCall(Rebuild(sim, PETSC_TRUE));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode SimRebuildKeepPartition(Sim sim)
+{
+  PetscFunctionBeginUser;
+  PetscCall(Rebuild(sim, PETSC_FALSE));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -193,8 +220,12 @@ PetscErrorCode SimSetUp(Sim sim)
   PetscOptionsBegin(sim->comm, NULL, "Body force", "Sim");
   PetscCall(PetscOptionsRealArray("-gravity", "Gravity vector gx,gy (m/s^2)", "", sim->g, (PetscInt[]){2}, NULL));
   PetscOptionsEnd();
+  PetscCheck(!PetscIsInfOrNanReal(sim->g[0]) && !PetscIsInfOrNanReal(sim->g[1]), sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-gravity %g,%g must be finite", (double)sim->g[0], (double)sim->g[1]);
   if (sim->has_fluid) PetscCall(FluidOptions(sim));
-  if (sim->has_solid) PetscCall(SolidSetUp(sim)); /* before ISPH: the coupling decides the PPE's symmetry */
+  if (sim->has_solid) {
+    PetscCall(SolidSetUp(sim)); /* before ISPH: the coupling decides the PPE's symmetry */
+    PetscCall(ParticlesEnableField(sim->P, FIELD_XREB, PETSC_FALSE)); /* solids move after a rebuild */
+  }
   if (sim->has_fluid) {
     if (sim->fluid == FLUID_ISPH) PetscCall(ISPHSetUp(sim));
     else PetscCall(WCSPHSetUp(sim));
@@ -218,27 +249,30 @@ PetscErrorCode SimSetUp(Sim sim)
   PetscCall(GridSetUp(&sim->grid, sim->dom_lo, sim->dom_hi, 2.0 * sim->h_max + (sim->solid ? sim->solid->skin * sim->dx : 0), sim->periodic));
   PetscCall(DecompSetUp(sim->decomp, &sim->grid));
   PetscCall(CellsCreate(&sim->grid, &sim->cells));
-  PetscCall(DecompMigrate(sim->decomp, sim->P)); /* wraps and checks every particle is inside */
-  PetscCall(DecompPartition(sim->decomp, sim->P));
-  PetscCall(SimRebuild(sim));
-  PetscCall(SimTotalMass(sim, &sim->mass0));
-  if (sim->has_fluid && sim->fluid == FLUID_ISPH) PetscCall(ISPHInitialize(sim));
-  else if (sim->has_fluid) PetscCall(WCSPHRates(sim));
-  if (sim->has_solid) {
-    PetscCall(SolidPrepare(sim));
-    PetscCall(SolidRates(sim));
+  sim->next_probe = sim->next_out = 0;
+  sim->next_ckpt  = sim->ckpt_interval;
+  if (sim->restart[0]) PetscCall(CheckpointRestart(sim)); /* the particles and state of the checkpoint */
+  else {
+    PetscCall(DecompMigrate(sim->decomp, sim->P)); /* wraps and checks every particle is inside */
+    PetscCall(DecompPartition(sim->decomp, sim->P));
+    PetscCall(SimRebuild(sim));
+    PetscCall(SimTotalMass(sim, &sim->mass0));
+    if (sim->has_fluid && sim->fluid == FLUID_ISPH) PetscCall(ISPHInitialize(sim));
+    else if (sim->has_fluid) PetscCall(WCSPHRates(sim));
+    if (sim->has_solid) {
+      PetscCall(SolidPrepare(sim));
+      PetscCall(SolidRates(sim));
+    }
   }
   PetscCall(IOSetUp(sim));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-static PetscErrorCode Progress(Sim sim, PetscLogDouble *last, PetscBool force)
+static PetscErrorCode Progress(Sim sim)
 {
   PetscLogDouble now;
   PetscFunctionBeginUser;
   PetscCall(PetscTime(&now));
-  if (!sim->progress_every || (!force && now - *last < sim->progress_every)) PetscFunctionReturn(PETSC_SUCCESS);
-  *last = now;
   {
     PetscReal el = now - sim->wall_start, left = sim->t > 0 ? el * (sim->t_end - sim->t) / sim->t : 0;
     char its[64] = "";
@@ -246,22 +280,6 @@ static PetscErrorCode Progress(Sim sim, PetscLogDouble *last, PetscBool force)
     if (sim->has_fluid && sim->solid) PetscCall(PetscSNPrintf(its + strlen(its), sizeof(its) - strlen(its), "  solid sub-steps %" PetscInt_FMT, sim->solid->nsub_last));
     PetscCall(PetscPrintf(sim->comm, "step %7" PetscInt_FMT "  t %.5e / %.4g s  dt %.3e  particles %" PetscInt_FMT "%s  wall %.1f s  left ~%.0f s\n", sim->step, (double)sim->t, (double)sim->t_end, (double)sim->dt, sim->nparticles, its, (double)el, (double)left));
   }
-  PetscFunctionReturn(PETSC_SUCCESS);
-}
-
-/* NaN/Inf in the state stops the run with the particle named. */
-static PetscErrorCode CheckFinite(Sim sim)
-{
-  Particles  P = sim->P;
-  PetscReal *x = PField(P, FIELD_X), *v = PField(P, FIELD_V), *rho = PField(P, FIELD_RHO);
-  PetscInt   bad = -1, gbad;
-  PetscFunctionBeginUser;
-  for (PetscInt a = 0; a < P->n && bad < 0; a++)
-    if (PetscIsInfOrNanReal(x[2 * a] + x[2 * a + 1] + v[2 * a] + v[2 * a + 1] + rho[a])) bad = a;
-  if (bad >= 0) PetscCall(PetscPrintf(PETSC_COMM_SELF, "[%d] particle id %" PetscInt_FMT " (%s) has a non-finite state at step %" PetscInt_FMT ", t = %g\n", sim->rank, P->id[bad], ParticleKindNames[P->kind[bad]], sim->step, (double)sim->t));
-  gbad = bad >= 0;
-  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &gbad, 1, MPIU_INT, MPI_MAX, sim->comm));
-  PetscCheck(!gbad, sim->comm, PETSC_ERR_NOT_CONVERGED, "NaN or Inf in the particle state at step %" PetscInt_FMT " (t = %g): the run is unstable; reduce -dt or -cfl", sim->step, (double)sim->t);
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -278,6 +296,10 @@ static PetscErrorCode Step(Sim sim)
   else if (sim->has_fluid) PetscCall(WCSPHTimeStep(sim, &sim->dt));
   else sim->dt = dts;
   if (sim->has_solid && !sim->solid->subcycle) sim->dt = PetscMin(sim->dt, dts); /* one step for all (the paper's way) */
+  /* a collapsing step is a blow-up: stop before the state changes */
+  if (sim->has_fluid && !sim->dt_fixed) PetscCall(GuardCheckDt(sim, 0, sim->dt));
+  if (dts < PETSC_MAX_REAL && !sim->guard->state) PetscCall(GuardCheckDt(sim, 1, dts));
+  if (sim->guard->state) PetscFunctionReturn(PETSC_SUCCESS);
   sim->dt = PetscMin(sim->dt, sim->t_end - sim->t);
   if (sim->has_fluid) {
     if (sim->isph) PetscCall(ISPHStep(sim));
@@ -291,16 +313,36 @@ static PetscErrorCode Step(Sim sim)
     }
     PetscCall(SolidBeginSubsteps(sim));
     for (PetscInt k = 0; k < nsub; k++) PetscCall(SolidStep(sim, sim->dt / nsub));
+    if (sim->has_fluid) { /* the last half kick left the solids' ghosts a half kick behind their owners,
+                            and the next fluid step reads them (ISPH's predictor before any refresh) */
+      const FieldId vel[] = {FIELD_V};
+      PetscCall(PetscLogStagePush(sim->stage[STAGE_HALO]));
+      PetscCall(HaloRefresh(sim->halo, sim->P, 1, vel));
+      PetscCall(PetscLogStagePop());
+    }
     sim->solid->nsub_last = nsub;
     sim->solid->nsub_max  = PetscMax(sim->solid->nsub_max, nsub);
   }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* A checkpoint unless the last one holds this step already. */
+static PetscErrorCode Checkpoint(Sim sim)
+{
+  PetscFunctionBeginUser;
+  if (sim->ckpt_step == sim->step) PetscFunctionReturn(PETSC_SUCCESS);
+  PetscCall(CheckpointSave(sim));
+  sim->ckpt_step = sim->step;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 PetscErrorCode SimRun(Sim sim)
 {
-  PetscLogDouble last, t1;
-  const PetscReal eps = 1e-12 * sim->t_end;
+  PetscLogDouble  last, t1;
+  const PetscReal eps = 1e-12 * sim->t_end, ps0 = sim->particle_steps;
+  const PetscInt  step0 = sim->step;
+  Guard           g = sim->guard;
+  PetscBool       shown;
 
   PetscFunctionBeginUser;
   PetscCall(PetscViewerASCIIPrintf(PETSC_VIEWER_STDOUT_(sim->comm), "sphfsi: case %s, fluid %s, %d rank(s), dx %g, t_end %g, c0 %g\n", sim->scene->name, sim->has_fluid ? FluidSchemes[sim->fluid] : "none", sim->size, (double)sim->dx, (double)sim->t_end, (double)(sim->has_fluid ? sim->fl.c0 : sim->sl.c0)));
@@ -310,23 +352,46 @@ PetscErrorCode SimRun(Sim sim)
   if (sim->solid) PetscCall(SolidView(sim, PETSC_VIEWER_STDOUT_(sim->comm)));
   PetscCall(PetscTime(&sim->wall_start));
   last = sim->wall_start;
-  PetscCall(IOProbes(sim));
-  if (sim->out_interval > 0) PetscCall(IOSnapshot(sim));
-  while (sim->t < sim->t_end - eps && sim->step < sim->max_steps) {
-    PetscCall(Step(sim));
+  if (!sim->restart[0]) { /* a restart has the first probe row and snapshot already */
+    PetscCall(IOProbes(sim));
+    if (sim->out_interval > 0) PetscCall(IOSnapshot(sim));
+  }
+  PetscCall(GuardCheckInitial(sim));
+  while (!g->state && sim->t < sim->t_end - eps && sim->step < sim->max_steps) {
+    PetscCall(GuardStepBegin(sim));
+    PetscCall(GuardStep(sim, Step));
+    if (g->state) break; /* a fault inside the step: time does not advance */
     sim->t += sim->dt;
     sim->step++;
     sim->particle_steps += (PetscReal)sim->nparticles;
-    PetscCall(CheckFinite(sim));
+    PetscCall(PetscTime(&t1));
+    shown = (PetscBool)(sim->progress_every && t1 - last >= sim->progress_every);
+    PetscCall(GuardStepEnd(sim, &shown)); /* NaN/Inf, signals, wall time, progress: agreed */
+    if (g->state == GUARD_FAULT) break;
     if (sim->t >= sim->next_probe - eps) PetscCall(IOProbes(sim));
-    if (sim->out_interval > 0 && sim->t >= sim->next_out - eps) PetscCall(IOSnapshot(sim));
-    PetscCall(Progress(sim, &last, PETSC_FALSE));
+    if (sim->out_interval > 0 && sim->t >= sim->next_out - eps) {
+      PetscCall(IOSnapshot(sim));
+      PetscCall(IOWriteProbes(sim));
+    }
+    if (sim->ckpt_interval > 0 && sim->t >= sim->next_ckpt - eps) {
+      PetscCall(Checkpoint(sim));
+      PetscCall(IOWriteProbes(sim));
+    }
+    if (g->state == GUARD_STOP) break;
+    if (shown) {
+      last = t1;
+      PetscCall(Progress(sim));
+      PetscCall(IOWriteProbes(sim)); /* probes.csv is at most a progress interval old */
+    }
   }
   PetscCall(PetscTime(&t1));
   sim->wall_loop = t1 - sim->wall_start;
-  PetscCall(Progress(sim, &last, PETSC_TRUE));
+  if (sim->progress_every) PetscCall(Progress(sim));
+  if (g->state == GUARD_STOP || (!g->state && sim->ckpt_interval > 0)) PetscCall(Checkpoint(sim));
+  PetscCall(GuardFinish(sim));
+  PetscCall(IOWriteProbes(sim));
   PetscCall(SimTotalMass(sim, &sim->mass));
   PetscCall(IOSummary(sim));
-  PetscCall(PetscPrintf(sim->comm, "sphfsi: %" PetscInt_FMT " steps in %.2f s (%.3g particle-steps/s); output in %s\n", sim->step, (double)sim->wall_loop, (double)(sim->particle_steps / PetscMax(sim->wall_loop, 1e-9)), sim->outdir));
+  PetscCall(PetscPrintf(sim->comm, "sphfsi: %" PetscInt_FMT " steps in %.2f s (%.3g particle-steps/s); output in %s\n", sim->step - step0, (double)sim->wall_loop, (double)((sim->particle_steps - ps0) / PetscMax(sim->wall_loop, 1e-9)), sim->outdir));
   PetscFunctionReturn(PETSC_SUCCESS);
 }

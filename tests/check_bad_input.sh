@@ -40,5 +40,22 @@ check "not both"              -case oscillating_plate -plate_ny 8 -dx 0.002
 check "-plate_vf"             -case oscillating_plate -plate_vf 0.5
 check "-clamp_columns"        -case oscillating_plate -clamp_columns 1
 check "-block_motion"         -case solid_block -block_motion spin
+# issue 8: restart, malformed values, conflicts, misspelt options
+timeout 60 $MPI bin/sphfsi -case hydrostatic -dx 0.01 -max_steps 2 -checkpoint_interval 1 -output_interval 1 -progress_every 0 -output_dir "$OUT/ckpt" > "$OUT/ckpt.log" 2>&1 || { echo "could not write the checkpoint the restart cases need"; exit 1; }
+check "Cannot open the restart file"   -case hydrostatic -dx 0.01 -restart "$OUT/no_such_checkpoint.h5"
+check "is not an HDF5 file"            -case hydrostatic -dx 0.01 -restart "$OUT/ckpt.log"
+check "not an sphfsi checkpoint"       -case hydrostatic -dx 0.01 -restart "$OUT/ckpt/particles_00000.h5"
+check "checkpoint of scene hydrostatic, not of -case dam_break" -case dam_break -restart "$OUT/ckpt/checkpoint.h5"
+check "keeps the resolution"           -case hydrostatic -dx 0.005 -restart "$OUT/ckpt/checkpoint.h5"
+check "restart with -fluid wcsph"      -case hydrostatic -dx 0.01 -fluid isph -restart "$OUT/ckpt/checkpoint.h5"
+check "give a later -t_end"            -case hydrostatic -dx 0.01 -t_end 1e-6 -restart "$OUT/ckpt/checkpoint.h5"
+check "option -dx has the value 'abc', which is not a number" -case dam_break -dx abc
+check "option -max_steps has the value '1.5', which is not an integer" -case dam_break -max_steps 1.5
+check "-dt_min 1e-05 and -dt 0.0001 conflict" -case dam_break -dt 1e-4 -dt_min 1e-5
+check "-checkpoint_interval -1. must be >= 0" -case dam_break -checkpoint_interval -1
+check "-max_wall_time -5. must be >= 0" -case dam_break -max_wall_time -5
+check "-dt_min -1. must be >= 0"      -case dam_break -dt_min -1
+check "not used by this run: -t_ned 1" -case dam_break -t_ned 1
+check "-gravity 0.,nan. must be finite" -case dam_break -gravity 0,nan
 echo "bad_input: $((n - bad)) of $n bad inputs rejected with a clear message"
 [ $bad -eq 0 ]

@@ -31,6 +31,8 @@ typedef enum {
   FIELD_KCORR, /* solid: kernel-gradient correction matrix (4, row-major) */
   FIELD_FVIEW, /* solid next to fluid: the fluid's view of it (3: pressure, density, mass; boundary.h) */
   FIELD_AMEAN, /* solid with ISPH: mean acceleration over the last fluid step (2; ppe.c) */
+  FIELD_XREB,  /* scenes with solids: position at the last rebuild (2); solids move after it, and a
+                  restart rebuilds the neighbour lists there to continue exactly (checkpoint.h) */
   FIELD_COUNT
 } FieldId;
 

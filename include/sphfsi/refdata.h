@@ -3,10 +3,10 @@
 #pragma once
 #include <sphfsi/sim.h>
 
-typedef struct {
+struct _n_Series {
   PetscInt   n, cap;
   PetscReal *t, *y;
-} Series;
+};
 
 PetscErrorCode SeriesAppend(Series *s, PetscReal t, PetscReal y);
 PetscErrorCode SeriesDestroy(Series *s);

@@ -26,6 +26,10 @@ struct _SceneOps {
 };
 
 PetscErrorCode SceneFind(const char *name, const SceneOps **ops);
+/* In the scene's create: state of the scene that changes during a run, which checkpoints save and a
+ * restart restores (in the order registered): a probe history, or one running value. */
+PetscErrorCode SceneKeepSeries(Sim sim, Series *s);
+PetscErrorCode SceneKeepReal(Sim sim, PetscReal *r);
 PetscErrorCode SceneListNames(char *buf, size_t len);
 
 /* Helpers for scenes */

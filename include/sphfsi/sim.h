@@ -12,12 +12,15 @@
 typedef enum { FLUID_WCSPH = 0, FLUID_ISPH } FluidScheme;
 extern const char *const FluidSchemes[];
 
-typedef enum { STAGE_NEIGHBOUR, STAGE_HALO, STAGE_PHYSICS, STAGE_PPE_ASSEMBLY, STAGE_PPE_SOLVE, STAGE_SOLID, STAGE_OUTPUT, STAGE_COUNT } SimStage;
+typedef enum { STAGE_NEIGHBOUR, STAGE_HALO, STAGE_PHYSICS, STAGE_PPE_ASSEMBLY, STAGE_PPE_SOLVE, STAGE_SOLID, STAGE_OUTPUT, STAGE_GUARD, STAGE_COUNT } SimStage;
 
 typedef struct _p_Sim *Sim;
 typedef struct _SceneOps SceneOps;
 typedef struct _p_ISPH *ISPH;
 typedef struct _p_Solid *Solid;
+typedef struct _p_Guard *Guard;     /* guard.h */
+typedef struct _n_Series Series;    /* refdata.h */
+#define SIM_MAX_KEEP 8              /* scene histories and scalars a checkpoint carries (SceneKeep*) */
 
 struct _p_Sim {
   MPI_Comm    comm;
@@ -51,8 +54,7 @@ struct _p_Sim {
   char      outdir[PETSC_MAX_PATH_LEN];
   PetscReal out_interval, next_out, probe_interval, next_probe;
   PetscInt  snap, progress_every;
-  FILE     *probes;
-  PetscReal *snap_times;
+  PetscReal *snaps;     /* (t, particles) of each snapshot: the outflow removes particles */
   PetscInt   snap_cap;
   /* statistics */
   PetscLogDouble wall_start, wall_loop;
@@ -60,6 +62,21 @@ struct _p_Sim {
   PetscInt       nparticles;
   PetscLogStage  stage[STAGE_COUNT];
   PetscInt       next_id; /* global ids handed out by the scene */
+  PetscReal      wall_used; /* time-loop wall time of the runs before a restart */
+  /* checkpoint, restart, early stops and faults (checkpoint.h, guard.h) */
+  char      restart[PETSC_MAX_PATH_LEN]; /* -restart FILE; empty: a fresh start */
+  char      refdata_dir[PETSC_MAX_PATH_LEN];
+  PetscReal ckpt_interval, next_ckpt;    /* physical time between checkpoints; 0 = none */
+  PetscInt  nckpt, ckpt_step;            /* checkpoints written by this run, step of the last */
+  Guard     guard;
+  PetscInt  exit_status;                 /* 0, or SIM_EXIT_STOPPED / SIM_EXIT_FAULT (guard.h) */
+  /* every probe row so far (t and the scene's columns; rank 0), rewritten to probes.csv */
+  PetscReal *probe_rows;
+  PetscInt   nprobe_rows, cap_probe_rows;
+  /* scene state that changes during a run (probe histories, running extremes): SceneKeep* */
+  Series    *keep_series[SIM_MAX_KEEP];
+  PetscReal *keep_reals[SIM_MAX_KEEP];
+  PetscInt   nkeep_series, nkeep_reals;
 };
 
 PetscErrorCode SimCreate(MPI_Comm comm, Sim *sim);
@@ -69,6 +86,8 @@ PetscErrorCode SimRun(Sim sim);
 PetscErrorCode SimDestroy(Sim *sim);
 /* Migrate, rebalance, sort, build ghosts, cells and neighbour lists: after particles moved. */
 PetscErrorCode SimRebuild(Sim sim);
+/* The rebuild without outflow or rebalancing (a restart repeats the last rebuild of the run). */
+PetscErrorCode SimRebuildKeepPartition(Sim sim);
 /* Step limit of one particle of an explicit (weakly compressible) medium of sound speed c:
  * CFL  cfl h / (c + |v|)  and the force limit  0.25 sqrt(h / |a|). */
 static inline PetscReal SimAcousticStepLimit(PetscReal cfl, PetscReal h, PetscReal c, const PetscReal v[2], const PetscReal acc[2])

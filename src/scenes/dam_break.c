@@ -14,6 +14,8 @@ static PetscErrorCode Create(Sim sim)
   PetscFunctionBeginUser;
   PetscCall(PetscNew(&c));
   sim->scene_ctx = c;
+  PetscCall(SceneKeepSeries(sim, &c->front));
+  PetscCall(SceneKeepSeries(sim, &c->height));
   c->a = 0.05715; c->H = -1; c->L = -1; c->top = -1; c->rows = 3;
   PetscOptionsBegin(sim->comm, NULL, "Scene dam_break: collapse of a water column", "");
   PetscCall(PetscOptionsReal("-column_width", "Column width a (m)", "", c->a, &c->a, NULL));

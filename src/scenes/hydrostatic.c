@@ -14,6 +14,7 @@ static PetscErrorCode Create(Sim sim)
   PetscFunctionBeginUser;
   PetscCall(PetscNew(&c));
   sim->scene_ctx = c;
+  PetscCall(SceneKeepSeries(sim, &c->pb));
   c->W = 0.1; c->H = 0.1; c->rows = 3;
   PetscOptionsBegin(sim->comm, NULL, "Scene hydrostatic: water at rest in a tank", "");
   PetscCall(PetscOptionsReal("-tank_width", "Tank (and water) width (m)", "", c->W, &c->W, NULL));

@@ -21,6 +21,9 @@ static PetscErrorCode Create(Sim sim)
   PetscFunctionBeginUser;
   PetscCall(PetscNew(&c));
   sim->scene_ctx = c;
+  PetscCall(SceneKeepSeries(sim, &c->tip));
+  PetscCall(SceneKeepReal(sim, &c->e0));
+  PetscCall(SceneKeepReal(sim, &c->de_max));
   c->L = 0.2; c->H = 0.02; c->vf = 0.01; c->kL = 1.875104069; c->ny = 10; c->nclamp = 4;
   sim->sl.rho0 = 1000; sim->sl.K = 3.25e6; sim->sl.G = 7.15e5; /* Gray et al. 2001; G = 7.15e5 (the paper's 7.15e6 is a misprint) */
   PetscOptionsBegin(sim->comm, NULL, "Scene oscillating_plate: clamped elastic plate in its first bending mode (Gray et al. 2001)", "");

@@ -21,6 +21,10 @@ static PetscErrorCode Create(Sim sim)
   PetscFunctionBeginUser;
   PetscCall(PetscNew(&c));
   sim->scene_ctx = c;
+  PetscCall(SceneKeepSeries(sim, &c->uc_ref));
+  PetscCall(SceneKeepReal(sim, &c->uc_last));
+  PetscCall(SceneKeepReal(sim, &c->l2_last));
+  PetscCall(SceneKeepReal(sim, &c->t_last));
   c->Hc = 1e-3; c->Re = 0.0125; c->nu = 1e-6;
   c->rows = (PetscInt)PetscCeilReal(2 * SPH_H_FACTOR); /* wall rows covering the kernel support 2h */
   PetscOptionsBegin(sim->comm, NULL, "Scene poiseuille: body-force driven channel flow from rest (Morris et al. 1997); nu = 1e-6 m^2/s (mu = rho0 nu), F = 8 nu^2 Re / Hc^3 (Re 0.0125, Hc 1 mm: F = 1e-4 m/s^2, u_max = 1.25e-5 m/s)", "");

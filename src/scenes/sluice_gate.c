@@ -50,6 +50,10 @@ static PetscErrorCode Create(Sim sim)
   PetscFunctionBeginUser;
   PetscCall(PetscNew(&c));
   sim->scene_ctx = c;
+  PetscCall(SceneKeepSeries(sim, &c->q));
+  PetscCall(SceneKeepSeries(sim, &c->hup));
+  PetscCall(SceneKeepSeries(sim, &c->hdown));
+  PetscCall(SceneKeepSeries(sim, &c->vup));
   c->W = 0.1; c->H = 0.14; c->a = 0.03; c->Lc = -1; c->top = -1; c->rows = 3; c->gate_rows = 4; c->bevel = 45;
   c->win[0] = -1; c->win[1] = -1;
   PetscOptionsBegin(sim->comm, NULL, "Scene sluice_gate: a reservoir drains under a vertical gate", "");

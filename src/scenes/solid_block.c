@@ -28,6 +28,8 @@ static PetscErrorCode Create(Sim sim)
   PetscFunctionBeginUser;
   PetscCall(PetscNew(&c));
   sim->scene_ctx = c;
+  PetscCall(SceneKeepReal(sim, &c->s_err_max));
+  PetscCall(SceneKeepReal(sim, &c->d_min_min));
   c->n = 20; c->size = 0.02; c->rate = -1; c->s0 = 1e4; c->jitter = 0;
   sim->sl.rho0 = 1000; sim->sl.K = 3.25e6; sim->sl.G = 7.15e5;
   PetscOptionsBegin(sim->comm, NULL, "Scene solid_block: free elastic block (objectivity and tensile-instability checks)", "");

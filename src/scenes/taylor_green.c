@@ -20,6 +20,9 @@ static PetscErrorCode Create(Sim sim)
   PetscFunctionBeginUser;
   PetscCall(PetscNew(&c));
   sim->scene_ctx = c;
+  PetscCall(SceneKeepReal(sim, &c->e_last));
+  PetscCall(SceneKeepReal(sim, &c->l2_last));
+  PetscCall(SceneKeepReal(sim, &c->t_last));
   c->L = 1.0; c->U = 1.0; c->Re = 100;
   PetscOptionsBegin(sim->comm, NULL, "Scene taylor_green: decaying vortices in a periodic unit square (L = 1 m, U = 1 m/s)", "");
   PetscCall(PetscOptionsReal("-re", "Reynolds number U L / nu; sets mu = rho0 U L / Re (a later -mu overrides)", "", c->Re, &c->Re, NULL));

@@ -22,6 +22,7 @@ static PetscErrorCode Create(Sim sim)
   PetscFunctionBeginUser;
   PetscCall(PetscNew(&c));
   sim->scene_ctx = c;
+  PetscCall(SceneKeepSeries(sim, &c->ratio));
   c->W = 0.05; c->H = 0.05; c->T = 0.01; c->nclamp = 2;
   sim->sl.rho0 = 1100; sim->sl.K = 2.0e7; sim->sl.G = 4.27e6; /* the elastic gate's rubber */
   PetscOptionsBegin(sim->comm, NULL, "Scene water_on_plate: water at rest on a clamped elastic plate", "");

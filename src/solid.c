@@ -31,6 +31,8 @@ PetscErrorCode SolidSetUp(Sim sim)
   PetscCall(PetscOptionsReal("-solid_art_stress_n", "Exponent n of f = W_ab / W(dx, h) in the artificial stress, Eq. 23", "", m->n, &m->n, NULL));
   PetscCall(PetscOptionsEList("-solid_gradient", "Velocity gradient of the strain rate: standard (Eqs. 35-38) or corrected (Bonet-Lok, exact for linear fields)", "", SolidGradients, 2, SolidGradients[grad], &grad, NULL));
   if (fluid) PetscCall(PetscOptionsBool("-solid_subcycle", "Multi-rate: sub-cycle the solid with its own step inside each fluid step (off: one step, the smaller, for both)", "", s->subcycle, &s->subcycle, NULL));
+  s->cfl = sim->cfl;
+  PetscCall(PetscOptionsReal("-solid_cfl", "Courant number of the solid's step, cfl h / (c0 + |v|) (default: -cfl)", "", s->cfl, &s->cfl, NULL));
   PetscCall(PetscOptionsReal("-solid_skin", "Neighbour-list skin of the solid sub-steps, in particle spacings", "", s->skin, &s->skin, NULL));
   s->implicit = (PetscBool)(fluid && sim->fluid == FLUID_ISPH);
   if (fluid && sim->fluid == FLUID_ISPH) PetscCall(PetscOptionsBool("-fsi_implicit", "ISPH + solid: the solid rows of the pressure equation answer the solid's acceleration under that pressure (implicit interface; off = the solid seen as a wall at rest during the solve, unstable for light solids)", "", s->implicit, &s->implicit, NULL));
@@ -38,6 +40,7 @@ PetscErrorCode SolidSetUp(Sim sim)
   PetscOptionsEnd();
   s->gradient = (SolidGradient)grad;
   PetscCheck(s->skin >= 0 && s->skin <= 2, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-solid_skin %g must be in [0, 2] particle spacings", (double)s->skin);
+  PetscCheck(s->cfl > 0 && s->cfl <= 1, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-solid_cfl %g must be in (0, 1]", (double)s->cfl);
   PetscCheck(m->rho0 > 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-solid_rho %g must be > 0", (double)m->rho0);
   PetscCheck(m->K > 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-solid_K %g must be > 0", (double)m->K);
   PetscCheck(m->G >= 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-solid_G %g must be >= 0", (double)m->G);
@@ -357,7 +360,7 @@ PetscErrorCode SolidTimeStep(Sim sim, PetscReal *dt)
 
   PetscFunctionBeginUser;
   for (PetscInt a = 0; a < P->n; a++)
-    if (P->kind[a] == KIND_SOLID) lim = PetscMin(lim, SimAcousticStepLimit(sim->cfl, h[a], sim->sl.c0, v + 2 * a, acc + 2 * a));
+    if (P->kind[a] == KIND_SOLID) lim = PetscMin(lim, SimAcousticStepLimit(sim->solid->cfl, h[a], sim->sl.c0, v + 2 * a, acc + 2 * a));
   PetscCall(MPIU_Allreduce(&lim, dt, 1, MPIU_REAL, MPIU_MIN, sim->comm));
   PetscFunctionReturn(PETSC_SUCCESS);
 }

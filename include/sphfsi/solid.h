@@ -18,6 +18,7 @@ struct _p_Solid {
   PetscBool     repulsion; /* Eq. 41 on fluid-solid pairs (WCSPH fluid) */
   PetscReal     nrm_min;   /* |sum V grad W| below this: not a surface particle, no normal */
   PetscBool     subcycle;  /* multi-rate: solid sub-steps inside the fluid step */
+  PetscReal     cfl;       /* Courant number of the solid's step */
   PetscBool     implicit;  /* ISPH: the solid's rows of the pressure equation answer its acceleration (ppe.c) */
   PetscReal    *R;     /* artificial stress (xx, xy, yy) of owned + ghost particles, Eqs. 32-34 */
   PetscInt      cap_R;

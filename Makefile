@@ -94,9 +94,15 @@ check: deps
 	@$(MAKE) --no-print-directory all
 	@BINDIR=$(BINDIR) bash tests/run_tests.sh $(if $(filter 1,$(SAN)),--unit-only,)
 
+# Throughput, scaling, memory and the partition model (tools/bench.sh; out/bench/bench.md, ~20 min on 2 cores).
 bench: deps
-	@$(MAKE) --no-print-directory all
-	@bash tools/bench.sh
+	@$(MAKE) --no-print-directory all $(BINDIR)/partition_model
+	@BINDIR=$(BINDIR) bash tools/bench.sh
+
+# Partition statistics of a scene's cell graph for many ranks (tools/partition_model.c)
+$(BINDIR)/partition_model: $(BUILD)/tools/partition_model.o $(BUILD)/libsphfsi.a
+	@mkdir -p $(BINDIR)
+	$(CC) $(LDFLAGS) -o $@ $^ $(LDLIBS)
 
 clean:
 	rm -rf build build-san bin out

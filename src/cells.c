@@ -1,5 +1,6 @@
 #include <sphfsi/cells.h>
 #include <sphfsi/kernel.h>
+#include <math.h>
 
 PetscErrorCode CellsCreate(const Grid *g, Cells *c)
 {
@@ -81,8 +82,25 @@ PetscErrorCode CellsBuild(Cells c, Particles P)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* W and F of a pair at distance r for smoothing length h, given sw = KernelSigma(h) and
+ * sf = sw / (h h): the operations of KernelW and KernelF (kernel.h) without the per-pair
+ * normalisation (three divisions). */
+static inline void PairKernel(PetscReal r, PetscReal h, PetscReal sw, PetscReal sf, PetscReal *w, PetscReal *f)
+{
+  PetscReal R = r / h;
+  if (R < 1.0) {
+    *w = sw * (1.0 - 1.5 * R * R + 0.75 * R * R * R);
+    *f = sf * (-3.0 + 2.25 * R);
+  } else if (R < 2.0) {
+    PetscReal t = 2.0 - R;
+    *w = sw * 0.25 * t * t * t;
+    *f = -0.75 * sf * t * t / R;
+  } else *w = *f = 0.0;
+}
+
 /* Neighbour list into `out` of the owned particles that `keep` accepts (NULL: all), using the
- * binning of `bins`: pairs with r < 2 h_ab + skin, kernel values at r (zero beyond 2 h_ab). */
+ * binning of `bins`: pairs with r < 2 h_ab + skin, kernel values at r (zero beyond 2 h_ab).
+ * Pairs of equal h (the usual case) use the cut-off and kernel normalisation of particle a. */
 static PetscErrorCode NeighbourPass(Cells bins, Particles P, PetscBool (*keep)(PetscInt), PetscReal skin, Cells out)
 {
   Cells            c = bins;
@@ -102,7 +120,8 @@ static PetscErrorCode NeighbourPass(Cells bins, Particles P, PetscBool (*keep)(P
   out->max_nbr = 0;
   for (PetscInt a = 0; a < n; a++) {
     PetscInt  ca = c->cell[a], ia = ca % c->n[0], ja = ca / c->n[0];
-    PetscReal xa = x[2 * a], ya = x[2 * a + 1], ha = h[a];
+    PetscReal xa = x[2 * a], ya = x[2 * a + 1], ha = h[a], rca = 2.0 * ha + skin, rc2a = rca * rca;
+    PetscReal swa = KernelSigma(ha), sfa = swa / (ha * ha);
     out->nstart[a] = cnt;
     if (keep && !keep(P->kind[a])) continue;
     for (PetscInt dj = -1; dj <= 1; dj++) {
@@ -125,14 +144,18 @@ static PetscErrorCode NeighbourPass(Cells bins, Particles P, PetscBool (*keep)(P
         }
         for (PetscInt s = c->start[cb]; s < c->start[cb + 1]; s++) {
           PetscInt  b = c->list[s];
-          PetscReal dx = xa - x[2 * b], dy = ya - x[2 * b + 1], r2 = dx * dx + dy * dy, hab = PairH(ha, h[b]), rc = 2.0 * hab + skin;
-          if (b != a && r2 < rc * rc) {
-            PetscReal r = PetscSqrtReal(r2);
-            out->nbr[cnt] = b;
-            out->w[cnt]   = KernelW(r, hab);
-            out->f[cnt]   = KernelF(r, hab);
-            cnt++;
+          /* r2 as the compiler contracted dx dx + dy dy before: the same bits as earlier versions */
+          PetscReal dx = xa - x[2 * b], dy = ya - x[2 * b + 1], r2 = fma(dy, dy, dx * dx), hab = ha, sw = swa, sf = sfa;
+          if (h[b] == ha) {
+            if (b == a || !(r2 < rc2a)) continue;
+          } else {
+            PetscReal rc;
+            hab = PairH(ha, h[b]); rc = 2.0 * hab + skin;
+            if (b == a || !(r2 < rc * rc)) continue;
+            sw = KernelSigma(hab); sf = sw / (hab * hab);
           }
+          PairKernel(PetscSqrtReal(r2), hab, sw, sf, &out->w[cnt], &out->f[cnt]);
+          out->nbr[cnt++] = b;
         }
       }
     }

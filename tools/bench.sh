@@ -1,25 +1,84 @@
 #!/usr/bin/env bash
-# Throughput benchmark (not a test): WCSPH dam break with ~25k particles on 1 and 2 ranks.
-# particle-steps/s = particles x steps / wall seconds of the time loop (summary.json).
-# Writes out/bench/bench.md.
+# Performance benchmark of issue 7 (not a test; `make bench`, ~10-20 min on 2 cores).
+#   1. dam break, dx = a/100 (25 187 particles): WCSPH 0.01 s on 1 and 2 ranks, ISPH to the case's
+#      t_end (0.3 s, the whole run) on 2 ranks (throughput)
+#   2. the same dam break to t = 0.5 s on 2 ranks with ISPH and with WCSPH (wall time to 0.5 s) in a
+#      tank 0.5 m high instead of 3 column heights (0.34 m): the run-up jet at the far wall of the
+#      ISPH run leaves the default box at t = 0.35-0.40 s
+#   3. oscillating plate (cases/oscillating_plate.opts), 0.2 s on 2 ranks
+#   4. strong scaling at dx = a/440 (410 023 particles): WCSPH 100 steps and ISPH 20 steps on 1 and
+#      2 ranks, one after the other; memory from -memory_view (maximum resident set, summed over
+#      ranks) and an empty-problem baseline
+#   5. partition statistics of the dam break (a/700, 1.02 M particles) and the elastic gate
+#      (dx 0.12 mm, 1.04 M) for 2..1024 ranks (bin/partition_model) and the scaling model
+#      (tools/scaling_model.py) from them and the costs measured in 4.
+# particle-steps/s = particles x steps / wall seconds of the time loop (summary.json).  Every run
+# keeps its -log_view in out/bench/NAME/log_view.txt.  The load average is recorded next to each
+# run: on a shared machine the wall times are only as good as the load allowed.
+# Writes out/bench/bench.md (goals, measured, ratio to the anchors), out/bench/scaling_model.md/png.
+# Environment: MPIEXEC, MPIEXEC_FLAGS, BINDIR (bin), BENCH_TIMEOUT (s per run, 1800),
+#   BENCH_QUICK=1 (smaller sizes and times: a check of the script, not numbers to quote),
+#   BENCH_ONLY (space-separated subset of: throughput t05 plate scaling model).
 cd "$(dirname "$0")/.."
 MPI="${MPIEXEC:-mpiexec} ${MPIEXEC_FLAGS:-}"
+BIN=${BINDIR:-bin}
 OUT=out/bench; mkdir -p $OUT
-DX=${BENCH_DX:-0.0005715}   # a/100: 20k fluid + walls
-TEND=${BENCH_TEND:-0.01}
-row() { python3 -c "import json,sys; s=json.load(open(sys.argv[1])); print(f\"| {s['case']} | {s['fluid']} | {s['ranks']} | {s['particles']} | {s['steps']} | {s['wall_s']:.2f} | {s['particle_steps_per_s']:.3e} |\")" "$1"; }
-{
-  echo "| case | fluid | ranks | particles | steps | wall s | particle-steps/s |"
-  echo "|---|---|---|---|---|---|---|"
-  for np in 1 2; do
-    $MPI -n $np bin/sphfsi -options_file cases/dam_break.opts -dx $DX -t_end $TEND -output_interval 0 -probe_interval 0.001 -progress_every 0 -output_dir $OUT/dam_break_np$np > $OUT/dam_break_np$np.log 2>&1 || { echo "run failed: $OUT/dam_break_np$np.log" >&2; exit 1; }
-    row $OUT/dam_break_np$np/summary.json
+TMO=${BENCH_TIMEOUT:-1800}
+ONLY=${BENCH_ONLY:-throughput t05 plate scaling model}
+A=0.05715
+div() { python3 -c "print(f'{$A/$1:.7g}')"; }
+if [ -n "${BENCH_QUICK:-}" ]; then
+  D25=$(div 40) T03=0.03 T05=0.05 TPL=0.02 DSC=$(div 100) WST=20 IST=5 DDB=$(div 200) DGATE=5e-4
+else
+  D25=$(div 100) T03=0.3 T05=0.5 TPL=0.2 DSC=$(div 440) WST=100 IST=20 DDB=$(div 700) DGATE=1.2e-4
+fi
+[ -x $BIN/sphfsi ] && [ -x $BIN/partition_model ] || { echo "run make bench (needs $BIN/sphfsi and $BIN/partition_model)" >&2; exit 1; }
+has() { [[ " $ONLY " == *" $1 "* ]]; }
+T0=$SECONDS
+
+# run NAME NP [sphfsi options...]: one run with -log_view and -memory_view; load average recorded
+run() {
+  local name=$1 np=$2; shift 2
+  local dir=$OUT/$name
+  rm -rf $dir; mkdir -p $dir
+  cut -d' ' -f1-3 /proc/loadavg > $dir/load_before
+  local t0=$SECONDS
+  timeout $TMO $MPI -n $np $BIN/sphfsi "$@" -progress_every 0 -output_dir $dir -log_view :$dir/log_view.txt -memory_view > $OUT/$name.log 2>&1
+  local rc=$?
+  cut -d' ' -f1-3 /proc/loadavg > $dir/load_after
+  echo "$name: $np rank(s), exit $rc, $((SECONDS - t0)) s, load $(cat $dir/load_before) -> $(cat $dir/load_after)" | tee -a $OUT/runs.txt >&2
+  [ $rc -eq 0 ] || echo $rc > $dir/FAILED
+}
+: > $OUT/runs.txt
+DB="-options_file cases/dam_break.opts -output_interval 0"
+if has throughput; then
+  run wcsph_25k_np1 1 $DB -dx $D25 -t_end 0.01 -probe_interval 0.001
+  run wcsph_25k_np2 2 $DB -dx $D25 -t_end 0.01 -probe_interval 0.001
+  run isph_25k_np2 2 $DB -fluid isph -dx $D25 -t_end $T03
+fi
+if has t05; then
+  run isph_t05_np2 2 $DB -fluid isph -dx $D25 -t_end $T05 -tank_height 0.5
+  run wcsph_t05_np2 2 $DB -fluid wcsph -dx $D25 -t_end $T05 -tank_height 0.5
+fi
+if has plate; then
+  run plate_np2 2 -options_file cases/oscillating_plate.opts -t_end $TPL -output_interval 0
+fi
+if has scaling; then
+  run wcsph_400k_np1 1 $DB -dx $DSC -max_steps $WST -probe_interval 0
+  run wcsph_400k_np2 2 $DB -dx $DSC -max_steps $WST -probe_interval 0
+  run isph_400k_np1 1 $DB -fluid isph -dx $DSC -max_steps $IST -probe_interval 0
+  run isph_400k_np2 2 $DB -fluid isph -dx $DSC -max_steps $IST -probe_interval 0
+  # memory of an (almost) empty ISPH problem: MPI, PETSc, hypre and the binary
+  run isph_empty_np1 1 $DB -fluid isph -dx $(div 4) -max_steps 2 -probe_interval 0
+  run isph_empty_np2 2 $DB -fluid isph -dx $(div 4) -max_steps 2 -probe_interval 0
+fi
+if has model; then
+  for s in "dam_break $DDB" "elastic_gate $DGATE"; do
+    set -- $s
+    echo "partition_model: $1, dx $2" >&2
+    timeout $TMO $BIN/partition_model -options_file cases/$1.opts -dx $2 -nparts_max 1024 > $OUT/partition_$1.csv 2> $OUT/partition_$1.log || echo "partition_model $1 failed: $OUT/partition_$1.log" >&2
   done
-} | tee $OUT/bench.md
-python3 - <<'PY'
-import json
-a = json.load(open("out/bench/dam_break_np1/summary.json")); b = json.load(open("out/bench/dam_break_np2/summary.json"))
-s = b["particle_steps_per_s"] / a["particle_steps_per_s"]
-line = f"\n2-rank speed-up {s:.2f} (parallel efficiency {50*s:.0f} %); anchors on this machine: PySPH / DualSPHysics ~1.7e6 (1 core), ~3.0e6 (2 cores)\n"
-print(line); open("out/bench/bench.md", "a").write(line)
-PY
+fi
+echo "bench: $((SECONDS - T0)) s" | tee -a $OUT/runs.txt >&2
+python3 tools/scaling_model.py $OUT || echo "scaling model failed" >&2
+python3 tools/bench_report.py $OUT $((SECONDS - T0)) && cat $OUT/bench.md

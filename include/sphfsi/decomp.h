@@ -22,6 +22,12 @@ PetscErrorCode DecompCreate(MPI_Comm comm, Decomp *d);
 PetscErrorCode DecompSetFromOptions(Decomp d);
 PetscErrorCode DecompSetUp(Decomp d, const Grid *g);
 PetscErrorCode DecompDestroy(Decomp *d);
+/* Serial METIS k-way partition of the cell graph into nranks parts for per-cell work `count`
+ * (what DecompPartition runs on rank 0; also used by tools/partition_model.c). */
+PetscErrorCode DecompPartitionCells(const Grid *g, const PetscInt *count, PetscInt nranks, PetscMPIInt *owner);
+/* Add the kind-weighted work of the owned particles to wcount[cell]; the weight of one kind. */
+void     DecompCellWork(const Grid *g, Particles P, PetscInt *wcount);
+PetscInt DecompKindCost(PetscInt kind);
 /* New cell ownership from the current particle distribution (collective). */
 PetscErrorCode DecompPartition(Decomp d, Particles P);
 /* Send every owned particle to the owner of its cell; positions are wrapped in periodic directions.

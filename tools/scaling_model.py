@@ -1,0 +1,225 @@
+#!/usr/bin/env python3
+"""Model of the time per step against the number of ranks, from
+  - the partition statistics of real cell graphs (bin/partition_model: partition_CASE.csv), and
+  - the costs measured by tools/bench.sh on this machine (the 1-rank and 2-rank runs at ~400k
+    particles: time per unit of work, PPE assembly / AMG set-up / V-cycle / CG cost per row,
+    PPE iterations, halo messages and reductions per step).
+Usage: tools/scaling_model.py OUTDIR [--alpha 2e-6] [--alpha_ar 1.5e-6] [--beta 5e9]
+Writes OUTDIR/scaling_model.md and OUTDIR/scaling_model.png.
+
+Per rank and step (P ranks, max over ranks from the partition):
+  compute   c_work * work_max                         (WCSPH; ISPH outside the PPE)
+            + (c_asm + c_setup + (its+1) c_vcycle + its c_matmult) * ppe_rows_max   (ISPH)
+            + n_sub * c_solid * solid_max             (elastic gate: solid sub-steps)
+  exchange  with k neighbour ranks: alpha + k * o + bytes / beta (messages posted together)
+  halo      n_msg exchanges per step, ghost bytes scaled from the 2-rank run by halo_max
+  rebuilds  per rebuild: MPI_Alltoall of counts (Bruck: alpha_ar log2 P) and MPI_Alltoallv, which
+            Open MPI runs pairwise: alpha (P - 1) even for empty messages ("as is"), or
+            alpha nbr_max with neighbour-only exchanges ("neighbour exchanges")
+  reductions n_red * alpha_ar * log2 P  (time step, checks; ISPH: 3 per CG iteration)
+  AMG       levels L = log4(rows / 10): per V-cycle 4 exchanges per level (smoothing, residual,
+            restriction, prolongation), per set-up 10 exchanges and 2 reductions per level, each
+            with nbr_max neighbours (optimistic: coarse levels have more).
+alpha: point-to-point latency, o: overhead per extra message, alpha_ar: latency of one allreduce
+stage, beta: bandwidth per rank (assumptions for an InfiniBand cluster, stated in the output)."""
+import csv, json, math, os, re, sys
+
+
+def stages(path):
+    """-log_view: stage -> (seconds, reductions, messages, message bytes) and event table by stage."""
+    st, ev, cur = {}, {}, None
+    for line in open(path):
+        m = re.match(r"\s*\d+:\s+(.+?):\s+(\S+)\s+\S+%\s+\S+\s+\S+%\s+(\S+)\s+\S+%\s+(\S+)\s+\S+%\s+(\S+)\s+\S+%", line)
+        if m and cur is None:
+            st[m.group(1).strip()] = tuple(float(m.group(k)) for k in (2, 5, 3, 4))
+        m = re.match(r"--- Event Stage \d+: (.+)", line)
+        if m: cur = m.group(1).strip()
+        m = re.match(r"(\w+)\s+(\d+)\s+\S+\s+(\S+)\s+\S+\s+\S+\s+\S+\s+(\S+)\s+(\S+)\s+(\S+)", line)
+        if m and cur:
+            ev.setdefault(cur, {})[m.group(1)] = dict(count=int(m.group(2)), time=float(m.group(3)), mess=float(m.group(4)), len=float(m.group(5)), red=float(m.group(6)))
+    return st, ev
+
+
+def kinds(log):
+    """Particle counts by kind from the 'Particles:' line of a run's log."""
+    for line in open(log):
+        if line.startswith("Particles:"):
+            return {k: int(v) for v, k in [(b, a) for a, b in re.findall(r"(fluid|wall|dummy|solid|clamp) (\d+)", line)]}
+    return {}
+
+
+def work_of(k):
+    return 4 * (k.get("fluid", 0) + k.get("solid", 0) + k.get("clamp", 0)) + k.get("wall", 0) + k.get("dummy", 0)
+
+
+def load_costs(out):
+    """Per-unit costs from the ~400k runs of bench.sh (1 rank) and message counts (2 ranks)."""
+    c = {}
+    for scheme in ("wcsph", "isph"):
+        d1, d2 = f"{out}/{scheme}_400k_np1", f"{out}/{scheme}_400k_np2"
+        s1 = json.load(open(f"{d1}/summary.json"))
+        st1, ev1 = stages(f"{d1}/log_view.txt")
+        st2, ev2 = stages(f"{d2}/log_view.txt")
+        s2 = json.load(open(f"{d2}/summary.json"))
+        steps = s1["steps"]
+        k = kinds(f"{out}/{scheme}_400k_np1.log")
+        w = work_of(k)
+        tot = sum(v[0] for v in st1.values())
+        r = dict(steps=steps, particles=s1["particles"], work=w, t_step=s1["wall_s"] / steps,
+                 t_step2=s2["wall_s"] / s2["steps"], rows=None)
+        # per rank and step on 2 ranks: messages outside the PPE solve, reductions, bytes per message
+        msg = sum(v[2] for n, v in st2.items() if n != "PPE solve") / 2 / s2["steps"]
+        byt = sum(v[2] * v[3] for n, v in st2.items() if n != "PPE solve") / 2 / s2["steps"]
+        red = sum(v[1] for n, v in st2.items() if n != "PPE solve") / s2["steps"]
+        r.update(n_msg=msg, bytes_step2=byt, n_red=red)
+        if scheme == "isph":
+            ppe_s = st1.get("PPE solve", (0,))[0]
+            asm = st1.get("PPE assembly", (0,))[0]
+            e = ev1.get("PPE solve", {})
+            nv = e["PCApply"]["count"]
+            its = s1["ksp_its_mean"]
+            rows = k.get("fluid", 0) + 0.5 * (k.get("wall", 0) + k.get("dummy", 0))  # walls within reach of fluid: about half here
+            r.update(its=its, rows=rows, c_nonppe=(tot - ppe_s - asm) / steps / w, c_asm=asm / steps / rows,
+                     c_setup=e["PCSetUp"]["time"] / steps / rows, c_vcycle=e["PCApply"]["time"] / nv / rows,
+                     c_matmult=e["MatMult"]["time"] / e["MatMult"]["count"] / rows, vcycles=nv / steps,
+                     c_cg_other=(ppe_s - e["PCSetUp"]["time"] - e["PCApply"]["time"] - e["MatMult"]["time"]) / steps / rows)
+            r["n_red"] = red  # outside the PPE; CG adds 3 per iteration
+        else:
+            r["c_work"] = r["t_step"] / w
+        c[scheme] = r
+    # solid: the plate on 2 ranks, time per solid particle-step (a sub-step)
+    try:
+        sp = json.load(open(f"{out}/plate_np2/summary.json"))
+        c["solid"] = dict(c_solid=2.0 / sp["particle_steps_per_s"])  # rank-seconds per particle-step
+    except (OSError, KeyError):
+        c["solid"] = dict(c_solid=0.0)
+    return c
+
+
+def model(row, c, scheme, a, aar, beta, alltoallv, nsub=0, o=0.5e-6):
+    P = int(row["ranks"])
+    lg = math.log2(P) if P > 1 else 0
+    nbr, halo = float(row["nbr_ranks_max"]), float(row["halo_max"])
+    ex = a + o * nbr  # one neighbour exchange
+    a2av = a * (P - 1) if alltoallv == "as is" else ex
+    if scheme == "wcsph":
+        cw = c["wcsph"]
+        comp = cw["c_work"] * float(row["work_max"])
+        rebuilds = 1
+        n_msg, n_red = cw["n_msg"], cw["n_red"]
+        byt = cw["bytes_step2"] / max(cw.get("halo2", halo), 1) * halo if cw.get("halo2") else 0
+        ppe = lat_ppe = 0.0
+    else:
+        ci = c["isph"]
+        rows = float(row["ppe_rows_max"])
+        comp = ci["c_nonppe"] * float(row["work_max"])
+        ppe = (ci["c_asm"] + ci["c_setup"] + ci["vcycles"] * ci["c_vcycle"] + ci["its"] * ci["c_matmult"] + ci["c_cg_other"]) * rows
+        L = max(1, math.ceil(math.log(max(float(row["ppe_rows_mean"]) * P / 10, 2), 4)))
+        lat_ppe = (ci["vcycles"] * 4 * L * ex + ci["its"] * (ex + 3 * aar * lg)
+                   + 10 * L * ex + 2 * L * aar * lg) if P > 1 else 0
+        rebuilds = 2
+        n_msg, n_red = ci["n_msg"], ci["n_red"]
+        byt = ci["bytes_step2"] / max(ci.get("halo2", halo), 1) * halo if ci.get("halo2") else 0
+    solid = nsub * c["solid"]["c_solid"] * float(row.get("solid_max", 0) or 0)
+    if P == 1:
+        return dict(comp=comp, ppe=ppe, solid=solid, comm=0.0, total=comp + ppe + solid)
+    comm = n_msg * ex + byt / beta + n_red * aar * lg + rebuilds * (aar * lg + a2av) + lat_ppe
+    return dict(comp=comp, ppe=ppe, solid=solid, comm=comm, total=comp + ppe + solid + comm, ppe_lat=lat_ppe)
+
+
+def main():
+    out = sys.argv[1]
+    args = dict(alpha=2e-6, o=0.5e-6, alpha_ar=1.5e-6, beta=5e9, nsub=8)
+    for k in range(2, len(sys.argv) - 1, 2):
+        args[sys.argv[k].lstrip("-")] = float(sys.argv[k + 1])
+    a, aar, beta = args["alpha"], args["alpha_ar"], args["beta"]
+    c = load_costs(out)
+    tables, series = [], {}
+    for case, schemes in (("dam_break", ("wcsph", "isph")), ("elastic_gate", ("wcsph",))):
+        path = f"{out}/partition_{case}.csv"
+        if not os.path.exists(path): continue
+        rows = list(csv.DictReader(open(path)))
+        if not rows: continue
+        N = int(rows[0]["particles"])
+        one = dict(rows[0]); one.update(ranks="1", work_max=str(float(rows[0]["work_mean"]) * 2), ppe_rows_max=str(float(rows[0]["ppe_rows_mean"]) * 2),
+                                        ppe_rows_mean=str(float(rows[0]["ppe_rows_mean"]) * 2), solid_max=str(float(rows[0]["solid_mean"]) * 2), halo_max="0", nbr_ranks_max="0")
+        # the 2-rank halo of the measured 400k run scales the ghost bytes: halo ~ sqrt(N) at 2 ranks
+        for s in schemes:
+            c[s]["halo2"] = float(rows[0]["halo_max"]) * math.sqrt(c[s]["particles"] / N)
+        for s in schemes:
+            nsub = args["nsub"] if case == "elastic_gate" else 0
+            t1 = model(one, c, s, a, aar, beta, "as is", nsub)["total"]
+            for variant in ("as is", "neighbour exchanges"):
+                pts = [(1, t1, 1.0, 0, 0)]
+                for r in rows:
+                    m = model(r, c, s, a, aar, beta, variant, nsub, args["o"])
+                    P = int(r["ranks"])
+                    pts.append((P, m["total"], t1 / (P * m["total"]), m["comm"] / m["total"], m.get("ppe_lat", 0) / m["total"]))
+                series[(case, s, variant)] = (N, pts)
+        tables.append((case, N, rows))
+    md = []
+    md.append(f"Scaling model (tools/scaling_model.py): METIS partitions of the real cell graphs (bin/partition_model, initial state) "
+              f"and the per-particle costs measured on this machine by tools/bench.sh (~400k particles, 1 rank). "
+              f"Assumed network: point-to-point latency alpha = {a * 1e6:.1f} us + {args['o'] * 1e6:.1f} us per further neighbour of an exchange, allreduce {aar * 1e6:.1f} us per log2(P) stage, "
+              f"{beta / 1e9:.0f} GB/s per rank; elastic gate: {args['nsub']:.0f} solid sub-steps per fluid step.\n")
+    ci, cw = c["isph"], c["wcsph"]
+    md.append(f"Measured costs (1 rank, {cw['particles']} particles): WCSPH {cw['c_work'] * 1e9:.1f} ns per work unit per step "
+              f"(fluid 4, wall 1; {cw['t_step'] * 1e3:.1f} ms/step); ISPH outside the PPE {ci['c_nonppe'] * 1e9:.1f} ns per work unit, "
+              f"PPE per row: assembly {ci['c_asm'] * 1e9:.0f} ns, AMG set-up {ci['c_setup'] * 1e9:.0f} ns, V-cycle {ci['c_vcycle'] * 1e9:.0f} ns "
+              f"({ci['vcycles']:.1f} per step), CG mat-vec {ci['c_matmult'] * 1e9:.0f} ns ({ci['its']:.2f} iterations); "
+              f"halo: {cw['n_msg']:.1f} (WCSPH) / {ci['n_msg']:.1f} (ISPH) messages and {cw['n_red']:.1f} / {ci['n_red']:.1f} reductions per step outside the PPE; "
+              f"solid sub-step {c['solid']['c_solid'] * 1e9:.0f} ns per solid particle.\n")
+    for case, N, rows in tables:
+        md.append(f"\n**{case}**, {N} particles, {rows[0]['cells']} cells\n")
+        hdr = "| ranks | particles/rank | work imbalance | PPE-row imbalance | halo/owned (max) | neighbour ranks max | cut edges |"
+        sep = "|---|---|---|---|---|---|---|"
+        keys = [k for k in series if k[0] == case]
+        for k in keys:
+            hdr += f" {k[1].upper()} {'' if k[2] == 'as is' else '(nbr. exch.) '}ms/step (eff.) |"
+            sep += "---|"
+        md.append(hdr); md.append(sep)
+        for i, r in enumerate(rows):
+            line = (f"| {r['ranks']} | {N / int(r['ranks']):.0f} | {float(r['work_imbalance']):.3f} | {float(r['ppe_imbalance']):.3f} | "
+                    f"{float(r['halo_max']) / float(r['owned_max']):.2f} | {r['nbr_ranks_max']} | {r['cut_edges']} |")
+            for k in keys:
+                P, t, e, _, _ = series[k][1][i + 1]
+                line += f" {t * 1e3:.3g} ({100 * e:.0f} %) |"
+            md.append(line)
+    # where it stops scaling
+    md.append("")
+    for k, (N, pts) in series.items():
+        last = max((p for p in pts if p[2] >= 0.5), key=lambda p: p[0])
+        md.append(f"- {k[0]} {k[1].upper()} ({k[2]}): efficiency >= 50 % up to {last[0]} ranks ({N / last[0]:.0f} particles per rank); "
+                  f"at 1024 ranks {100 * pts[-1][2]:.0f} %, communication {100 * pts[-1][3]:.0f} % of the step"
+                  + (f", PPE latency {100 * pts[-1][4]:.0f} %" if k[1] == "isph" else ""))
+    open(f"{out}/scaling_model.md", "w").write("\n".join(md) + "\n")
+    try:
+        import matplotlib
+        matplotlib.use("Agg")
+        import matplotlib.pyplot as plt
+        fig, ax = plt.subplots(1, 2, figsize=(11, 4.2))
+        colors = {("dam_break", "wcsph"): "C0", ("dam_break", "isph"): "C1", ("elastic_gate", "wcsph"): "C2"}
+        for k, (N, pts) in series.items():
+            P = [p[0] for p in pts]; t = [p[1] * 1e3 for p in pts]; e = [100 * p[2] for p in pts]
+            ls = "-" if k[2] == "as is" else "--"
+            lab = f"{k[0].replace('_', ' ')} {k[1].upper()}{'' if k[2] == 'as is' else ', neighbour exchanges'}"
+            ax[0].loglog(P, t, ls, marker="o", ms=3, color=colors[(k[0], k[1])], label=lab)
+            if k[2] == "as is": ax[0].loglog(P, [t[0] / p for p in P], ":", color=colors[(k[0], k[1])], lw=0.8)
+            ax[1].semilogx(P, e, ls, marker="o", ms=3, color=colors[(k[0], k[1])], label=lab)
+        ax[0].set_xlabel("ranks"); ax[0].set_ylabel("modelled time per step (ms)"); ax[0].set_title("time per step (dotted: ideal)")
+        ax[1].axhline(43, color="grey", lw=0.8); ax[1].text(1.2, 45, "Guo et al. 2018: 43 % overall at 6144 partitions", fontsize=7, color="grey")
+        ax[1].axhline(90, color="grey", lw=0.8, ls="--"); ax[1].text(1.2, 92, "Guo et al. 2018: PPE > 90 %", fontsize=7, color="grey")
+        ax[1].set_xlabel("ranks"); ax[1].set_ylabel("parallel efficiency (%)"); ax[1].set_ylim(0, 105); ax[1].set_title("strong scaling at ~1M particles")
+        ax[1].legend(fontsize=7, loc="lower left")
+        for x in ax: x.grid(True, which="both", alpha=0.3)
+        fig.suptitle(f"sphfsi scaling model: METIS partitions of the real cell graphs + costs measured on this machine "
+                     f"(alpha {a * 1e6:.0f} us, allreduce {aar * 1e6:.1f} us/stage)", fontsize=8)
+        fig.tight_layout()
+        fig.savefig(f"{out}/scaling_model.png", dpi=110)
+    except ImportError:
+        print("matplotlib missing: no PNG", file=sys.stderr)
+    print("\n".join(md))
+
+
+if __name__ == "__main__":
+    main()

@@ -3,8 +3,8 @@
 #   1. dam break, dx = a/100 (25 187 particles): WCSPH 0.01 s on 1 and 2 ranks, ISPH to the case's
 #      t_end (0.3 s, the whole run) on 2 ranks (throughput)
 #   2. the same dam break to t = 0.5 s on 2 ranks with ISPH and with WCSPH (wall time to 0.5 s) in a
-#      tank 0.5 m high instead of 3 column heights (0.34 m): the run-up jet at the far wall of the
-#      ISPH run leaves the default box at t = 0.35-0.40 s
+#      tank 1 m high instead of 3 column heights (0.34 m): the run-up jet at the far wall of the
+#      ISPH run leaves the default box at t = 0.35-0.40 s (and a 0.5 m one at 0.38 s)
 #   3. oscillating plate (cases/oscillating_plate.opts), 0.2 s on 2 ranks
 #   4. strong scaling at dx = a/440 (410 023 particles): WCSPH 100 steps and ISPH 20 steps on 1 and
 #      2 ranks, one after the other; memory from -memory_view (maximum resident set, summed over
@@ -57,8 +57,8 @@ if has throughput; then
   run isph_25k_np2 2 $DB -fluid isph -dx $D25 -t_end $T03
 fi
 if has t05; then
-  run isph_t05_np2 2 $DB -fluid isph -dx $D25 -t_end $T05 -tank_height 0.5
-  run wcsph_t05_np2 2 $DB -fluid wcsph -dx $D25 -t_end $T05 -tank_height 0.5
+  run isph_t05_np2 2 $DB -fluid isph -dx $D25 -t_end $T05 -tank_height 1.0
+  run wcsph_t05_np2 2 $DB -fluid wcsph -dx $D25 -t_end $T05 -tank_height 1.0
 fi
 if has plate; then
   run plate_np2 2 -options_file cases/oscillating_plate.opts -t_end $TPL -output_interval 0
@@ -73,11 +73,27 @@ if has scaling; then
   run isph_empty_np2 2 $DB -fluid isph -dx $(div 4) -max_steps 2 -probe_interval 0
 fi
 if has model; then
-  for s in "dam_break $DDB" "elastic_gate $DGATE"; do
+  # Cost of a solid particle per fluid step in work units (a wall particle = 1): 4 + n_sub c_solid / c_work,
+  # with c_solid from the plate (rank-seconds per solid particle-step), c_work from the 400k WCSPH run,
+  # n_sub = 8 solid sub-steps per fluid step of the gate.  The gate is partitioned as the code does
+  # (solids weighted 4) and with the solids weighted by that cost.
+  SC=$(python3 - $OUT <<'PY' 2>/dev/null || echo 36
+import json, re, sys
+o = sys.argv[1]
+p = json.load(open(f"{o}/plate_np2/summary.json")); w = json.load(open(f"{o}/wcsph_400k_np1/summary.json"))
+line = next(l for l in open(f"{o}/wcsph_400k_np1.log") if l.startswith("Particles:"))
+n = {b: int(a) for b, a in re.findall(r"(fluid|wall|dummy|solid|clamp) (\d+)", line)}
+work = 4 * n.get("fluid", 0) + n.get("wall", 0) + n.get("dummy", 0)
+c_work = w["wall_s"] / w["steps"] / work; c_solid = 2.0 / p["particle_steps_per_s"]
+print(f"{4 + 8 * c_solid / c_work:.0f}")
+PY
+)
+  for s in "dam_break $DDB dam_break" "elastic_gate $DGATE elastic_gate -solid_cost $SC" "elastic_gate $DGATE elastic_gate_solidw -solid_cost $SC -solid_weight $SC"; do
     set -- $s
-    echo "partition_model: $1, dx $2" >&2
-    timeout $TMO $BIN/partition_model -options_file cases/$1.opts -dx $2 -nparts_max 1024 > $OUT/partition_$1.csv 2> $OUT/partition_$1.log || echo "partition_model $1 failed: $OUT/partition_$1.log" >&2
+    echo "partition_model: $1, dx $2 ${*:4}" >&2
+    timeout $TMO $BIN/partition_model -options_file cases/$1.opts -dx $2 -nparts_max 1024 "${@:4}" > $OUT/partition_$3.csv 2> $OUT/partition_$3.log || echo "partition_model $3 failed: $OUT/partition_$3.log" >&2
   done
+  echo "$SC" > $OUT/solid_cost.txt
 fi
 echo "bench: $((SECONDS - T0)) s" | tee -a $OUT/runs.txt >&2
 python3 tools/scaling_model.py $OUT || echo "scaling model failed" >&2

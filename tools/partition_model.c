@@ -6,6 +6,9 @@
  *   PPE rows per rank (fluid + boundary particles within reach of a fluid cell; max, mean),
  *   halo (ghost) particles per rank (max, mean), cut cell-graph edges, neighbour ranks (max, mean),
  *   solid particles per rank (max, mean), METIS time.
+ * -solid_weight W: weight solid and clamp particles by W instead of the code's 4 (e.g. to count
+ * the solid sub-steps of an FSI scene); -solid_cost S: the cost columns count fluid 4, wall 1 and
+ * solid S (the time a solid particle takes per fluid step, in units of a wall particle's).
  * Usage: bin/partition_model -options_file cases/dam_break.opts -dx 8.2e-5 [-nparts_max 1024] */
 #include <sphfsi/sim.h>
 #include <sphfsi/scene.h>
@@ -15,7 +18,8 @@
 
 typedef struct {
   PetscInt  nc;
-  PetscInt *all, *fluid, *bnd, *solid, *work, *ppe; /* per cell */
+  PetscInt  *all, *fluid, *bnd, *solid, *work, *ppe; /* per cell */
+  PetscReal *cost;                                  /* per cell: -solid_cost weighting */
 } CellCounts;
 
 /* Scene particles on this process only: the part of SimSetUp that creates them. */
@@ -42,7 +46,7 @@ static inline PetscInt NeighbourCell(const Grid *g, PetscInt i, PetscInt j, Pets
   return jj * g->n[0] + ii;
 }
 
-static PetscErrorCode CountCells(Sim sim, CellCounts *cc)
+static PetscErrorCode CountCells(Sim sim, PetscInt solid_weight, PetscReal solid_cost, CellCounts *cc)
 {
   const Grid      *g = &sim->grid;
   Particles        P = sim->P;
@@ -59,6 +63,10 @@ static PetscErrorCode CountCells(Sim sim, CellCounts *cc)
     else cc->bnd[c]++;
     if (KindIsSolid(P->kind[a])) cc->solid[c]++;
   }
+  if (solid_weight > 0) /* solids re-weighted: fluid 4, wall/dummy 1, solid/clamp solid_weight */
+    for (PetscInt c = 0; c < cc->nc; c++) cc->work[c] = DecompKindCost(KIND_FLUID) * cc->fluid[c] + DecompKindCost(KIND_WALL) * (cc->bnd[c] - cc->solid[c]) + solid_weight * cc->solid[c];
+  PetscCall(PetscMalloc1(cc->nc, &cc->cost));
+  for (PetscInt c = 0; c < cc->nc; c++) cc->cost[c] = DecompKindCost(KIND_FLUID) * cc->fluid[c] + DecompKindCost(KIND_WALL) * (cc->bnd[c] - cc->solid[c]) + solid_cost * cc->solid[c];
   /* PPE rows: fluid, and boundary particles of cells next to a fluid cell */
   for (PetscInt j = 0; j < g->n[1]; j++)
     for (PetscInt i = 0; i < g->n[0]; i++) {
@@ -86,16 +94,17 @@ static PetscErrorCode PartitionStats(Sim sim, const CellCounts *cc, PetscInt np,
 {
   const Grid    *g = &sim->grid;
   PetscInt      *owned, *work, *ppe, *halo, *nbrs, *solid, cut = 0, mx[6];
-  PetscReal      mean[6];
+  PetscReal      mean[6], *cost, cmax = 0, csum = 0;
   PetscBT        seen;
   PetscFunctionBeginUser;
   PetscCall(PetscCalloc6(np, &owned, np, &work, np, &ppe, np, &halo, np, &nbrs, np, &solid));
   PetscCall(PetscBTCreate(np * np, &seen));
+  PetscCall(PetscCalloc1(np, &cost));
   for (PetscInt j = 0; j < g->n[1]; j++)
     for (PetscInt i = 0; i < g->n[0]; i++) {
       PetscInt    c = j * g->n[0] + i, got[8], ngot = 0;
       PetscMPIInt r = owner[c];
-      owned[r] += cc->all[c]; work[r] += cc->work[c]; ppe[r] += cc->ppe[c]; solid[r] += cc->solid[c];
+      owned[r] += cc->all[c]; work[r] += cc->work[c]; ppe[r] += cc->ppe[c]; solid[r] += cc->solid[c]; cost[r] += cc->cost[c];
       for (PetscInt k = 0; k < 8; k++) {
         PetscInt    cn = NeighbourCell(g, i, j, k), dup = 0;
         PetscMPIInt q;
@@ -114,11 +123,13 @@ static PetscErrorCode PartitionStats(Sim sim, const CellCounts *cc, PetscInt np,
   MaxMean(halo, np, &mx[3], &mean[3]);
   MaxMean(nbrs, np, &mx[4], &mean[4]);
   MaxMean(solid, np, &mx[5], &mean[5]);
+  for (PetscInt r = 0; r < np; r++) { cmax = PetscMax(cmax, cost[r]); csum += cost[r]; }
   PetscCall(PetscPrintf(PETSC_COMM_SELF, "%s,%d,%d,%d,", sim->scene->name, (int)sim->nparticles, (int)cc->nc, (int)np));
   PetscCall(PetscPrintf(PETSC_COMM_SELF, "%d,%.1f,%d,%.1f,%.4f,", (int)mx[0], (double)mean[0], (int)mx[1], (double)mean[1], (double)(mx[1] / mean[1])));
   PetscCall(PetscPrintf(PETSC_COMM_SELF, "%d,%.1f,%.4f,%d,%.1f,%d,", (int)mx[2], (double)mean[2], (double)(mx[2] / mean[2]), (int)mx[3], (double)mean[3], (int)cut));
-  PetscCall(PetscPrintf(PETSC_COMM_SELF, "%d,%.2f,%d,%.2f,%.2f\n", (int)mx[4], (double)mean[4], (int)mx[5], (double)mean[5], metis_s));
+  PetscCall(PetscPrintf(PETSC_COMM_SELF, "%d,%.2f,%d,%.2f,%.1f,%.1f,%.2f\n", (int)mx[4], (double)mean[4], (int)mx[5], (double)mean[5], (double)cmax, (double)(csum / np), metis_s));
   PetscCall(PetscBTDestroy(&seen));
+  PetscCall(PetscFree(cost));
   PetscCall(PetscFree6(owned, work, ppe, halo, nbrs, solid));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -128,7 +139,8 @@ int main(int argc, char **argv)
   Sim          sim;
   CellCounts   cc;
   PetscMPIInt  size, *owner;
-  PetscInt     npmax = 1024;
+  PetscInt     npmax = 1024, solid_weight = 0;
+  PetscReal    solid_cost = -1;
   PetscBool    header = PETSC_TRUE;
 
   PetscCall(PetscInitialize(&argc, &argv, NULL, "Partition statistics of a scene's cell graph for 2..nparts_max ranks (CSV)\n"));
@@ -136,13 +148,16 @@ int main(int argc, char **argv)
   PetscCheck(size == 1, PETSC_COMM_WORLD, PETSC_ERR_ARG_WRONG, "Run partition_model on one process");
   PetscCall(PetscOptionsGetInt(NULL, NULL, "-nparts_max", &npmax, NULL));
   PetscCall(PetscOptionsGetBool(NULL, NULL, "-header", &header, NULL));
+  PetscCall(PetscOptionsGetInt(NULL, NULL, "-solid_weight", &solid_weight, NULL));
+  PetscCall(PetscOptionsGetReal(NULL, NULL, "-solid_cost", &solid_cost, NULL));
+  if (solid_cost < 0) solid_cost = solid_weight > 0 ? solid_weight : DecompKindCost(KIND_SOLID);
   PetscCall(SimCreate(PETSC_COMM_WORLD, &sim));
   PetscCall(SimSetFromOptions(sim));
   PetscCall(BuildScene(sim));
   sim->nparticles = sim->P->n;
-  PetscCall(CountCells(sim, &cc));
+  PetscCall(CountCells(sim, solid_weight, solid_cost, &cc));
   PetscCall(PetscMalloc1(cc.nc, &owner));
-  if (header) PetscCall(PetscPrintf(PETSC_COMM_SELF, "case,particles,cells,ranks,owned_max,owned_mean,work_max,work_mean,work_imbalance,ppe_rows_max,ppe_rows_mean,ppe_imbalance,halo_max,halo_mean,cut_edges,nbr_ranks_max,nbr_ranks_mean,solid_max,solid_mean,metis_s\n"));
+  if (header) PetscCall(PetscPrintf(PETSC_COMM_SELF, "case,particles,cells,ranks,owned_max,owned_mean,work_max,work_mean,work_imbalance,ppe_rows_max,ppe_rows_mean,ppe_imbalance,halo_max,halo_mean,cut_edges,nbr_ranks_max,nbr_ranks_mean,solid_max,solid_mean,cost_max,cost_mean,metis_s\n"));
   for (PetscInt np = 2; np <= npmax; np *= 2) {
     PetscLogDouble t0, t1;
     PetscCall(PetscTime(&t0));
@@ -152,6 +167,7 @@ int main(int argc, char **argv)
   }
   PetscCall(PetscFree(owner));
   PetscCall(PetscFree6(cc.all, cc.fluid, cc.bnd, cc.solid, cc.work, cc.ppe));
+  PetscCall(PetscFree(cc.cost));
   PetscCall(SimDestroy(&sim));
   PetscCall(PetscFinalize());
   return 0;

@@ -10,7 +10,8 @@ Writes OUTDIR/scaling_model.md and OUTDIR/scaling_model.png.
 Per rank and step (P ranks, max over ranks from the partition):
   compute   c_work * work_max                         (WCSPH; ISPH outside the PPE)
             + (c_asm + c_setup + (its+1) c_vcycle + its c_matmult) * ppe_rows_max   (ISPH)
-            + n_sub * c_solid * solid_max             (elastic gate: solid sub-steps)
+            (elastic gate: c_work * cost_max, each solid particle costing 4 + n_sub c_solid / c_work
+             work units per fluid step, from the partition's cost column)
   exchange  with k neighbour ranks: alpha + k * o + bytes / beta (messages posted together)
   halo      n_msg exchanges per step, ghost bytes scaled from the 2-rank run by halo_max
   rebuilds  per rebuild: MPI_Alltoall of counts (Bruck: alpha_ar log2 P) and MPI_Alltoallv, which
@@ -104,7 +105,8 @@ def model(row, c, scheme, a, aar, beta, alltoallv, nsub=0, o=0.5e-6):
     a2av = a * (P - 1) if alltoallv == "as is" else ex
     if scheme == "wcsph":
         cw = c["wcsph"]
-        comp = cw["c_work"] * float(row["work_max"])
+        # FSI: the partition's cost column counts each solid particle with its sub-steps (bench.sh)
+        comp = cw["c_work"] * float(row["cost_max"] if nsub else row["work_max"])
         rebuilds = 1
         n_msg, n_red = cw["n_msg"], cw["n_red"]
         byt = cw["bytes_step2"] / max(cw.get("halo2", halo), 1) * halo if cw.get("halo2") else 0
@@ -120,7 +122,7 @@ def model(row, c, scheme, a, aar, beta, alltoallv, nsub=0, o=0.5e-6):
         rebuilds = 2
         n_msg, n_red = ci["n_msg"], ci["n_red"]
         byt = ci["bytes_step2"] / max(ci.get("halo2", halo), 1) * halo if ci.get("halo2") else 0
-    solid = nsub * c["solid"]["c_solid"] * float(row.get("solid_max", 0) or 0)
+    solid = 0.0  # in comp through the cost column
     if P == 1:
         return dict(comp=comp, ppe=ppe, solid=solid, comm=0.0, total=comp + ppe + solid)
     comm = n_msg * ex + byt / beta + n_red * aar * lg + rebuilds * (aar * lg + a2av) + lat_ppe
@@ -133,35 +135,39 @@ def main():
     for k in range(2, len(sys.argv) - 1, 2):
         args[sys.argv[k].lstrip("-")] = float(sys.argv[k + 1])
     a, aar, beta = args["alpha"], args["alpha_ar"], args["beta"]
+    sc = open(f"{out}/solid_cost.txt").read().strip() if os.path.exists(f"{out}/solid_cost.txt") else "?"
     c = load_costs(out)
     tables, series = [], {}
-    for case, schemes in (("dam_break", ("wcsph", "isph")), ("elastic_gate", ("wcsph",))):
+    for case, schemes in (("dam_break", ("wcsph", "isph")), ("elastic_gate", ("wcsph",)), ("elastic_gate_solidw", ("wcsph",))):
         path = f"{out}/partition_{case}.csv"
         if not os.path.exists(path): continue
         rows = list(csv.DictReader(open(path)))
         if not rows: continue
         N = int(rows[0]["particles"])
-        one = dict(rows[0]); one.update(ranks="1", work_max=str(float(rows[0]["work_mean"]) * 2), ppe_rows_max=str(float(rows[0]["ppe_rows_mean"]) * 2),
+        one = dict(rows[0]); one.update(ranks="1", work_max=str(float(rows[0]["work_mean"]) * 2), cost_max=str(float(rows[0]["cost_mean"]) * 2), ppe_rows_max=str(float(rows[0]["ppe_rows_mean"]) * 2),
                                         ppe_rows_mean=str(float(rows[0]["ppe_rows_mean"]) * 2), solid_max=str(float(rows[0]["solid_mean"]) * 2), halo_max="0", nbr_ranks_max="0")
         # the 2-rank halo of the measured 400k run scales the ghost bytes: halo ~ sqrt(N) at 2 ranks
         for s in schemes:
             c[s]["halo2"] = float(rows[0]["halo_max"]) * math.sqrt(c[s]["particles"] / N)
         for s in schemes:
-            nsub = args["nsub"] if case == "elastic_gate" else 0
-            t1 = model(one, c, s, a, aar, beta, "as is", nsub)["total"]
+            nsub = args["nsub"] if case.startswith("elastic_gate") else 0
+            m1 = model(one, c, s, a, aar, beta, "as is", nsub)
+            t1 = m1["total"]
             for variant in ("as is", "neighbour exchanges"):
-                pts = [(1, t1, 1.0, 0, 0)]
+                pts = [(1, t1, 1.0, 0, 0, 1.0)]
                 for r in rows:
                     m = model(r, c, s, a, aar, beta, variant, nsub, args["o"])
                     P = int(r["ranks"])
-                    pts.append((P, m["total"], t1 / (P * m["total"]), m["comm"] / m["total"], m.get("ppe_lat", 0) / m["total"]))
+                    ppe_eff = m1["ppe"] / (P * (m["ppe"] + m.get("ppe_lat", 0))) if m1["ppe"] > 0 else 1.0
+                    pts.append((P, m["total"], t1 / (P * m["total"]), m["comm"] / m["total"], m.get("ppe_lat", 0) / m["total"], ppe_eff))
                 series[(case, s, variant)] = (N, pts)
         tables.append((case, N, rows))
     md = []
     md.append(f"Scaling model (tools/scaling_model.py): METIS partitions of the real cell graphs (bin/partition_model, initial state) "
               f"and the per-particle costs measured on this machine by tools/bench.sh (~400k particles, 1 rank). "
               f"Assumed network: point-to-point latency alpha = {a * 1e6:.1f} us + {args['o'] * 1e6:.1f} us per further neighbour of an exchange, allreduce {aar * 1e6:.1f} us per log2(P) stage, "
-              f"{beta / 1e9:.0f} GB/s per rank; elastic gate: {args['nsub']:.0f} solid sub-steps per fluid step.\n")
+              f"{beta / 1e9:.0f} GB/s per rank; elastic gate: {args['nsub']:.0f} solid sub-steps per fluid step, a solid particle costing {sc} work units per fluid step "
+              f"(4 + 8 c_solid / c_work, c_solid from the oscillating plate on 2 ranks, an upper bound: its 1040 particles carry the per-step overheads).\n")
     ci, cw = c["isph"], c["wcsph"]
     md.append(f"Measured costs (1 rank, {cw['particles']} particles): WCSPH {cw['c_work'] * 1e9:.1f} ns per work unit per step "
               f"(fluid 4, wall 1; {cw['t_step'] * 1e3:.1f} ms/step); ISPH outside the PPE {ci['c_nonppe'] * 1e9:.1f} ns per work unit, "
@@ -170,19 +176,21 @@ def main():
               f"halo: {cw['n_msg']:.1f} (WCSPH) / {ci['n_msg']:.1f} (ISPH) messages and {cw['n_red']:.1f} / {ci['n_red']:.1f} reductions per step outside the PPE; "
               f"solid sub-step {c['solid']['c_solid'] * 1e9:.0f} ns per solid particle.\n")
     for case, N, rows in tables:
-        md.append(f"\n**{case}**, {N} particles, {rows[0]['cells']} cells\n")
-        hdr = "| ranks | particles/rank | work imbalance | PPE-row imbalance | halo/owned (max) | neighbour ranks max | cut edges |"
-        sep = "|---|---|---|---|---|---|---|"
+        title = case.replace("_solidw", f", solid and clamp particles weighted {sc} (their cost with the sub-steps) in the partition instead of 4")
+        md.append(f"\n**{title}**, {N} particles, {rows[0]['cells']} cells, solid particles on the busiest rank at 2 / 64 ranks: "
+                  f"{rows[0]['solid_max']} / {rows[min(5, len(rows) - 1)]['solid_max']}\n" if case.startswith("elastic") else f"\n**{title}**, {N} particles, {rows[0]['cells']} cells\n")
+        hdr = "| ranks | particles/rank | work imbalance | cost imbalance (solid sub-steps counted) | PPE-row imbalance | halo/owned (max) | neighbour ranks max | cut edges |"
+        sep = "|---|---|---|---|---|---|---|---|"
         keys = [k for k in series if k[0] == case]
         for k in keys:
             hdr += f" {k[1].upper()} {'' if k[2] == 'as is' else '(nbr. exch.) '}ms/step (eff.) |"
             sep += "---|"
         md.append(hdr); md.append(sep)
         for i, r in enumerate(rows):
-            line = (f"| {r['ranks']} | {N / int(r['ranks']):.0f} | {float(r['work_imbalance']):.3f} | {float(r['ppe_imbalance']):.3f} | "
+            line = (f"| {r['ranks']} | {N / int(r['ranks']):.0f} | {float(r['work_imbalance']):.3f} | {float(r['cost_max']) / float(r['cost_mean']):.3f} | {float(r['ppe_imbalance']):.3f} | "
                     f"{float(r['halo_max']) / float(r['owned_max']):.2f} | {r['nbr_ranks_max']} | {r['cut_edges']} |")
             for k in keys:
-                P, t, e, _, _ = series[k][1][i + 1]
+                P, t, e, _, _, _ = series[k][1][i + 1]
                 line += f" {t * 1e3:.3g} ({100 * e:.0f} %) |"
             md.append(line)
     # where it stops scaling
@@ -192,17 +200,22 @@ def main():
         md.append(f"- {k[0]} {k[1].upper()} ({k[2]}): efficiency >= 50 % up to {last[0]} ranks ({N / last[0]:.0f} particles per rank); "
                   f"at 1024 ranks {100 * pts[-1][2]:.0f} %, communication {100 * pts[-1][3]:.0f} % of the step"
                   + (f", PPE latency {100 * pts[-1][4]:.0f} %" if k[1] == "isph" else ""))
+        if k[1] == "isph" and k[2] == "as is":
+            near = min(pts[1:], key=lambda p: abs(N / p[0] - 16300))  # Guo et al.: 100M particles on 6144 partitions
+            md.append(f"  - at {N / near[0]:.0f} particles per rank ({near[0]} ranks; Guo et al. 2018 ran ~16k per partition): "
+                      f"overall {100 * near[2]:.0f} %, PPE alone {100 * near[5]:.0f} % (Guo et al.: > 43 % overall, PPE > 90 %)")
     open(f"{out}/scaling_model.md", "w").write("\n".join(md) + "\n")
     try:
         import matplotlib
         matplotlib.use("Agg")
         import matplotlib.pyplot as plt
-        fig, ax = plt.subplots(1, 2, figsize=(11, 4.2))
-        colors = {("dam_break", "wcsph"): "C0", ("dam_break", "isph"): "C1", ("elastic_gate", "wcsph"): "C2"}
+        fig, ax = plt.subplots(1, 2, figsize=(11, 5.6))
+        colors = {("dam_break", "wcsph"): "C0", ("dam_break", "isph"): "C1", ("elastic_gate", "wcsph"): "C2", ("elastic_gate_solidw", "wcsph"): "C3"}
         for k, (N, pts) in series.items():
             P = [p[0] for p in pts]; t = [p[1] * 1e3 for p in pts]; e = [100 * p[2] for p in pts]
             ls = "-" if k[2] == "as is" else "--"
-            lab = f"{k[0].replace('_', ' ')} {k[1].upper()}{'' if k[2] == 'as is' else ', neighbour exchanges'}"
+            name = k[0].replace("elastic_gate_solidw", "elastic gate (solids weighted by their cost)").replace("elastic_gate", "elastic gate (solids weighted 4, as now)").replace("_", " ")
+            lab = f"{name} {k[1].upper()}{'' if k[2] == 'as is' else ', neighbour exchanges'}"
             ax[0].loglog(P, t, ls, marker="o", ms=3, color=colors[(k[0], k[1])], label=lab)
             if k[2] == "as is": ax[0].loglog(P, [t[0] / p for p in P], ":", color=colors[(k[0], k[1])], lw=0.8)
             ax[1].semilogx(P, e, ls, marker="o", ms=3, color=colors[(k[0], k[1])], label=lab)
@@ -210,11 +223,12 @@ def main():
         ax[1].axhline(43, color="grey", lw=0.8); ax[1].text(1.2, 45, "Guo et al. 2018: 43 % overall at 6144 partitions", fontsize=7, color="grey")
         ax[1].axhline(90, color="grey", lw=0.8, ls="--"); ax[1].text(1.2, 92, "Guo et al. 2018: PPE > 90 %", fontsize=7, color="grey")
         ax[1].set_xlabel("ranks"); ax[1].set_ylabel("parallel efficiency (%)"); ax[1].set_ylim(0, 105); ax[1].set_title("strong scaling at ~1M particles")
-        ax[1].legend(fontsize=7, loc="lower left")
+        h, l = ax[1].get_legend_handles_labels()
+        fig.legend(h, l, fontsize=7, loc="lower center", ncol=2)
         for x in ax: x.grid(True, which="both", alpha=0.3)
         fig.suptitle(f"sphfsi scaling model: METIS partitions of the real cell graphs + costs measured on this machine "
                      f"(alpha {a * 1e6:.0f} us, allreduce {aar * 1e6:.1f} us/stage)", fontsize=8)
-        fig.tight_layout()
+        fig.tight_layout(rect=(0, 0.17, 1, 1))
         fig.savefig(f"{out}/scaling_model.png", dpi=110)
     except ImportError:
         print("matplotlib missing: no PNG", file=sys.stderr)

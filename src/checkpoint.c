@@ -299,7 +299,7 @@ static PetscErrorCode CheckHeader(Sim sim, PetscViewer v, PetscInt *ranks, Petsc
   PetscCheck(PetscAbsReal(dx - sim->dx) <= 1e-12 * dx, sim->comm, PETSC_ERR_USER_INPUT, "-restart %s was written with -dx %g, this run has -dx %g: a restart keeps the resolution (drop -dx or give %g)", path, (double)dx, (double)sim->dx, (double)dx);
   PetscCall(ReadString(v, "fields", buf, sizeof(buf)));
   PetscCall(FieldList(sim->P, fields, sizeof(fields)));
-  PetscCheck(!strcmp(buf, fields), sim->comm, PETSC_ERR_USER_INPUT, "-restart %s holds the particle fields {%s}, this run allocates {%s}: restart with the options the checkpoint was written with (e.g. -xsph, -isph_shift, -solid_gradient, -fsi_*)", path, buf, fields);
+  PetscCheck(!strcmp(buf, fields), sim->comm, PETSC_ERR_USER_INPUT, "-restart %s holds the particle fields {%s}, this run allocates {%s}: restart with the options the checkpoint was written with (e.g. -xsph, -isph_shift, -wcsph_shift, -solid_gradient, -fsi_*)", path, buf, fields);
   PetscCall(PetscViewerHDF5ReadAttribute(v, "/", "cells", PETSC_INT, NULL, ncell));
   PetscCheck(*ncell == GridNumCells(&sim->grid), sim->comm, PETSC_ERR_USER_INPUT, "-restart %s has a grid of %d cells, this run %d: the scene's geometry options differ from the checkpointed run's", path, (int)*ncell, (int)GridNumCells(&sim->grid));
   PetscCall(PetscViewerHDF5ReadAttribute(v, "/", "probe_columns", PETSC_INT, NULL, &k));

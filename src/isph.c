@@ -3,24 +3,11 @@
 #include <sphfsi/boundary.h>
 #include <sphfsi/kernel.h>
 #include <sphfsi/fluid_terms.h>
+#include <sphfsi/shifting.h>
 
 const char *const ISPHFreeSurfaces[] = {"density", "divr", "ISPHFreeSurface", "ISPH_FS_", NULL};
 const char *const ISPHSources[]      = {"divergence", "density", "blend", "ISPHSource", "ISPH_SOURCE_", NULL};
 const char *const ISPHGradients[]    = {"eq14", "corrected", "hybrid", "ISPHGradient", "ISPH_GRAD_", NULL};
-
-/* Sums over a full square lattice of spacing 1 (h = SPH_H_FACTOR): sum W and -sum F r^2, the
- * interior values of the summation density (Eq. 17, per rho0) and of div r (2 in the continuum). */
-static void LatticeSums(PetscReal *sw, PetscReal *divr)
-{
-  const PetscReal h = SPH_H_FACTOR;
-  *sw = 0; *divr = 0;
-  for (PetscInt j = -3; j <= 3; j++)
-    for (PetscInt i = -3; i <= 3; i++) {
-      PetscReal r = PetscSqrtReal((PetscReal)(i * i + j * j));
-      *sw += KernelW(r, h);
-      *divr -= KernelF(r, h) * r * r;
-    }
-}
 
 PetscErrorCode ISPHSetUp(Sim sim)
 {
@@ -53,7 +40,8 @@ PetscErrorCode ISPHSetUp(Sim sim)
   PetscCheck(s->shift >= 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-isph_shift %g must be >= 0", (double)s->shift);
   if (s->source == ISPH_SOURCE_DIVERGENCE) s->blend = 0;
   if (s->source == ISPH_SOURCE_DENSITY) s->blend = 1;
-  LatticeSums(&s->lat_w, &s->lat_divr);
+  s->lat_w    = KernelLatticeSum(PETSC_FALSE);
+  s->lat_divr = KernelLatticeSum(PETSC_TRUE);
   PetscCall(PPECreate(sim->comm, &s->ppe));
   PetscCall(PPESetFromOptions(s->ppe, (PetscBool)!(sim->solid && sim->solid->implicit)));
   PetscCall(ParticlesEnableField(sim->P, FIELD_ACC, PETSC_FALSE));
@@ -258,9 +246,8 @@ static PetscErrorCode Corrector(Sim sim)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-/* Position corrections as velocities: XSPH (Eq. 44) and Fickian shifting
- * dr = -A h |v| dt grad C (Skillen et al. 2013), none on the free surface and only tangential next
- * to it (Lind et al. 2012), at most 0.1 h per step. */
+/* Position corrections as velocities: XSPH (Eq. 44) and Fickian shifting (shifting.h); a particle
+ * is next to the free surface when a fluid neighbour is on it. */
 static PetscErrorCode Drift(Sim sim)
 {
   ISPH             s = sim->isph;
@@ -298,17 +285,7 @@ static PetscErrorCode Drift(Sim sim)
       }
     }
     xs[2 * a] = eps * sx; xs[2 * a + 1] = eps * sy;
-    if (s->shift > 0 && fs[a] == 0) {
-      PetscReal speed = PetscSqrtReal(v[2 * a] * v[2 * a] + v[2 * a + 1] * v[2 * a + 1]);
-      PetscReal D = s->shift * h[a] * speed * dt, dxs = -D * cx, dys = -D * cy, len;
-      if (near_fs) { /* keep the tangential part: n = -grad C / |grad C| */
-        PetscReal gn = PetscSqrtReal(cx * cx + cy * cy), nx = gn > 0 ? cx / gn : 0, ny = gn > 0 ? cy / gn : 0, dn = dxs * nx + dys * ny;
-        dxs -= dn * nx; dys -= dn * ny;
-      }
-      len = PetscSqrtReal(dxs * dxs + dys * dys);
-      if (len > 0.1 * h[a]) { dxs *= 0.1 * h[a] / len; dys *= 0.1 * h[a] / len; }
-      xs[2 * a] += dxs / dt; xs[2 * a + 1] += dys / dt;
-    }
+    ShiftVelocity(s->shift, fs[a] > 0 ? SHIFT_SURFACE : near_fs ? SHIFT_NEAR_SURFACE : SHIFT_BULK, h[a], v + 2 * a, dt, cx, cy, xs + 2 * a);
   }
   PetscFunctionReturn(PETSC_SUCCESS);
 }

@@ -3,14 +3,21 @@
 #include <sphfsi/kernel.h>
 #include <sphfsi/fluid_terms.h>
 #include <sphfsi/solid.h>
+#include <sphfsi/shifting.h>
 
 PetscErrorCode WCSPHSetUp(Sim sim)
 {
+  FluidMaterial *fl = &sim->fl;
   PetscFunctionBeginUser;
+  PetscOptionsBegin(sim->comm, NULL, "WCSPH fluid", "WCSPH");
+  PetscCall(PetscOptionsReal("-wcsph_shift", "Particle shifting coefficient A (D = A h |v| dt, Skillen et al. 2013; none where div r < 1.5, tangential where < 1.95); 0 = off", "", fl->shift, &fl->shift, NULL));
+  PetscOptionsEnd();
+  PetscCheck(fl->shift >= 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-wcsph_shift %g must be >= 0", (double)fl->shift);
+  fl->lat_divr = KernelLatticeSum(PETSC_TRUE);
   PetscCall(ParticlesEnableField(sim->P, FIELD_ACC, PETSC_FALSE));
   PetscCall(ParticlesEnableField(sim->P, FIELD_DRHO, PETSC_FALSE));
   PetscCall(ParticlesEnableField(sim->P, FIELD_VWALL, PETSC_FALSE)); /* ghosts: refreshed by BoundaryWallState */
-  if (sim->fl.xsph > 0) PetscCall(ParticlesEnableField(sim->P, FIELD_XSPH, PETSC_FALSE));
+  if (fl->xsph > 0 || fl->shift > 0) PetscCall(ParticlesEnableField(sim->P, FIELD_XSPH, PETSC_FALSE));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -25,7 +32,8 @@ PetscErrorCode WCSPHPressure(Sim sim)
 }
 
 /* drho/dt of owned fluid: continuity Eq. 18, optional delta-SPH diffusion (Molteni & Colagrossi
- * 2009, hydrostatic part removed); and the XSPH velocity correction Eq. 44. */
+ * 2009, hydrostatic part removed); and the XSPH velocity correction Eq. 44 plus the shifting
+ * velocity (shifting.h, zones from div r) over the coming step sim->dt. */
 static PetscErrorCode Continuity(Sim sim)
 {
   Particles            P = sim->P;
@@ -35,10 +43,11 @@ static PetscErrorCode Continuity(Sim sim)
   PetscReal           *drho = PField(P, FIELD_DRHO), *xs = PField(P, FIELD_XSPH);
   const FluidMaterial *fl   = &sim->fl;
   const PetscReal      dcoef = fl->delta * fl->c0, dhyd = fl->rho0 / (fl->c0 * fl->c0);
+  const PetscBool      shift = (PetscBool)(fl->shift > 0);
 
   PetscFunctionBeginUser;
   for (PetscInt a = 0; a < P->n; a++) {
-    PetscReal dr = 0, dd = 0, sx = 0, sy = 0;
+    PetscReal dr = 0, dd = 0, sx = 0, sy = 0, cx = 0, cy = 0, divr = 0;
     PetscReal xa = x[2 * a], ya = x[2 * a + 1], vxa = v[2 * a], vya = v[2 * a + 1], ra = rho[a];
     if (!KindIsFluid(P->kind[a])) continue;
     for (PetscInt k = C->nstart[a]; k < C->nstart[a + 1]; k++) {
@@ -46,6 +55,7 @@ static PetscErrorCode Continuity(Sim sim)
       PetscReal dx = xa - x[2 * b], dy = ya - x[2 * b + 1], F = C->f[k], vb = m[b] / rho[b];
       PetscReal dvx = vxa - v[2 * b], dvy = vya - v[2 * b + 1];
       dr += vb * F * (dvx * dx + dvy * dy);
+      if (shift) { cx += vb * F * dx; cy += vb * F * dy; divr -= vb * F * (dx * dx + dy * dy); }
       if (!KindIsFluid(P->kind[b])) continue;
       if (dcoef > 0) {
         PetscReal dh = dhyd * (-sim->g[0] * dx - sim->g[1] * dy); /* rho_b^H - rho_a^H */
@@ -59,6 +69,7 @@ static PetscErrorCode Continuity(Sim sim)
     }
     drho[a] = ra * dr + dcoef * dd;
     if (xs) { xs[2 * a] = fl->xsph * sx; xs[2 * a + 1] = fl->xsph * sy; }
+    if (shift) ShiftVelocity(fl->shift, ShiftZoneFromDivr(2.0 * divr / fl->lat_divr), h[a], v + 2 * a, sim->dt, cx, cy, xs + 2 * a);
   }
   PetscFunctionReturn(PETSC_SUCCESS);
 }

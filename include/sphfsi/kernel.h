@@ -35,3 +35,17 @@ static inline PetscReal KernelF(PetscReal r, PetscReal h)
 }
 
 static inline PetscReal PairH(PetscReal ha, PetscReal hb) { return ha == hb ? ha : PetscSqrtReal(ha * hb); }
+
+/* Sums over a full square lattice of spacing 1 (h = SPH_H_FACTOR): sum W (divr false) or -sum F r^2
+ * (divr true), the interior values of the summation density (Eq. 17, per rho0) and of div r
+ * (2 in the continuum), used to normalise both. */
+static inline PetscReal KernelLatticeSum(PetscBool divr)
+{
+  PetscReal s = 0;
+  for (PetscInt j = -3; j <= 3; j++)
+    for (PetscInt i = -3; i <= 3; i++) {
+      PetscReal r = PetscSqrtReal((PetscReal)(i * i + j * j));
+      s += divr ? -KernelF(r, SPH_H_FACTOR) * r * r : KernelW(r, SPH_H_FACTOR);
+    }
+  return s;
+}

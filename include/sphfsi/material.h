@@ -9,6 +9,8 @@ typedef struct {
   PetscReal alpha;    /* artificial viscosity, Eq. 24 (WCSPH) */
   PetscReal delta;    /* density diffusion (delta-SPH), 0 = off */
   PetscReal xsph;     /* XSPH epsilon, Eq. 44, 0 = off */
+  PetscReal shift;    /* WCSPH Fickian shifting coefficient A (shifting.h), 0 = off */
+  PetscReal lat_divr; /* WCSPH with shifting: bulk value of -sum V F r^2, normalises div r */
 } FluidMaterial;
 
 typedef struct {

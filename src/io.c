@@ -8,6 +8,7 @@
 #include <petscviewerhdf5.h>
 #include <sys/stat.h>
 #include <errno.h>
+#include <sys/resource.h>
 
 /* mkdir -p on rank 0; every rank learns whether it worked, and checks that it sees the directory
  * too (on a cluster the output must be on a file system that every node shares).  The probe file
@@ -271,12 +272,32 @@ static void JsonString(FILE *f, const char *key, const char *v)
   fprintf(f, "\",\n");
 }
 
+/* Peak resident memory of this process in bytes (getrusage: kB on Linux); 0 when unknown. */
+static double PeakResidentBytes(void)
+{
+  struct rusage ru;
+  return getrusage(RUSAGE_SELF, &ru) ? 0.0 : 1024.0 * (double)ru.ru_maxrss;
+}
+
+/* Which physics modules this run built (a scene allocates only what it needs). */
+static void JsonModules(FILE *f, Sim sim)
+{
+  fprintf(f, "  \"modules\": [");
+  if (sim->has_fluid) fprintf(f, "\"%s\"", FluidSchemes[sim->fluid]);
+  if (sim->isph) fprintf(f, ", \"pressure_matrix\"");
+  if (sim->solid) fprintf(f, "%s\"solid\"", sim->has_fluid ? ", " : "");
+  if (sim->solid && sim->isph && sim->solid->implicit) fprintf(f, ", \"implicit_interface\"");
+  fprintf(f, "],\n  \"pressure_matrix\": %s,\n", sim->isph ? "true" : "false");
+}
+
 PetscErrorCode IOSummary(Sim sim)
 {
-  char  path[PETSC_MAX_PATH_LEN], tmp[PETSC_MAX_PATH_LEN];
-  FILE *f = NULL;
-  int   err = 0;
+  char   path[PETSC_MAX_PATH_LEN], tmp[PETSC_MAX_PATH_LEN];
+  FILE  *f = NULL;
+  int    err = 0;
+  double rss = PeakResidentBytes(), rss_sum = 0;
   PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Reduce(&rss, &rss_sum, 1, MPI_DOUBLE, MPI_SUM, 0, sim->comm));
   if (!sim->rank) {
     PetscCall(PetscSNPrintf(path, sizeof(path), "%s/summary.json", sim->outdir));
     PetscCall(PetscSNPrintf(tmp, sizeof(tmp), "%s.part", path));
@@ -300,7 +321,10 @@ PetscErrorCode IOSummary(Sim sim)
     if (sim->solid) fprintf(f, "  \"c0_solid\": %.6g,\n  \"solid_substeps_max\": %d,\n", (double)sim->sl.c0, (int)sim->solid->nsub_max);
     if (sim->has_fluid) fprintf(f, "  \"c0\": %.6g,\n", (double)sim->fl.c0);
     else fprintf(f, "  \"c0\": null,\n");
+    JsonModules(f, sim);
     fprintf(f, "  \"bytes_per_particle\": %d,\n  \"repartitions\": %d,\n", (int)ParticlesBytesPerParticle(sim->P), (int)sim->decomp->nrepartition);
+    JsonReal(f, "peak_resident_bytes", rss_sum); /* all ranks, MPI/PETSc/hypre included */
+    JsonReal(f, "peak_resident_bytes_per_particle", sim->nparticles > 0 ? rss_sum / sim->nparticles : 0);
     fprintf(f, "  \"fields\": [");
     for (PetscInt k = 0, first = 1; k < FIELD_COUNT; k++)
       if (sim->P->f[k].on) { fprintf(f, "%s\"%s\"", first ? "" : ", ", sim->P->f[k].name); first = 0; }

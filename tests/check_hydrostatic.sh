@@ -14,4 +14,7 @@ print(f"hydrostatic ({s['fluid']}): p_bottom error {100*e['p_bottom_rel_err']:.2
 assert 0 <= e["p_bottom_rel_err"] < pb, f"floor pressure off by more than {100*pb:.0f} %"
 assert e["v_max_final"] < vbound, "water at rest moves"
 assert s["mass_rel_drift"] == 0, "mass changed"
+# a fluid-only scene allocates no solid arrays; only ISPH builds the pressure matrix
+assert not {"stress", "kernel_correction", "fluid_view"} & set(s["fields"]), f"solid fields in a fluid scene: {s['fields']}"
+assert s["pressure_matrix"] == (s["fluid"] == "isph") and "solid" not in s["modules"], f"modules {s['modules']}"
 PY

@@ -41,6 +41,9 @@ assert abs(e["amplitude_rel_err"]) < 0.15, "amplitude off the analytic value by 
 assert dE < 0.10, "total energy drifted by more than 10 %"
 assert abs(e["energy_rel_drift_max"] - dE) < 1e-3, "scene energy drift disagrees with the probes"
 assert e["amplitude_last_over_first"] > 0.9, "the oscillation decays or grows"
+# a solid-only scene builds no pressure matrix and no fluid scheme
+assert s["modules"] == ["solid"] and not s["pressure_matrix"] and s["fluid"] == "none", f"modules {s['modules']}"
+assert not {"vstar", "row", "free_surface", "vwall"} & set(s["fields"]), f"fluid fields in a solid scene: {s['fields']}"
 PY
 # without artificial viscosity: a clean failure, not a hang or a crash
 if $MPI bin/sphfsi -options_file cases/oscillating_plate.opts -plate_ny 6 -solid_alpha 0 -solid_art_stress 0.3 -output_interval 0 -output_dir "$OUT/no_av" -progress_every 0 > "$OUT/no_av.log" 2>&1; then

@@ -139,7 +139,7 @@ PetscErrorCode IOWriteParticles(Sim sim, const char *path)
   PetscCall(WriteInts(v, sim, "id", P->id));
   PetscCall(WriteInts(v, sim, "kind", P->kind));
   {
-    const FieldId out[] = {FIELD_X, FIELD_V, FIELD_P, FIELD_RHO, FIELD_M, FIELD_H, FIELD_S};
+    const FieldId out[] = {FIELD_X, FIELD_V, FIELD_P, FIELD_RHO, FIELD_M, FIELD_H, FIELD_S, FIELD_FS};
     for (size_t k = 0; k < sizeof(out) / sizeof(out[0]); k++)
       if (P->f[out[k]].on) PetscCall(WriteField(v, sim, P->f[out[k]].name, P->f[out[k]].a, P->f[out[k]].width));
   }
@@ -180,6 +180,8 @@ static PetscErrorCode WriteXDMF(Sim sim, const char *xmf, PetscInt n, const char
       for (int k = 0; k < 4; k++)
         fprintf(f, "    <Attribute Name=\"%s\" Center=\"Node\"><DataItem Dimensions=\"%d\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s:/%s</DataItem></Attribute>\n", scal[k], (int)N, h5, scal[k]);
     }
+    if (sim->P->f[FIELD_FS].on) /* ISPH: 1 on the free surface of the last step's predictor */
+      fprintf(f, "    <Attribute Name=\"free_surface\" Center=\"Node\"><DataItem Dimensions=\"%d\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s:/free_surface</DataItem></Attribute>\n", (int)N, h5);
     if (sim->P->f[FIELD_S].on)
       fprintf(f, "    <Attribute Name=\"stress\" AttributeType=\"Vector\" Center=\"Node\"><DataItem Dimensions=\"%d 3\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s:/stress</DataItem></Attribute>\n", (int)N, h5);
     fprintf(f, "   </Grid>\n");

@@ -29,6 +29,8 @@ run() { # name, command...
 for t in "${BINDIR:-bin}"/test_*; do
   run "$(basename "$t")" $MPI "$t"
 done
+# ISPH snapshots also hold the free-surface flag (`free_surface`)
+run test_hdf5_isph $MPI "${BINDIR:-bin}"/test_hdf5 -fluid isph
 # ISPH: 1 and 2 ranks agree to the solver tolerance (tight rtol; the bound is 100x that)
 run test_rank_agreement_isph $MPI "${BINDIR:-bin}"/test_rank_agreement -fluid isph -ksp_rtol 1e-10 -tol 1e-8
 # Solid (oscillating plate, ~1000 steps): explicit and per rank, so 1 and 2 ranks agree exactly

@@ -59,7 +59,7 @@ MPIEXEC ?= mpiexec
 MPIEXEC_FLAGS ?= $(shell $(MPIEXEC) --version 2>/dev/null | grep -q "Open MPI" && echo --oversubscribe)
 export MPIEXEC MPIEXEC_FLAGS
 
-.PHONY: all deps run check check-unit bench clean tests
+.PHONY: all deps run check check-unit bench hard clean tests
 all: $(BIN) $(TEST_BIN)
 
 $(BUILD)/%.o: %.c $(wildcard include/sphfsi/*.h)
@@ -98,6 +98,12 @@ check: deps
 bench: deps
 	@$(MAKE) --no-print-directory all $(BINDIR)/partition_model
 	@BINDIR=$(BINDIR) bash tools/bench.sh
+
+# Hard cases of issue 6 (tools/hard.sh; each case PASS/FAIL with why, out/hard/hard.md, ~30 min on 2
+# cores).  2 ranks unless NP is given on the command line or in the environment.
+hard: deps
+	@$(MAKE) --no-print-directory all
+	@BINDIR=$(BINDIR) NP=$(if $(filter command line environment,$(origin NP)),$(NP),2) bash tools/hard.sh
 
 # Partition statistics of a scene's cell graph for many ranks (tools/partition_model.c)
 $(BINDIR)/partition_model: $(BUILD)/tools/partition_model.o $(BUILD)/libsphfsi.a

@@ -1,0 +1,486 @@
+#!/usr/bin/env python3
+"""Checks of the hard-case suite (issue 6; run by tools/hard.sh, `make hard`).
+
+    hard_check.py CASE OUTROOT       check the runs of CASE in OUTROOT/RUN/ (written by hard.sh), print
+                                     one line 'PASS|FAIL|SKIP CASE: why (measured, bound)' and record it
+                                     in OUTROOT/results.json
+    hard_check.py --report OUTROOT   write OUTROOT/hard.md (a Markdown table: case, scheme, result,
+                                     measured, bound, wall s) and print 'N passed, N failed'
+
+Every run directory holds what sphfsi wrote (summary.json, probes.csv, particles_NNNNN.h5,
+last_good.h5 after a fault) and hard_run.json from hard.sh: the exit status, wall seconds, the load
+average before and after, the command, or {"skipped": why}.
+
+The bounds are below, each with its physical reason; they were set before the runs and are not
+tuned to what the code printed.  A case that fails stays in the table as FAIL with the reason.
+"""
+import glob
+import json
+import math
+import os
+import sys
+
+import h5py
+import numpy as np
+
+G = 9.81
+RHO0 = 1000.0
+
+# ---- 1. hydrostatic tank, 0.1 m x 0.1 m of water, dx = H/40, held for 10 s ------------------------
+HYD_T_LATE = 5.0  # statistics over t >= 5 s: ~14 periods of the first sloshing mode (0.36 s) and
+# ~700 acoustic crossings (H/c0 = 7 ms) after the start, so every start-up wave has had time to decay.
+HYD_MEAN = 0.03  # |mean p_bottom - rho g H| / rho g H: the discretisation offsets are first order in
+# dx/H = 2.5 %: the probe at the floor averages over a one-sided kernel, and the ISPH free surface
+# (P = 0 on the top row's centres) sits dx/2 below the water's edge; the test suite's bound (3 %).
+HYD_STD = 0.01  # std of p_bottom over t >= 5 s / rho g H: water at rest has a steady floor pressure;
+# after 5 s the remaining fluctuation must be small against the 3 % offset allowed for the mean.
+HYD_VMAX = 0.01  # max speed over t >= 5 s, in units of sqrt(g H) (0.0099 m/s): at rest.  With the
+# first sloshing period (0.36 s) an oscillation of this amplitude moves a particle by ~0.2 dx, so any
+# faster motion is a current, not noise.
+HYD_DRIFT = 1.0  # max displacement (by id) between the first and the last snapshot, in dx: the
+# lattice may relax by a fraction of a spacing; a particle that moved a full dx has changed place
+# with a neighbour, i.e. the still water circulates.
+HYD_FS_DEPTH = 3.0  # ISPH: a fluid particle flagged free surface more than 3 dx below the top row is
+# spurious: the kernel support is 2h = 2.6 dx, so below that the density summation is complete.
+
+# ---- 2. dam break to t sqrt(g/H) >= 6 ---------------------------------------------------------------
+DB_H = 2 * 0.05715  # column height H = 2a
+DB_TAU = 6.0  # t sqrt(g/H): through the impact on the far wall (tau ~ 2.5) and the overturning
+# wave that falls back (tau ~ 4-6)
+# mass: exactly conserved (every particle keeps its mass and none is created or removed):
+# mass_rel_drift == 0 and the fluid particle count constant.  Tank: every fluid centre inside the
+# tank box, between the walls' inner faces (the first wall row's centres are dx/2 behind them) and
+# below the wall top, in every snapshot: a centre past a face has half its volume (dx x dx) in the
+# wall.  The check also counts the centres past the first wall row (through the wall particles).
+
+# ---- 3. Taylor-Green, Re = 1000, to t = 2 s (ISPH with shifting) ------------------------------------
+TG_EGROW = 0.01  # E_kin(t)/E_kin(0) - 1 <= 1 % at every probe: unforced viscous flow only loses
+# energy; growth beyond the probe noise is the signature of an instability.
+TG_L2 = 0.5  # l2 velocity error / U at t = 2 s < 50 %: below that the field is still the vortex
+# array (a broken-up, disordered flow has an error of order 100 %); the error itself is reported.
+
+# ---- 4. oscillating plate, V_f = 0.05, 5 periods ----------------------------------------------------
+PL_PERIODS = 5.0  # the run covers >= 5 measured periods
+PL_DMIN = 0.75  # closest pair of solid particles >= 0.75 dx in every snapshot: the beam's bending
+# strain at the clamp is ~9 % at this amplitude (0.91 dx on the compressed side); the tensile
+# instability clumps pairs well below that (solid_block test: 0.64 dx without artificial stress,
+# 0.93 with it; the test's threshold 0.75).
+PL_LINK = 1.5  # the plate stays one piece: every particle is linked to the body through neighbours
+# closer than 1.5 dx (1 and 1.41 dx on the lattice; a crack opens gaps far beyond the elastic strain).
+PL_SWING = 0.9  # last swing / first swing >= 0.9 (the oscillating_plate test's bound): the tensile
+# instability takes the swing down (0.78 and 0.39 of the first with e = 0.1, README).
+# energy drift: reported (the test suite's bound at V_f = 0.01 is 10 %; the artificial stress does
+# work it stores nowhere, and more at a 5x larger amplitude).
+
+# ---- 5. elastic gate, rubber 5x softer / stiffer: completes (t_end) or stops with status 4 and a
+# message; no NaN/Inf in any snapshot, last_good.h5 or probes.csv.
+
+# ---- 6. -dt 100x the adaptive (CFL) step: exit status 4, "status": "fault" with a message, a finite
+# last_good.h5; no NaN/Inf in any output.
+
+CASES = [  # case, runs (first = the one judged), scheme label
+    ("hydrostatic_wcsph", ["hydrostatic_wcsph"], "WCSPH"),
+    ("hydrostatic_isph", ["hydrostatic_isph"], "ISPH"),
+    ("dam_break_wcsph", ["dam_break_wcsph"], "WCSPH"),
+    ("dam_break_wcsph_shift", ["dam_break_wcsph_shift"], "WCSPH, -wcsph_shift 1"),
+    ("dam_break_isph", ["dam_break_isph"], "ISPH"),
+    ("dam_break_isph_shift", ["dam_break_isph_shift"], "ISPH, -isph_shift 1"),
+    ("taylor_green_re1000", ["taylor_green_shift20", "taylor_green_shift1", "taylor_green_noshift"], "ISPH, -isph_shift 20"),
+    ("plate_vf005", ["plate_vf005"], "solid"),
+    ("gate_soft", ["gate_soft"], "ISPH + solid, K, G / 5"),
+    ("gate_stiff", ["gate_stiff"], "ISPH + solid, K, G x 5"),
+    ("dt_too_large", ["dt_too_large", "dt_reference"], "WCSPH, -dt 100x CFL"),
+]
+
+
+class Run:
+    def __init__(self, root, name):
+        self.name, self.dir = name, os.path.join(root, name)
+        self.meta = load_json(os.path.join(self.dir, "hard_run.json")) or {}
+        self.summary = load_json(os.path.join(self.dir, "summary.json"))
+        self.rc = self.meta.get("rc")
+        self.wall = self.meta.get("wall_s", 0) or 0
+
+    def skipped(self):
+        return self.meta.get("skipped")
+
+    def problem(self):
+        """Why the run did not complete, or None."""
+        if not self.meta:
+            return f"{self.name}: not run (no hard_run.json)"
+        if self.rc != 0:
+            return f"{self.name}: exit status {self.rc}{(': ' + self.message()) if self.message() else ''}"
+        if not self.summary or self.summary.get("status") != "completed":
+            return f"{self.name}: status {self.summary and self.summary.get('status')}"
+        return None
+
+    def message(self):
+        if self.summary and self.summary.get("message"):
+            return self.summary["message"]
+        log = os.path.join(self.dir, "run.log")
+        if os.path.exists(log):
+            lines = [l.strip() for l in open(log, errors="replace") if "FAULT" in l or ("ERROR" in l and "---" not in l)]
+            return lines[0] if lines else ""
+        return ""
+
+    def snapshots(self):
+        return sorted(glob.glob(os.path.join(self.dir, "particles_*.h5")))
+
+    def probes(self):
+        p = os.path.join(self.dir, "probes.csv")
+        if not os.path.exists(p):
+            return None
+        return np.genfromtxt(p, delimiter=",", names=True)
+
+    def errors(self):
+        return (self.summary or {}).get("errors") or {}
+
+
+def load_json(path):
+    try:
+        with open(path) as f:
+            return json.load(f)
+    except (OSError, ValueError):
+        return None
+
+
+def snap(path):
+    with h5py.File(path, "r") as f:
+        d = {k: f[k][()] for k in f}
+        d["time"] = float(f.attrs["time"])
+    d["id"] = d["id"].ravel()
+    d["kind"] = d["kind"].ravel()
+    return d
+
+
+def nonfinite_h5(path):
+    """Names of the numeric datasets of an HDF5 file (any depth) holding NaN or Inf."""
+    bad = []
+
+    def visit(name, obj):
+        if isinstance(obj, h5py.Dataset) and obj.dtype.kind in "fc":
+            if not np.all(np.isfinite(obj[()])):
+                bad.append(name)
+
+    with h5py.File(path, "r") as f:
+        f.visititems(visit)
+    return bad
+
+
+def nonfinite_outputs(run):
+    """Every output of a run that holds a NaN or Inf: snapshots, last_good.h5, probes.csv, summary nulls."""
+    bad = []
+    for p in run.snapshots() + [os.path.join(run.dir, "last_good.h5")]:
+        if os.path.exists(p):
+            try:
+                b = nonfinite_h5(p)
+            except OSError as e:
+                b = [f"unreadable ({e})"]
+            bad += [f"{os.path.basename(p)}:{x}" for x in b]
+    pc = os.path.join(run.dir, "probes.csv")
+    if os.path.exists(pc):
+        txt = open(pc).read().lower()
+        if "nan" in txt or "inf" in txt:
+            bad.append("probes.csv")
+        else:
+            arr = np.genfromtxt(pc, delimiter=",", skip_header=1)
+            if arr.size and not np.all(np.isfinite(arr)):
+                bad.append("probes.csv (unparsable)")
+    return bad
+
+
+def fluid_by_id(d):
+    m = d["kind"] == 0
+    o = np.argsort(d["id"][m])
+    return d["id"][m][o], d["x"][m][o]
+
+
+def fmt_pct(x):
+    return f"{100 * x:.2f} %"
+
+
+# ------------------------------------------------------------------------------------------------------
+def check_hydrostatic(runs):
+    r = runs[0]
+    if r.problem():
+        return False, r.problem(), "completed", "completed"
+    dx = r.summary["dx"]
+    ref = r.errors()["p_bottom_ref"]
+    H = ref / (RHO0 * G)
+    pr = r.probes()
+    late = pr["t"] >= HYD_T_LATE
+    if not late.any():
+        return False, f"no probe rows after t = {HYD_T_LATE:g} s", "no late probes", ""
+    p = pr["p_bottom"][late]
+    mean_err = (p.mean() - ref) / ref
+    std = p.std() / ref
+    vb = HYD_VMAX * math.sqrt(G * H)
+    vmax = pr["v_max"][late].max()
+    snaps = r.snapshots()
+    first, last = snap(snaps[0]), snap(snaps[-1])
+    i0, x0 = fluid_by_id(first)
+    i1, x1 = fluid_by_id(last)
+    ok_ids = np.array_equal(i0, i1)
+    drift = np.linalg.norm(x1 - x0, axis=1).max() / dx if ok_ids else float("inf")
+    fails, meas = [], []
+    meas.append(f"p_bottom mean {'+' if mean_err >= 0 else ''}{fmt_pct(mean_err)}, std {fmt_pct(std)} of ρgH (t ≥ {HYD_T_LATE:g} s)")
+    meas.append(f"v_max {vmax:.2g} m/s")
+    meas.append(f"drift {drift:.2f} dx (t = {first['time']:g} → {last['time']:g} s)")
+    bound = [f"|mean| ≤ {100 * HYD_MEAN:g} %, std ≤ {100 * HYD_STD:g} %", f"v_max ≤ {vb:.2g} m/s", f"drift ≤ {HYD_DRIFT:g} dx"]
+    if abs(mean_err) > HYD_MEAN: fails.append("floor pressure mean")
+    if std > HYD_STD: fails.append("floor pressure noise")
+    if vmax > vb: fails.append("max speed")
+    if drift > HYD_DRIFT: fails.append("drift" if ok_ids else "fluid ids differ between the first and last snapshot")
+    if r.summary["mass_rel_drift"] != 0: fails.append(f"mass_rel_drift {r.summary['mass_rel_drift']}")
+    if "free_surface" in first:
+        deep, worst = 0, 0.0
+        for s in snaps:
+            d = snap(s)
+            fl = d["kind"] == 0
+            y = d["x"][fl, 1]
+            fsf = d["free_surface"].ravel()[fl] > 0.5
+            depth = (y.max() - y[fsf]) / dx
+            deep += int(np.sum(depth > HYD_FS_DEPTH))
+            if depth.size: worst = max(worst, depth.max())
+        meas.append(f"free-surface flags deeper than {HYD_FS_DEPTH:g} dx: {deep} in {len(snaps)} snapshots (deepest {worst:.1f} dx)")
+        bound.append(f"0 deeper than {HYD_FS_DEPTH:g} dx")
+        if deep: fails.append("spurious free surface in the bulk")
+    why = ("; ".join(meas)) if not fails else "failed: " + ", ".join(fails) + "; " + "; ".join(meas)
+    return not fails, why, "; ".join(meas), "; ".join(bound)
+
+
+def check_dam_break(runs):
+    r = runs[0]
+    if r.skipped():
+        return None, f"skipped: {r.skipped()}", "", ""
+    if r.problem():
+        return False, r.problem(), r.problem(), "completed"
+    dx = r.summary["dx"]
+    snaps = r.snapshots()
+    d0 = snap(snaps[0])
+    wall = d0["kind"] == 1
+    xw = d0["x"][wall]
+    left, right = xw[:, 0].min() + 0.5 * dx, xw[:, 0].max() - 0.5 * dx
+    floor, top = xw[:, 1].min() + 0.5 * dx, xw[:, 1].max() + 0.5 * dx
+    n0 = int(np.sum(d0["kind"] == 0))
+    clear, first_out, counts, vmax, past_face, past_row = float("inf"), None, set(), 0.0, set(), set()
+    for s in snaps:
+        d = snap(s)
+        fl = d["kind"] == 0
+        x = d["x"][fl]
+        counts.add(int(fl.sum()))
+        c = np.minimum.reduce([x[:, 0] - left, right - x[:, 0], x[:, 1] - floor, top - x[:, 1]]) / dx
+        clear = min(clear, c.min())
+        past_face |= set(d["id"][fl][c < 0].tolist())
+        past_row |= set(d["id"][fl][c < -0.5].tolist())
+        if c.min() < 0 and first_out is None:
+            k = int(np.argmin(c))
+            first_out = f"id {d['id'][fl][k]} at ({x[k, 0]:.4f}, {x[k, 1]:.4f}) at t = {d['time']:.3f} s"
+        vmax = max(vmax, np.linalg.norm(d["v"][fl], axis=1).max())
+    tlast = snap(snaps[-1])["time"]
+    tau = tlast * math.sqrt(G / DB_H)
+    mass = r.summary["mass_rel_drift"]
+    fails = []
+    if tau < DB_TAU - 1e-9: fails.append(f"reached only t sqrt(g/H) = {tau:.2f}")
+    if mass != 0: fails.append(f"mass_rel_drift {mass:g}")
+    if counts != {n0}: fails.append(f"fluid particle count changed ({sorted(counts)})")
+    if first_out: fails.append(f"fluid centre outside the tank box, first {first_out}")
+    meas = (f"completed to t sqrt(g/H) = {tau:.2f}, mass_rel_drift {mass:g}, {n0} fluid particles throughout; "
+            f"fluid centre closest to / furthest past a wall face {clear:+.2f} dx, {len(past_face)} particle(s) ever past a face, "
+            f"{len(past_row)} past the first wall row (dx/2 behind it), in {len(snaps)} snapshots; max speed {vmax:.2f} m/s")
+    bound = f"t sqrt(g/H) ≥ {DB_TAU:g}, mass drift 0, count constant, every fluid centre inside the tank box (clearance ≥ 0)"
+    return not fails, ("failed: " + ", ".join(fails) + "; " if fails else "") + meas, meas, bound
+
+
+def tg_numbers(r):
+    e = r.errors()
+    pr = r.probes()
+    grow = float(np.max(pr["e_kin"] / pr["e_kin"][0]) - 1) if pr is not None and pr.size else float("nan")
+    return e.get("e_kin_rel_err_final"), e.get("l2_vel_err_final"), grow
+
+
+def check_taylor_green(runs):
+    r = runs[0]
+    others = []
+    for o, label in zip(runs[1:], ["A = 1", "no shifting"]):
+        if o.problem():
+            others.append(f"{label}: {o.problem()}")
+        else:
+            ek, l2, _ = tg_numbers(o)
+            bad = nonfinite_outputs(o)
+            others.append(f"{label}: E_kin error {fmt_pct(ek)}, l2 {fmt_pct(l2)}" + (f", non-finite {bad}" if bad else ""))
+    cmp_txt = "; compare " + "; ".join(others)
+    if r.problem():
+        return False, r.problem() + cmp_txt, r.problem() + cmp_txt, "completed"
+    ek, l2, grow = tg_numbers(r)
+    bad = nonfinite_outputs(r)
+    fails = []
+    if bad: fails.append(f"non-finite output {bad}")
+    if not (grow <= TG_EGROW): fails.append(f"kinetic energy grew by {fmt_pct(grow)}")
+    if l2 is None or not (l2 < TG_L2): fails.append(f"l2 velocity error {l2}")
+    meas = (f"completed, all outputs finite; E_kin error {fmt_pct(ek)}, l2 velocity error {fmt_pct(l2)} at t = 2 s, "
+            f"max E_kin growth {fmt_pct(max(grow, 0))}" + cmp_txt)
+    bound = f"completed, finite, E_kin growth ≤ {100 * TG_EGROW:g} %, l2 < {100 * TG_L2:g} % (errors reported)"
+    return not fails, ("failed: " + ", ".join(fails) + "; " if fails else "") + meas, meas, bound
+
+
+def components(x, link):
+    """Number of connected groups of points whose links are shorter than `link`."""
+    n = len(x)
+    d2 = ((x[:, None, :] - x[None, :, :]) ** 2).sum(-1)
+    adj = d2 < link * link
+    seen = np.zeros(n, bool)
+    ncomp = 0
+    for s in range(n):
+        if seen[s]:
+            continue
+        ncomp += 1
+        front = np.array([s])
+        seen[s] = True
+        while front.size:
+            nb = np.nonzero(adj[front].any(0) & ~seen)[0]
+            seen[nb] = True
+            front = nb
+    return ncomp, d2
+
+
+def check_plate(runs):
+    r = runs[0]
+    if r.problem():
+        return False, r.problem(), r.problem(), "completed"
+    dx = r.summary["dx"]
+    e = r.errors()
+    T = e.get("period_s") or 0
+    periods = r.summary["t_end"] / T if T > 0 else 0
+    dmin, worst_t, ncomp_max = float("inf"), None, 1
+    for s in r.snapshots():
+        d = snap(s)
+        sol = (d["kind"] == 3) | (d["kind"] == 4)
+        ncomp, d2 = components(d["x"][sol], PL_LINK * dx)
+        np.fill_diagonal(d2, np.inf)
+        m = math.sqrt(d2.min()) / dx
+        if m < dmin: dmin, worst_t = m, d["time"]
+        ncomp_max = max(ncomp_max, ncomp)
+    swing = e.get("amplitude_last_over_first") or 0
+    bad = nonfinite_outputs(r)
+    fails = []
+    if periods < PL_PERIODS: fails.append(f"only {periods:.2f} periods")
+    if dmin < PL_DMIN: fails.append(f"closest pair {dmin:.2f} dx at t = {worst_t:.2f} s")
+    if ncomp_max > 1: fails.append(f"the plate broke into {ncomp_max} pieces")
+    if swing < PL_SWING: fails.append(f"swing decayed to {swing:.3f} of the first")
+    if bad: fails.append(f"non-finite output {bad}")
+    meas = (f"{periods:.2f} periods of {T:.4f} s (thin plate {e.get('period_s_analytic', 0):.4f} s), A/L {e.get('amplitude_over_L', 0):.3f}; "
+            f"closest pair {dmin:.2f} dx (t = {worst_t:.2f} s), one piece (links < {PL_LINK:g} dx) in all snapshots: {'yes' if ncomp_max == 1 else 'no'}; "
+            f"last/first swing {swing:.3f}; energy drift max {fmt_pct(e.get('energy_rel_drift_max', float('nan')))}, final {fmt_pct(e.get('energy_rel_drift_final', float('nan')))}")
+    bound = f"≥ {PL_PERIODS:g} periods, closest pair ≥ {PL_DMIN:g} dx, one piece, swing ≥ {PL_SWING:g}; energy drift reported"
+    return not fails, ("failed: " + ", ".join(fails) + "; " if fails else "") + meas, meas, bound
+
+
+def check_gate(runs):
+    r = runs[0]
+    bad = nonfinite_outputs(r)
+    s = r.summary or {}
+    fails = []
+    if r.rc == 0 and s.get("status") == "completed":
+        e = r.errors()
+        pr = r.probes()
+        how = (f"completed to t = {s['t_end']:g} s: {s['steps']} steps, up to {s.get('solid_substeps_max')} solid sub-steps, "
+               f"tip_dx max {1000 * np.max(pr['tip_dx']):.1f} mm, tip_dy min {1000 * np.min(pr['tip_dy']):.1f} mm, "
+               f"tip_dx rms error vs experiment {1000 * e.get('tip_dx_err_rms', float('nan')):.1f} mm")
+    elif r.rc == 4 and s.get("status") == "fault" and s.get("message"):
+        how = f"stopped cleanly (exit 4): {s['message']}"
+        if not os.path.exists(os.path.join(r.dir, "last_good.h5")):
+            fails.append("no last_good.h5")
+    else:
+        how = f"exit status {r.rc}, status {s.get('status')}: {r.message()}"
+        fails.append("neither completed nor stopped with status 4 and a message")
+    nsnap = len(r.snapshots())
+    if bad: fails.append(f"non-finite output {bad}")
+    meas = how + f"; no NaN/Inf in {nsnap} snapshots, probes.csv{', last_good.h5' if os.path.exists(os.path.join(r.dir, 'last_good.h5')) else ''}" if not bad else how
+    bound = "completes or exit 4 with a message; all outputs finite"
+    return not fails, ("failed: " + ", ".join(fails) + "; " if fails else "") + meas, meas, bound
+
+
+def check_dt(runs):
+    r, ref = runs
+    s = r.summary or {}
+    fails = []
+    factor = r.meta.get("dt_factor")
+    dt = r.meta.get("dt")
+    if r.rc != 4: fails.append(f"exit status {r.rc}, expected 4")
+    if s.get("status") != "fault": fails.append(f"status {s.get('status')}, expected fault")
+    if not s.get("message"): fails.append("no message")
+    lg = os.path.join(r.dir, "last_good.h5")
+    if not os.path.exists(lg): fails.append("no last_good.h5")
+    bad = nonfinite_outputs(r)
+    if bad: fails.append(f"non-finite output {bad}")
+    lg_info = ""
+    if os.path.exists(lg):
+        with h5py.File(lg, "r") as f:
+            n = f["x"].shape[0] if "x" in f else 0
+        lg_info = f"last_good.h5 finite ({n} particles)" if not bad else "last_good.h5 present"
+    msg = s.get("message") or r.message()
+    meas = f"-dt {dt:.3g} s ({factor:g}x the CFL step): exit {r.rc}, status {s.get('status')}, {lg_info}; message: {msg}"
+    bound = "exit 4, status fault, a message, finite last_good.h5"
+    return not fails, ("failed: " + ", ".join(fails) + "; " if fails else "") + meas, meas, bound
+
+
+CHECKS = {"hydrostatic": check_hydrostatic, "dam_break": check_dam_break, "taylor_green": check_taylor_green,
+          "plate": check_plate, "gate": check_gate, "dt": check_dt}
+
+
+def main():
+    if len(sys.argv) == 3 and sys.argv[1] == "--report":
+        return report(sys.argv[2])
+    if len(sys.argv) != 3:
+        sys.exit(__doc__)
+    case, root = sys.argv[1], sys.argv[2]
+    spec = {c: (rn, sch) for c, rn, sch in CASES}
+    if case not in spec:
+        sys.exit(f"unknown case {case}; cases: {' '.join(c for c, _, _ in CASES)}")
+    names, scheme = spec[case]
+    runs = [Run(root, n) for n in names]
+    fn = CHECKS[next(k for k in CHECKS if case.startswith(k))]
+    try:
+        ok, why, meas, bound = fn(runs)
+    except Exception as e:  # a checker that cannot read the output is a failure of the case
+        ok, why, meas, bound = False, f"could not check: {type(e).__name__}: {e}", f"could not check: {e}", ""
+    res = "SKIP" if ok is None else ("PASS" if ok else "FAIL")
+    print(f"{res} {case}: {why}", flush=True)
+    path = os.path.join(root, "results.json")
+    allres = load_json(path) or {}
+    allres[case] = {"scheme": scheme, "result": res, "why": why, "measured": meas, "bound": bound,
+                    "wall_s": sum(r.wall for r in runs),
+                    "load": [x for r in runs for x in (r.meta.get("load_before"), r.meta.get("load_after")) if x is not None]}
+    with open(path + ".part", "w") as f:
+        json.dump(allres, f, indent=1)
+    os.replace(path + ".part", path)
+
+
+def report(root):
+    allres = load_json(os.path.join(root, "results.json")) or {}
+    meta = load_json(os.path.join(root, "suite.json")) or {}
+    rows = [(c, allres[c]) for c, _, _ in CASES if c in allres]
+    n = {k: sum(1 for _, r in rows if r["result"] == k) for k in ("PASS", "FAIL", "SKIP")}
+    cell = lambda s: str(s).replace("|", "\\|").replace("\n", " ")
+    out = ["# Hard cases (issue 6)", ""]
+    loads = [x for _, r in rows for x in r.get("load", [])]
+    runs_s = sum(r["wall_s"] for _, r in rows)
+    out.append(f"`make hard` on {meta.get('ranks', 2)} ranks ({meta.get('nproc', '?')} cores), commit {meta.get('commit', '?')}, "
+               f"{meta.get('date', '')}: {n['PASS']} passed, {n['FAIL']} failed{', %d skipped' % n['SKIP'] if n['SKIP'] else ''}. "
+               f"Runs {runs_s / 60:.1f} min (suite {meta.get('wall_s', 0) / 60:.1f} min with the checks"
+               f"{'; runs reused' if meta.get('reused') else ''}); load average (1 min) "
+               + (f"{min(loads):.2f}–{max(loads):.2f} before/after the runs." if loads else "not recorded."))
+    out.append("")
+    out += ["| case | scheme | result | measured | bound | wall s |", "|---|---|---|---|---|---|"]
+    for c, r in rows:
+        out.append(f"| {c} | {cell(r['scheme'])} | **{r['result']}** | {cell(r['measured'] if r['result'] != 'FAIL' else r['why'])} | {cell(r['bound'])} | {r['wall_s']:.0f} |")
+    out.append("")
+    with open(os.path.join(root, "hard.md"), "w") as f:
+        f.write("\n".join(out))
+    print(f"{n['PASS']} passed, {n['FAIL']} failed" + (f", {n['SKIP']} skipped" if n["SKIP"] else ""))
+    return 1 if n["FAIL"] else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -199,6 +199,11 @@ def fmt_pct(x):
     return f"{100 * x:.2f} %"
 
 
+def verdict(fails, meas, bound):
+    """(passed, why, measured, bound): why = the failures, then the measurements."""
+    return not fails, ("failed: " + ", ".join(fails) + "; " if fails else "") + meas, meas, bound
+
+
 # ------------------------------------------------------------------------------------------------------
 def check_hydrostatic(runs):
     r = runs[0]
@@ -225,7 +230,11 @@ def check_hydrostatic(runs):
     fails, meas = [], []
     meas.append(f"p_bottom mean {'+' if mean_err >= 0 else ''}{fmt_pct(mean_err)}, std {fmt_pct(std)} of ρgH (t ≥ {HYD_T_LATE:g} s)")
     meas.append(f"v_max {vmax:.2g} m/s")
-    meas.append(f"drift {drift:.2f} dx (t = {first['time']:g} → {last['time']:g} s)")
+    mid = snap(min(snaps, key=lambda f: abs(snap(f)["time"] - HYD_T_LATE)))
+    im, xm = fluid_by_id(mid)
+    late_drift = np.linalg.norm(x1 - xm, axis=1).max() / dx if np.array_equal(im, i1) else float("inf")
+    meas.append(f"drift {drift:.2f} dx (t = {first['time']:.3g} → {last['time']:.3g} s; mean {np.linalg.norm(x1 - x0, axis=1).mean() / dx if ok_ids else float('nan'):.2f} dx; "
+                f"{late_drift:.2f} dx from t = {mid['time']:.3g} s)")
     bound = [f"|mean| ≤ {100 * HYD_MEAN:g} %, std ≤ {100 * HYD_STD:g} %", f"v_max ≤ {vb:.2g} m/s", f"drift ≤ {HYD_DRIFT:g} dx"]
     if abs(mean_err) > HYD_MEAN: fails.append("floor pressure mean")
     if std > HYD_STD: fails.append("floor pressure noise")
@@ -245,8 +254,7 @@ def check_hydrostatic(runs):
         meas.append(f"free-surface flags deeper than {HYD_FS_DEPTH:g} dx: {deep} in {len(snaps)} snapshots (deepest {worst:.1f} dx)")
         bound.append(f"0 deeper than {HYD_FS_DEPTH:g} dx")
         if deep: fails.append("spurious free surface in the bulk")
-    why = ("; ".join(meas)) if not fails else "failed: " + ", ".join(fails) + "; " + "; ".join(meas)
-    return not fails, why, "; ".join(meas), "; ".join(bound)
+    return verdict(fails, "; ".join(meas), "; ".join(bound))
 
 
 def check_dam_break(runs):
@@ -289,7 +297,7 @@ def check_dam_break(runs):
             f"fluid centre closest to / furthest past a wall face {clear:+.2f} dx, {len(past_face)} particle(s) ever past a face, "
             f"{len(past_row)} past the first wall row (dx/2 behind it), in {len(snaps)} snapshots; max speed {vmax:.2f} m/s")
     bound = f"t sqrt(g/H) ≥ {DB_TAU:g}, mass drift 0, count constant, every fluid centre inside the tank box (clearance ≥ 0)"
-    return not fails, ("failed: " + ", ".join(fails) + "; " if fails else "") + meas, meas, bound
+    return verdict(fails, meas, bound)
 
 
 def tg_numbers(r):
@@ -321,7 +329,7 @@ def check_taylor_green(runs):
     meas = (f"completed, all outputs finite; E_kin error {fmt_pct(ek)}, l2 velocity error {fmt_pct(l2)} at t = 2 s, "
             f"max E_kin growth {fmt_pct(max(grow, 0))}" + cmp_txt)
     bound = f"completed, finite, E_kin growth ≤ {100 * TG_EGROW:g} %, l2 < {100 * TG_L2:g} % (errors reported)"
-    return not fails, ("failed: " + ", ".join(fails) + "; " if fails else "") + meas, meas, bound
+    return verdict(fails, meas, bound)
 
 
 def components(x, link):
@@ -373,7 +381,7 @@ def check_plate(runs):
             f"closest pair {dmin:.2f} dx (t = {worst_t:.2f} s), one piece (links < {PL_LINK:g} dx) in all snapshots: {'yes' if ncomp_max == 1 else 'no'}; "
             f"last/first swing {swing:.3f}; energy drift max {fmt_pct(e.get('energy_rel_drift_max', float('nan')))}, final {fmt_pct(e.get('energy_rel_drift_final', float('nan')))}")
     bound = f"≥ {PL_PERIODS:g} periods, closest pair ≥ {PL_DMIN:g} dx, one piece, swing ≥ {PL_SWING:g}; energy drift reported"
-    return not fails, ("failed: " + ", ".join(fails) + "; " if fails else "") + meas, meas, bound
+    return verdict(fails, meas, bound)
 
 
 def check_gate(runs):
@@ -385,7 +393,7 @@ def check_gate(runs):
         e = r.errors()
         pr = r.probes()
         how = (f"completed to t = {s['t_end']:g} s: {s['steps']} steps, up to {s.get('solid_substeps_max')} solid sub-steps, "
-               f"tip_dx max {1000 * np.max(pr['tip_dx']):.1f} mm, tip_dy min {1000 * np.min(pr['tip_dy']):.1f} mm, "
+               f"tip_dx max {1000 * np.max(pr['tip_dx']):.1f} mm, tip_dy max {1000 * np.max(pr['tip_dy']):.1f} mm, "
                f"tip_dx rms error vs experiment {1000 * e.get('tip_dx_err_rms', float('nan')):.1f} mm")
     elif r.rc == 4 and s.get("status") == "fault" and s.get("message"):
         how = f"stopped cleanly (exit 4): {s['message']}"
@@ -398,7 +406,7 @@ def check_gate(runs):
     if bad: fails.append(f"non-finite output {bad}")
     meas = how + f"; no NaN/Inf in {nsnap} snapshots, probes.csv{', last_good.h5' if os.path.exists(os.path.join(r.dir, 'last_good.h5')) else ''}" if not bad else how
     bound = "completes or exit 4 with a message; all outputs finite"
-    return not fails, ("failed: " + ", ".join(fails) + "; " if fails else "") + meas, meas, bound
+    return verdict(fails, meas, bound)
 
 
 def check_dt(runs):
@@ -422,7 +430,7 @@ def check_dt(runs):
     msg = s.get("message") or r.message()
     meas = f"-dt {dt:.3g} s ({factor:g}x the CFL step): exit {r.rc}, status {s.get('status')}, {lg_info}; message: {msg}"
     bound = "exit 4, status fault, a message, finite last_good.h5"
-    return not fails, ("failed: " + ", ".join(fails) + "; " if fails else "") + meas, meas, bound
+    return verdict(fails, meas, bound)
 
 
 CHECKS = {"hydrostatic": check_hydrostatic, "dam_break": check_dam_break, "taylor_green": check_taylor_green,

@@ -29,6 +29,8 @@ run() { # name, command...
 for t in "${BINDIR:-bin}"/test_*; do
   run "$(basename "$t")" $MPI "$t"
 done
+# WCSPH with shifting (free-surface flags of the neighbours from the last step, through the halo): exact
+run test_rank_agreement_wcsph_shift $MPI "${BINDIR:-bin}"/test_rank_agreement -wcsph_shift 1
 # ISPH: 1 and 2 ranks agree to the solver tolerance (tight rtol; the bound is 100x that)
 run test_rank_agreement_isph $MPI "${BINDIR:-bin}"/test_rank_agreement -fluid isph -ksp_rtol 1e-10 -tol 1e-8
 # Solid (oscillating plate, ~1000 steps): explicit and per rank, so 1 and 2 ranks agree exactly

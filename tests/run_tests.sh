@@ -60,6 +60,8 @@ if [ "${1:-}" != "--unit-only" ]; then
   run poiseuille_isph bash tests/check_poiseuille.sh "$MPI" "$OUT/poiseuille_isph" -fluid isph
   run taylor_green_isph bash tests/check_taylor_green.sh "$MPI" "$OUT/taylor_green_isph"
   run sluice_gate_wcsph bash tests/check_sluice_gate.sh "$MPI" "$OUT/sluice_gate_wcsph"
+  # mixed sizes (issue 3): 2.5 mm at the gate and in the channel, 5 mm away from it (the bound uses the fine dx)
+  run sluice_gate_wcsph_zones bash tests/check_sluice_gate.sh "$MPI" "$OUT/sluice_gate_wcsph_zones" -dx 0.0025 -dx_coarse 0.005
   run solid_block bash tests/check_solid_block.sh "$MPI" "$OUT/solid_block"
   run oscillating_plate bash tests/check_oscillating_plate.sh "$MPI" "$OUT/oscillating_plate"
   run elastic_gate_isph bash tests/check_elastic_gate.sh "$MPI" "$OUT/elastic_gate_isph" -fluid isph

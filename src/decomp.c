@@ -12,6 +12,13 @@ static PetscInt Work(Particles P)
   return w;
 }
 
+static PetscInt SolidCount(Particles P)
+{
+  PetscInt n = 0;
+  for (PetscInt a = 0; a < P->n; a++) n += KindIsSolid(P->kind[a]);
+  return n;
+}
+
 PetscErrorCode DecompCreate(MPI_Comm comm, Decomp *d)
 {
   PetscFunctionBeginUser;
@@ -19,6 +26,7 @@ PetscErrorCode DecompCreate(MPI_Comm comm, Decomp *d)
   (*d)->comm        = comm;
   (*d)->threshold   = 1.1;
   (*d)->check_every = 20;
+  (*d)->split_solids = PETSC_TRUE;
   PetscCallMPI(MPI_Comm_rank(comm, &(*d)->rank));
   PetscCallMPI(MPI_Comm_size(comm, &(*d)->size));
   PetscFunctionReturn(PETSC_SUCCESS);
@@ -30,6 +38,7 @@ PetscErrorCode DecompSetFromOptions(Decomp d)
   PetscOptionsBegin(d->comm, NULL, "Domain decomposition", "Decomp");
   PetscCall(PetscOptionsReal("-rebalance_threshold", "Repartition when max/mean work per rank exceeds this (>= 1)", "", d->threshold, &d->threshold, NULL));
   PetscCall(PetscOptionsInt("-rebalance_every", "Steps between load-imbalance checks (> 0)", "", d->check_every, &d->check_every, NULL));
+  PetscCall(PetscOptionsBool("-decomp_split_solids", "With fluid and solids: balance the solid particles over the ranks as a second METIS constraint (the solid sub-steps are a phase of their own)", "", d->split_solids, &d->split_solids, NULL));
   PetscOptionsEnd();
   PetscCheck(d->threshold >= 1.0, d->comm, PETSC_ERR_ARG_OUTOFRANGE, "-rebalance_threshold %g must be >= 1", (double)d->threshold);
   PetscCheck(d->check_every > 0, d->comm, PETSC_ERR_ARG_OUTOFRANGE, "-rebalance_every %" PetscInt_FMT " must be > 0", d->check_every);
@@ -40,8 +49,8 @@ PetscErrorCode DecompSetUp(Decomp d, const Grid *g)
 {
   PetscFunctionBeginUser;
   d->grid = g;
-  PetscCall(PetscFree2(d->owner, d->wcount));
-  PetscCall(PetscCalloc2(GridNumCells(g), &d->owner, GridNumCells(g), &d->wcount));
+  PetscCall(PetscFree3(d->owner, d->wcount, d->scount));
+  PetscCall(PetscCalloc3(GridNumCells(g), &d->owner, GridNumCells(g), &d->wcount, GridNumCells(g), &d->scount));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -49,7 +58,7 @@ PetscErrorCode DecompDestroy(Decomp *d)
 {
   PetscFunctionBeginUser;
   if (!*d) PetscFunctionReturn(PETSC_SUCCESS);
-  PetscCall(PetscFree2((*d)->owner, (*d)->wcount));
+  PetscCall(PetscFree3((*d)->owner, (*d)->wcount, (*d)->scount));
   PetscCall(PetscFree(*d));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -57,10 +66,10 @@ PetscErrorCode DecompDestroy(Decomp *d)
 /* k-way partition of the cell graph (8 neighbours, periodic wrap), serial (rank 0).
  * Vertex weight 32 work + 1: empty cells nearly free (with weight 2 work + 1 they were a fifth of
  * the dam break's weight, and its work imbalance 1.23 at 2 ranks); edge weight work_i + work_j + 1,
- * a proxy for the ghosts a cut edge creates. */
-PetscErrorCode DecompPartitionCells(const Grid *g, const PetscInt *count, PetscInt nranks, PetscMPIInt *owner)
+ * a proxy for the ghosts a cut edge creates.  Second constraint (scount): the solid particles. */
+PetscErrorCode DecompPartitionCells(const Grid *g, const PetscInt *count, const PetscInt *scount, PetscInt nranks, PetscMPIInt *owner)
 {
-  idx_t nv = GridNumCells(g), ncon = 1, nparts = nranks, objval, *xadj, *adj, *vw, *ew, *part, ne = 0, wscale;
+  idx_t nv = GridNumCells(g), ncon = scount ? 2 : 1, nparts = nranks, objval, *xadj, *adj, *vw, *ew, *part, ne = 0, wscale;
   idx_t opts[METIS_NOPTIONS];
   int   status;
 
@@ -71,12 +80,13 @@ PetscErrorCode DecompPartitionCells(const Grid *g, const PetscInt *count, PetscI
     for (PetscInt c = 0; c < nv; c++) wsum += count[c];
     wscale = (idx_t)PetscMax(1, PetscMin(32, (PetscInt64)PETSC_MAX_INT / 4 / (wsum + nv)));
   }
-  PetscCall(PetscMalloc5(nv + 1, &xadj, 8 * nv, &adj, nv, &vw, 8 * nv, &ew, nv, &part));
+  PetscCall(PetscMalloc5(nv + 1, &xadj, 8 * nv, &adj, ncon * nv, &vw, 8 * nv, &ew, nv, &part));
   for (PetscInt j = 0; j < g->n[1]; j++)
     for (PetscInt i = 0; i < g->n[0]; i++) {
       PetscInt c = j * g->n[0] + i;
       xadj[c] = ne;
-      vw[c]   = wscale * count[c] + 1;
+      vw[ncon * c] = wscale * count[c] + 1;
+      if (scount) vw[2 * c + 1] = scount[c];
       for (PetscInt dj = -1; dj <= 1; dj++)
         for (PetscInt di = -1; di <= 1; di++) {
           PetscInt ii = i + di, jj = j + dj;
@@ -100,7 +110,7 @@ PetscErrorCode DecompPartitionCells(const Grid *g, const PetscInt *count, PetscI
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-void DecompCellWork(const Grid *g, Particles P, PetscInt *wcount)
+void DecompCellWork(const Grid *g, Particles P, PetscInt *wcount, PetscInt *scount)
 {
   const PetscReal *x = PField(P, FIELD_X);
   for (PetscInt a = 0; a < P->n; a++) {
@@ -108,7 +118,9 @@ void DecompCellWork(const Grid *g, Particles P, PetscInt *wcount)
     PetscInt  c;
     GridWrap(g, xa);
     c = GridCellOf(g, xa);
-    if (c >= 0) wcount[c] += KindCost[P->kind[a]];
+    if (c < 0) continue;
+    wcount[c] += KindCost[P->kind[a]];
+    if (scount && KindIsSolid(P->kind[a])) scount[c]++;
   }
 }
 
@@ -117,21 +129,27 @@ PetscInt DecompKindCost(PetscInt kind) { return KindCost[kind]; }
 PetscErrorCode DecompPartition(Decomp d, Particles P)
 {
   const Grid *g  = d->grid;
-  PetscInt    nc = GridNumCells(g), *gcount = NULL;
+  PetscInt    nc = GridNumCells(g), *gcount = NULL, *gscount = NULL, nsolid = 0;
   PetscErrorCode ierr = PETSC_SUCCESS;
 
   PetscFunctionBeginUser;
   PetscCall(PetscArrayzero(d->wcount, nc));
-  DecompCellWork(g, P, d->wcount);
+  PetscCall(PetscArrayzero(d->scount, nc));
+  DecompCellWork(g, P, d->wcount, d->split_solids ? d->scount : NULL);
   if (d->size == 1) {
     PetscCall(PetscArrayzero(d->owner, nc));
     PetscFunctionReturn(PETSC_SUCCESS);
   }
-  if (!d->rank) PetscCall(PetscMalloc1(nc, &gcount));
+  if (d->split_solids) {
+    nsolid = SolidCount(P);
+    PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &nsolid, 1, MPIU_INT, MPI_SUM, d->comm));
+  }
+  if (!d->rank) PetscCall(PetscMalloc2(nc, &gcount, nsolid ? nc : 0, &gscount));
   PetscCallMPI(MPI_Reduce(d->wcount, gcount, (PetscMPIInt)nc, MPIU_INT, MPI_SUM, 0, d->comm));
+  if (nsolid) PetscCallMPI(MPI_Reduce(d->scount, gscount, (PetscMPIInt)nc, MPIU_INT, MPI_SUM, 0, d->comm));
   if (!d->rank) {
-    ierr = DecompPartitionCells(g, gcount, d->size, d->owner);
-    PetscCall(PetscFree(gcount));
+    ierr = DecompPartitionCells(g, gcount, nsolid ? gscount : NULL, d->size, d->owner);
+    PetscCall(PetscFree2(gcount, gscount));
   }
   PetscCallMPI(MPI_Bcast(&ierr, 1, MPI_INT, 0, d->comm));
   PetscCheck(!ierr, d->comm, PETSC_ERR_LIB, "Partitioning the cell graph failed (see the message from rank 0)");
@@ -281,17 +299,19 @@ PetscErrorCode DecompSortOwned(Decomp d, Particles P)
 
 PetscErrorCode DecompBalance(Decomp d, Particles P, PetscInt step, PetscBool *repartitioned)
 {
-  PetscInt nmax, nsum, w;
+  PetscInt w[2], wmax[2], wsum[2];
 
   PetscFunctionBeginUser;
   *repartitioned = PETSC_FALSE;
   if (d->size == 1 || step % d->check_every) PetscFunctionReturn(PETSC_SUCCESS);
-  w = Work(P);
-  PetscCall(MPIU_Allreduce(&w, &nmax, 1, MPIU_INT, MPI_MAX, d->comm));
-  PetscCall(MPIU_Allreduce(&w, &nsum, 1, MPIU_INT, MPI_SUM, d->comm));
-  d->imbalance = nsum ? (PetscReal)nmax * d->size / nsum : 1.0;
-  if (d->imbalance <= d->threshold) PetscFunctionReturn(PETSC_SUCCESS);
-  PetscCall(PetscInfo(NULL, "Step %" PetscInt_FMT ": imbalance %.3f > %.3f, repartitioning\n", step, (double)d->imbalance, (double)d->threshold));
+  w[0] = Work(P);
+  w[1] = d->split_solids ? SolidCount(P) : 0;
+  PetscCall(MPIU_Allreduce(w, wmax, 2, MPIU_INT, MPI_MAX, d->comm));
+  PetscCall(MPIU_Allreduce(w, wsum, 2, MPIU_INT, MPI_SUM, d->comm));
+  d->imbalance       = wsum[0] ? (PetscReal)wmax[0] * d->size / wsum[0] : 1.0;
+  d->imbalance_solid = wsum[1] ? (PetscReal)wmax[1] * d->size / wsum[1] : 1.0;
+  if (d->imbalance <= d->threshold && d->imbalance_solid <= d->threshold) PetscFunctionReturn(PETSC_SUCCESS);
+  PetscCall(PetscInfo(NULL, "Step %" PetscInt_FMT ": imbalance %.3f (solids %.3f) > %.3f, repartitioning\n", step, (double)d->imbalance, (double)d->imbalance_solid, (double)d->threshold));
   PetscCall(DecompPartition(d, P));
   PetscCall(DecompMigrate(d, P));
   d->nrepartition++;

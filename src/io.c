@@ -180,7 +180,7 @@ static PetscErrorCode WriteXDMF(Sim sim, const char *xmf, PetscInt n, const char
       for (int k = 0; k < 4; k++)
         fprintf(f, "    <Attribute Name=\"%s\" Center=\"Node\"><DataItem Dimensions=\"%d\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s:/%s</DataItem></Attribute>\n", scal[k], (int)N, h5, scal[k]);
     }
-    if (sim->P->f[FIELD_FS].on) /* ISPH: 1 on the free surface of the last step's predictor */
+    if (sim->P->f[FIELD_FS].on) /* ISPH, WCSPH with shifting: 1 on the free surface found in the last step */
       fprintf(f, "    <Attribute Name=\"free_surface\" Center=\"Node\"><DataItem Dimensions=\"%d\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s:/free_surface</DataItem></Attribute>\n", (int)N, h5);
     if (sim->P->f[FIELD_S].on)
       fprintf(f, "    <Attribute Name=\"stress\" AttributeType=\"Vector\" Center=\"Node\"><DataItem Dimensions=\"%d 3\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s:/stress</DataItem></Attribute>\n", (int)N, h5);

@@ -80,6 +80,39 @@ PetscErrorCode SceneAddTank(Sim sim, PetscReal x0, PetscReal x1, PetscReal y0, P
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+PetscErrorCode SceneZonesSetUp(Sim sim, PetscReal dc, PetscReal *W, PetscReal *fine, PetscReal *H)
+{
+  PetscInt nc;
+  PetscFunctionBeginUser;
+  PetscCheck(dc >= sim->dx && dc <= 4 * sim->dx, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dx_coarse %g must be between -dx %g and 4 dx", (double)dc, (double)sim->dx);
+  if (dc == sim->dx) {
+    *W    = RoundToInt(*W / sim->dx) * sim->dx;
+    *H    = RoundToInt(*H / sim->dx) * sim->dx;
+    *fine = *W;
+    PetscFunctionReturn(PETSC_SUCCESS);
+  }
+  nc = RoundToInt((*W - *fine) / dc);
+  PetscCheck(*fine > 0 && nc >= 1, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-fine_width %g must be in (0, -water_width %g) less a coarse column", (double)*fine, (double)*W);
+  *fine = RoundToInt((*W - nc * dc) / sim->dx) * sim->dx;
+  *W    = nc * dc + *fine;
+  *H    = RoundToInt(*H / dc) * dc;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode SceneAddZonedWater(Sim sim, PetscReal dc, PetscReal W, PetscReal fine, PetscReal H, PetscReal top, PetscInt rows, PetscReal x_end, PetscBool right)
+{
+  PetscReal dx = sim->dx, xf = W - fine;
+  PetscInt  ncx = RoundToInt(xf / dc), rows_f = (PetscInt)PetscCeilReal(rows * dc / dx - 1e-9);
+  PetscFunctionBeginUser;
+  PetscCall(SceneAddLattice(sim, KIND_FLUID, xf + 0.5 * dx, 0.5 * dx, RoundToInt(fine / dx), RoundToInt(H / dx), dx, sim->fl.rho0));
+  if (ncx > 0) {
+    PetscCall(SceneAddLattice(sim, KIND_FLUID, 0.5 * dc, 0.5 * dc, ncx, RoundToInt(H / dc), dc, sim->fl.rho0));
+    PetscCall(SceneAddTank(sim, 0, xf, 0, RoundToInt(top / dc) * dc, dc, rows, PETSC_TRUE, PETSC_FALSE));
+    PetscCall(SceneAddTank(sim, xf, x_end, 0, right ? RoundToInt(top / dx) * dx : 0, dx, rows_f, PETSC_FALSE, right));
+  } else PetscCall(SceneAddTank(sim, 0, x_end, 0, RoundToInt(top / dx) * dx, dx, rows, PETSC_TRUE, right));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 PetscErrorCode SceneHydrostaticDensity(Sim sim, PetscReal y_surface)
 {
   Particles  P = sim->P;

@@ -247,6 +247,7 @@ PetscErrorCode SimSetUp(Sim sim)
   }
   /* solids keep their neighbour lists over sub-steps: cells wide enough for the skin */
   PetscCall(GridSetUp(&sim->grid, sim->dom_lo, sim->dom_hi, 2.0 * sim->h_max + (sim->solid ? sim->solid->skin * sim->dx : 0), sim->periodic));
+  sim->decomp->split_solids = (PetscBool)(sim->decomp->split_solids && sim->has_fluid && sim->has_solid);
   PetscCall(DecompSetUp(sim->decomp, &sim->grid));
   PetscCall(CellsCreate(&sim->grid, &sim->cells));
   sim->next_probe = sim->next_out = 0;

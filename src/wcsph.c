@@ -10,7 +10,7 @@ PetscErrorCode WCSPHSetUp(Sim sim)
   FluidMaterial *fl = &sim->fl;
   PetscFunctionBeginUser;
   PetscOptionsBegin(sim->comm, NULL, "WCSPH fluid", "WCSPH");
-  PetscCall(PetscOptionsReal("-wcsph_shift", "Particle shifting coefficient A (D = A h |v| dt, Skillen et al. 2013; none where div r < 1.5, tangential where < 1.95); 0 = off", "", fl->shift, &fl->shift, NULL));
+  PetscCall(PetscOptionsReal("-wcsph_shift", "Particle shifting coefficient A (D = A h |v| dt, Skillen et al. 2013; none on the free surface, div r < 1.5, and next to it); 0 = off", "", fl->shift, &fl->shift, NULL));
   PetscOptionsEnd();
   PetscCheck(fl->shift >= 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-wcsph_shift %g must be >= 0", (double)fl->shift);
   fl->lat_divr = KernelLatticeSum(PETSC_TRUE);
@@ -18,6 +18,7 @@ PetscErrorCode WCSPHSetUp(Sim sim)
   PetscCall(ParticlesEnableField(sim->P, FIELD_DRHO, PETSC_FALSE));
   PetscCall(ParticlesEnableField(sim->P, FIELD_VWALL, PETSC_FALSE)); /* ghosts: refreshed by BoundaryWallState */
   if (fl->xsph > 0 || fl->shift > 0) PetscCall(ParticlesEnableField(sim->P, FIELD_XSPH, PETSC_FALSE));
+  if (fl->shift > 0 && !sim->confined) PetscCall(ParticlesEnableField(sim->P, FIELD_FS, PETSC_TRUE)); /* ghosts: at the rebuild */
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -33,21 +34,27 @@ PetscErrorCode WCSPHPressure(Sim sim)
 
 /* drho/dt of owned fluid: continuity Eq. 18, optional delta-SPH diffusion (Molteni & Colagrossi
  * 2009, hydrostatic part removed); and the XSPH velocity correction Eq. 44 plus the shifting
- * velocity (shifting.h, zones from div r) over the coming step sim->dt. */
+ * velocity (shifting.h) over the coming step sim->dt.  With shifting, the free-surface flags (div r)
+ * of the neighbours are those of the last call, which the rebuild gave the ghosts; the new flags
+ * are written after the loop, so the result does not depend on the order of the particles.  A
+ * confined flow has no free surface: a void that opens in it (div r < 1.5) is shifted shut. */
 static PetscErrorCode Continuity(Sim sim)
 {
   Particles            P = sim->P;
   Cells                C = sim->cells;
   const PetscReal     *x = PField(P, FIELD_X), *v = PField(P, FIELD_V), *rho = PField(P, FIELD_RHO);
   const PetscReal     *m = PField(P, FIELD_M), *h = PField(P, FIELD_H);
-  PetscReal           *drho = PField(P, FIELD_DRHO), *xs = PField(P, FIELD_XSPH);
+  PetscReal           *drho = PField(P, FIELD_DRHO), *xs = PField(P, FIELD_XSPH), *fs = PField(P, FIELD_FS);
+  PetscBool           *surface = NULL;
   const FluidMaterial *fl   = &sim->fl;
   const PetscReal      dcoef = fl->delta * fl->c0, dhyd = fl->rho0 / (fl->c0 * fl->c0);
-  const PetscBool      shift = (PetscBool)(fl->shift > 0);
+  const PetscBool      shift = (PetscBool)(fl->shift > 0), surf = (PetscBool)(shift && fs);
 
   PetscFunctionBeginUser;
+  if (surf) PetscCall(PetscCalloc1(P->n, &surface));
   for (PetscInt a = 0; a < P->n; a++) {
     PetscReal dr = 0, dd = 0, sx = 0, sy = 0, cx = 0, cy = 0, divr = 0;
+    PetscBool near = PETSC_FALSE;
     PetscReal xa = x[2 * a], ya = x[2 * a + 1], vxa = v[2 * a], vya = v[2 * a + 1], ra = rho[a];
     if (!KindIsFluid(P->kind[a])) continue;
     for (PetscInt k = C->nstart[a]; k < C->nstart[a + 1]; k++) {
@@ -57,6 +64,7 @@ static PetscErrorCode Continuity(Sim sim)
       dr += vb * F * (dvx * dx + dvy * dy);
       if (shift) { cx += vb * F * dx; cy += vb * F * dy; divr -= vb * F * (dx * dx + dy * dy); }
       if (!KindIsFluid(P->kind[b])) continue;
+      if (surf && fs[b] > 0) near = PETSC_TRUE;
       if (dcoef > 0) {
         PetscReal dh = dhyd * (-sim->g[0] * dx - sim->g[1] * dy); /* rho_b^H - rho_a^H */
         dd += PairH(h[a], h[b]) * vb * (-2.0 * F) * (rho[b] - ra - dh);
@@ -69,7 +77,12 @@ static PetscErrorCode Continuity(Sim sim)
     }
     drho[a] = ra * dr + dcoef * dd;
     if (xs) { xs[2 * a] = fl->xsph * sx; xs[2 * a + 1] = fl->xsph * sy; }
-    if (shift) ShiftVelocity(fl->shift, ShiftZoneFromDivr(2.0 * divr / fl->lat_divr), h[a], v + 2 * a, sim->dt, cx, cy, xs + 2 * a);
+    if (surf) surface[a] = (PetscBool)(2.0 * divr / fl->lat_divr < SHIFT_DIVR_SURFACE);
+    if (shift) ShiftVelocity(fl->shift, surf && surface[a] ? SHIFT_SURFACE : near ? SHIFT_NEAR_SURFACE : SHIFT_BULK, h[a], v + 2 * a, sim->dt, cx, cy, xs + 2 * a);
+  }
+  if (surf) {
+    for (PetscInt a = 0; a < P->n; a++) fs[a] = surface[a] ? 1.0 : 0.0;
+    PetscCall(PetscFree(surface));
   }
   PetscFunctionReturn(PETSC_SUCCESS);
 }

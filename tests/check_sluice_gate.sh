@@ -27,7 +27,7 @@ print(f"sluice_gate: window {e['q_window'][0]:.3f}-{e['q_window'][1]:.3f} s, h_u
 print(f"sluice_gate: q mean {e['q_mean']:.5f} m^2/s vs relation {e['q_ref_mean']:.5f}: {100 * e['q_rel_bias']:+.1f} % (mean |err| {100 * e['q_rel_err_mean']:.1f} %; bound {100 * tol:.0f} %)")
 print(f"sluice_gate: q from the volume drained {e['q_mass']:.5f}: {100 * (e['q_mass'] / e['q_mean'] - 1):+.2f} % from the band estimator (bound 3 %)")
 print(f"sluice_gate: Cc from h_down {e['Cc_from_h_down']:.3f}, from q {e['Cc_from_q']:.3f}, reference {Cc} (bound {100 * tol:.0f} %)")
-assert s["mass_rel_drift"] == 0, "mass changed"
+assert abs(s["mass_rel_drift"]) < 1e-12, "mass changed"  # round-off only: mixed sizes summed in the order of the ranks
 assert abs(hup[0] - 0.14) < 0.005 and hup[-1] < 0.8 * hup[0], "the reservoir did not drain"
 assert abs(e["q_rel_bias"]) <= tol, f"q off the sluice relation by {100 * e['q_rel_bias']:.1f} %"
 assert abs(e["Cc_from_h_down"] / Cc - 1) <= tol, f"contraction h_down / a = {e['Cc_from_h_down']:.3f} off {Cc} by more than {100 * tol:.0f} %"

@@ -29,8 +29,11 @@ run() { # name, command...
 for t in "${BINDIR:-bin}"/test_*; do
   run "$(basename "$t")" $MPI "$t"
 done
-# ISPH snapshots also hold the free-surface flag (`free_surface`)
+# ISPH snapshots and WCSPH ones with shifting also hold the free-surface flag (`free_surface`)
 run test_hdf5_isph $MPI "${BINDIR:-bin}"/test_hdf5 -fluid isph
+run test_hdf5_wcsph_shift $MPI "${BINDIR:-bin}"/test_hdf5 -wcsph_shift 1
+# WCSPH with shifting (free-surface flags of the neighbours from the last step, through the halo): exact
+run test_rank_agreement_wcsph_shift $MPI "${BINDIR:-bin}"/test_rank_agreement -wcsph_shift 1
 # ISPH: 1 and 2 ranks agree to the solver tolerance (tight rtol; the bound is 100x that)
 run test_rank_agreement_isph $MPI "${BINDIR:-bin}"/test_rank_agreement -fluid isph -ksp_rtol 1e-10 -tol 1e-8
 # Solid (oscillating plate, ~1000 steps): explicit and per rank, so 1 and 2 ranks agree exactly
@@ -60,6 +63,8 @@ if [ "${1:-}" != "--unit-only" ]; then
   run poiseuille_isph bash tests/check_poiseuille.sh "$MPI" "$OUT/poiseuille_isph" -fluid isph
   run taylor_green_isph bash tests/check_taylor_green.sh "$MPI" "$OUT/taylor_green_isph"
   run sluice_gate_wcsph bash tests/check_sluice_gate.sh "$MPI" "$OUT/sluice_gate_wcsph"
+  # mixed sizes (issue 3): 2.5 mm at the gate and in the channel, 5 mm away from it (the bound uses the fine dx)
+  run sluice_gate_wcsph_zones bash tests/check_sluice_gate.sh "$MPI" "$OUT/sluice_gate_wcsph_zones" -dx 0.0025 -dx_coarse 0.005
   run solid_block bash tests/check_solid_block.sh "$MPI" "$OUT/solid_block"
   run oscillating_plate bash tests/check_oscillating_plate.sh "$MPI" "$OUT/oscillating_plate"
   run elastic_gate_isph bash tests/check_elastic_gate.sh "$MPI" "$OUT/elastic_gate_isph" -fluid isph

@@ -1,5 +1,5 @@
 /* A parallel HDF5 snapshot reads back: every id once, every field equal to what was written (with
- * -fluid isph also the free-surface flag, `free_surface`). */
+ * -fluid isph or -wcsph_shift also the free-surface flag, `free_surface`). */
 #include <sphfsi/sim.h>
 #include <sphfsi/io.h>
 #include <petscviewerhdf5.h>

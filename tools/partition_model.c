@@ -8,7 +8,8 @@
  *   solid particles per rank (max, mean), METIS time.
  * -solid_weight W: weight solid and clamp particles by W instead of the code's 4 (e.g. to count
  * the solid sub-steps of an FSI scene); -solid_cost S: the cost columns count fluid 4, wall 1 and
- * solid S (the time a solid particle takes per fluid step, in units of a wall particle's).
+ * solid S (the time a solid particle takes per fluid step, in units of a wall particle's);
+ * -split_solids: the solid particles balanced as a second constraint (-decomp_split_solids of a run).
  * Usage: bin/partition_model -options_file cases/dam_break.opts -dx 8.2e-5 [-nparts_max 1024] */
 #include <sphfsi/sim.h>
 #include <sphfsi/scene.h>
@@ -54,7 +55,7 @@ static PetscErrorCode CountCells(Sim sim, PetscInt solid_weight, PetscReal solid
   PetscFunctionBeginUser;
   cc->nc = GridNumCells(g);
   PetscCall(PetscCalloc6(cc->nc, &cc->all, cc->nc, &cc->fluid, cc->nc, &cc->bnd, cc->nc, &cc->solid, cc->nc, &cc->work, cc->nc, &cc->ppe));
-  DecompCellWork(g, P, cc->work);
+  DecompCellWork(g, P, cc->work, NULL);
   for (PetscInt a = 0; a < P->n; a++) {
     PetscInt c = GridCellOf(g, x + 2 * a);
     if (c < 0) continue;
@@ -140,6 +141,7 @@ int main(int argc, char **argv)
   CellCounts   cc;
   PetscMPIInt  size, *owner;
   PetscInt     npmax = 1024, solid_weight = 0;
+  PetscBool    split = PETSC_FALSE;
   PetscReal    solid_cost = -1;
   PetscBool    header = PETSC_TRUE;
 
@@ -149,6 +151,7 @@ int main(int argc, char **argv)
   PetscCall(PetscOptionsGetInt(NULL, NULL, "-nparts_max", &npmax, NULL));
   PetscCall(PetscOptionsGetBool(NULL, NULL, "-header", &header, NULL));
   PetscCall(PetscOptionsGetInt(NULL, NULL, "-solid_weight", &solid_weight, NULL));
+  PetscCall(PetscOptionsGetBool(NULL, NULL, "-split_solids", &split, NULL));
   PetscCall(PetscOptionsGetReal(NULL, NULL, "-solid_cost", &solid_cost, NULL));
   if (solid_cost < 0) solid_cost = solid_weight > 0 ? solid_weight : DecompKindCost(KIND_SOLID);
   PetscCall(SimCreate(PETSC_COMM_WORLD, &sim));
@@ -161,7 +164,7 @@ int main(int argc, char **argv)
   for (PetscInt np = 2; np <= npmax; np *= 2) {
     PetscLogDouble t0, t1;
     PetscCall(PetscTime(&t0));
-    PetscCall(DecompPartitionCells(&sim->grid, cc.work, np, owner));
+    PetscCall(DecompPartitionCells(&sim->grid, cc.work, split ? cc.solid : NULL, np, owner));
     PetscCall(PetscTime(&t1));
     PetscCall(PartitionStats(sim, &cc, np, owner, t1 - t0));
   }

@@ -16,17 +16,23 @@ struct _p_Decomp {
   PetscInt    nrepartition; /* repartitions after the first */
   PetscReal   imbalance;    /* at the last check */
   PetscInt    *wcount;      /* per-cell work (particles weighted by kind) */
+  PetscBool   split_solids; /* balance the solid particles as a second constraint (FSI: the solid
+                               sub-steps are a phase of their own, every rank should hold a share) */
+  PetscInt    *scount;      /* per-cell solid + clamp particles, with split_solids */
+  PetscReal   imbalance_solid;
 };
 
 PetscErrorCode DecompCreate(MPI_Comm comm, Decomp *d);
 PetscErrorCode DecompSetFromOptions(Decomp d);
 PetscErrorCode DecompSetUp(Decomp d, const Grid *g);
 PetscErrorCode DecompDestroy(Decomp *d);
-/* Serial METIS k-way partition of the cell graph into nranks parts for per-cell work `count`
- * (what DecompPartition runs on rank 0; also used by tools/partition_model.c). */
-PetscErrorCode DecompPartitionCells(const Grid *g, const PetscInt *count, PetscInt nranks, PetscMPIInt *owner);
-/* Add the kind-weighted work of the owned particles to wcount[cell]; the weight of one kind. */
-void     DecompCellWork(const Grid *g, Particles P, PetscInt *wcount);
+/* Serial METIS k-way partition of the cell graph into nranks parts for per-cell work `count` and,
+ * when scount is not NULL, per-cell solid particles balanced as a second constraint (what
+ * DecompPartition runs on rank 0; also used by tools/partition_model.c). */
+PetscErrorCode DecompPartitionCells(const Grid *g, const PetscInt *count, const PetscInt *scount, PetscInt nranks, PetscMPIInt *owner);
+/* Add the kind-weighted work of the owned particles to wcount[cell] and, when scount is not NULL,
+ * their solid and clamp particles to scount[cell]; the weight of one kind. */
+void     DecompCellWork(const Grid *g, Particles P, PetscInt *wcount, PetscInt *scount);
 PetscInt DecompKindCost(PetscInt kind);
 /* New cell ownership from the current particle distribution (collective). */
 PetscErrorCode DecompPartition(Decomp d, Particles P);
@@ -36,6 +42,7 @@ PetscErrorCode DecompMigrate(Decomp d, Particles P);
 /* Reorder owned particles by (cell, id): neighbours close in memory, order independent of ranks. */
 PetscErrorCode DecompSortOwned(Decomp d, Particles P);
 /* Every check_every steps: measure the imbalance of work (particles weighted by kind, fluid and
- * solid 4, walls 1), repartition + migrate past the threshold. */
+ * solid 4, walls 1) and, with split_solids, of the solid particles; repartition + migrate when
+ * either is past the threshold. */
 PetscErrorCode DecompBalance(Decomp d, Particles P, PetscInt step, PetscBool *repartitioned);
 PetscErrorCode DecompView(Decomp d, PetscViewer v);

@@ -41,6 +41,16 @@ PetscErrorCode SceneAddLattice(Sim sim, ParticleKind kind, PetscReal x0, PetscRe
 PetscErrorCode SceneAddTank(Sim sim, PetscReal x0, PetscReal x1, PetscReal y0, PetscReal y1, PetscReal dx, PetscInt rows, PetscBool left, PetscBool right);
 /* Fluid density of a hydrostatic column with free surface at y_surface (WCSPH EOS, Eq. 20). */
 PetscErrorCode SceneHydrostaticDensity(Sim sim, PetscReal y_surface);
+/* Mixed particle sizes (section 3.3): water [0, W] x [0, H] at the coarse spacing dc on [0, W - fine]
+ * and at sim->dx on [W - fine, W] (next to a gate).  SceneZonesSetUp checks dc and fine (option names
+ * -dx_coarse, -fine_width in its messages) and rounds W, fine and H so that the zones tile the water
+ * in whole columns and reach the same surface; dc == dx gives one zone (*fine = *W, W and H rounded
+ * to dx). */
+PetscErrorCode SceneZonesSetUp(Sim sim, PetscReal dc, PetscReal *W, PetscReal *fine, PetscReal *H);
+/* The zoned water with its tank: a left wall of height top and the floor up to x_end at each zone's
+ * spacing (the fine floor as deep as the coarse one, for coarse particles that drift over it), and a
+ * right wall of height top at x_end when right. */
+PetscErrorCode SceneAddZonedWater(Sim sim, PetscReal dc, PetscReal W, PetscReal fine, PetscReal H, PetscReal top, PetscInt rows, PetscReal x_end, PetscBool right);
 /* Shepard interpolation of the fluid pressure at a point, each neighbour's value carried to the
  * point hydrostatically: p(x0) = sum (p_b + rho_b g.(x0 - x_b)) W / sum W (collective). */
 PetscErrorCode SceneProbePressure(Sim sim, const PetscReal x0[2], PetscReal *p);

@@ -47,6 +47,7 @@ struct _p_Sim {
   PetscReal     dom_lo[2], dom_hi[2];
   PetscBool     periodic[2];
   PetscBool     outflow;    /* fluid leaving the domain box is removed (open boundary) */
+  PetscBool     confined;   /* the fluid has no free surface (Taylor-Green, Poiseuille) */
   /* time */
   PetscReal t, t_end, dt, dt_fixed, cfl;
   PetscInt  step, max_steps;

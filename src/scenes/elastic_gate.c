@@ -45,14 +45,7 @@ static PetscErrorCode Create(Sim sim)
   if (sim->dx < 0) sim->dx = 0.001;
   PetscCheck(c->t / sim->dx > 2.999, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dx %g leaves fewer than 3 particles across the gate thickness %g", (double)sim->dx, (double)c->t);
   if (c->dxc < 0) c->dxc = sim->dx;
-  PetscCheck(c->dxc >= sim->dx && c->dxc <= 4 * sim->dx, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dx_coarse %g must be between -dx %g and 4 dx", (double)c->dxc, (double)sim->dx);
-  if (c->dxc > sim->dx) { /* the zones tile the water: the coarse one whole coarse columns, the fine one the rest */
-    PetscInt nc = RoundToInt((c->W - c->fine) / c->dxc);
-    PetscCheck(c->fine > 0 && nc >= 1, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-fine_width %g must be in (0, -water_width %g) less a coarse column", (double)c->fine, (double)c->W);
-    c->fine = RoundToInt((c->W - nc * c->dxc) / sim->dx) * sim->dx;
-    c->W    = nc * c->dxc + c->fine;
-    c->H    = RoundToInt(c->H / c->dxc) * c->dxc; /* both zones' lattices reach the same surface */
-  } else c->fine = c->W;
+  PetscCall(SceneZonesSetUp(sim, c->dxc, &c->W, &c->fine, &c->H));
   if (sim->t_end < 0) sim->t_end = 0.4;
   sim->has_solid = PETSC_TRUE;
   sim->outflow   = PETSC_TRUE;
@@ -68,19 +61,10 @@ static PetscErrorCode Create(Sim sim)
 static PetscErrorCode Populate(Sim sim)
 {
   Gate     *c  = (Gate *)sim->scene_ctx;
-  PetscReal dx = sim->dx, dc = c->dxc, xf = c->W - c->fine; /* fine zone: [xf, W] */
-  PetscInt  nf = RoundToInt(c->fine / dx), ncx = RoundToInt(xf / dc), nt = RoundToInt(c->t / dx), nl = RoundToInt(c->L / dx);
-  PetscInt  ntop = RoundToInt(c->top / dx), rows_f = (PetscInt)PetscCeilReal(c->rows * dc / dx - 1e-9);
-  PetscReal xg = xf + nf * dx; /* gate's upstream face */
+  PetscReal dx = sim->dx, xg = c->W; /* gate's upstream face */
+  PetscInt  nt = RoundToInt(c->t / dx), nl = RoundToInt(c->L / dx), ntop = RoundToInt(c->top / dx);
   PetscFunctionBeginUser;
-  PetscCall(SceneAddLattice(sim, KIND_FLUID, xf + 0.5 * dx, 0.5 * dx, nf, RoundToInt(c->H / dx), dx, sim->fl.rho0));
-  /* tank: wall behind the water, floor under the water and the gate (each zone's spacing; the fine
-   * floor as deep as the coarse one, for coarse particles that drift over it) */
-  if (ncx > 0) {
-    PetscCall(SceneAddLattice(sim, KIND_FLUID, 0.5 * dc, 0.5 * dc, ncx, RoundToInt(c->H / dc), dc, sim->fl.rho0));
-    PetscCall(SceneAddTank(sim, 0, xf, 0, RoundToInt(c->top / dc) * dc, dc, c->rows, PETSC_TRUE, PETSC_FALSE));
-    PetscCall(SceneAddTank(sim, xf, xg + nt * dx, 0, 0, dx, rows_f, PETSC_FALSE, PETSC_FALSE));
-  } else PetscCall(SceneAddTank(sim, 0, xg + nt * dx, 0, ntop * dx, dx, c->rows, PETSC_TRUE, PETSC_FALSE));
+  PetscCall(SceneAddZonedWater(sim, c->dxc, c->W, c->fine, c->H, c->top, c->rows, xg + nt * dx, PETSC_FALSE));
   /* the gate and its clamp */
   PetscCall(SceneAddLattice(sim, KIND_SOLID, xg + 0.5 * dx, 0.5 * dx, nt, nl, dx, sim->sl.rho0));
   PetscCall(SceneAddLattice(sim, KIND_CLAMP, xg + 0.5 * dx, (nl + 0.5) * dx, nt, c->nclamp, dx, sim->sl.rho0));

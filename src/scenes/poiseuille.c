@@ -44,6 +44,7 @@ static PetscErrorCode Create(Sim sim)
   c->Lc = c->nx * sim->dx;
   F     = 8 * c->nu * c->nu * c->Re / (c->Hc * c->Hc * c->Hc);
   if (sim->t_end < 0) sim->t_end = 2 * c->Hc * c->Hc / c->nu; /* transient ~ exp(-pi^2 nu t / Hc^2): 3e-9 left */
+  sim->confined    = PETSC_TRUE; /* no free surface */
   sim->periodic[0] = PETSC_TRUE;
   sim->periodic[1] = PETSC_FALSE;
   sim->dom_lo[0]   = 0;

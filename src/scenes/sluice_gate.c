@@ -23,6 +23,7 @@
 
 typedef struct {
   PetscReal W, H, a, Lc, top;  /* water width, depth, gate opening, channel length, wall height */
+  PetscReal dxc, fine;         /* coarse spacing away from the gate; width of the fine zone before it */
   PetscInt  rows, gate_rows;   /* wall rows of the tank, thickness of the gate in rows */
   PetscReal bevel;             /* angle of the gate's downstream chamfer from the horizontal (deg); 0 = square edge */
   PetscReal xg0, xg1;          /* upstream and downstream faces of the gate */
@@ -55,6 +56,7 @@ static PetscErrorCode Create(Sim sim)
   PetscCall(SceneKeepSeries(sim, &c->hdown));
   PetscCall(SceneKeepSeries(sim, &c->vup));
   c->W = 0.1; c->H = 0.14; c->a = 0.03; c->Lc = -1; c->top = -1; c->rows = 3; c->gate_rows = 4; c->bevel = 45;
+  c->dxc = -1; c->fine = 0.02;
   c->win[0] = -1; c->win[1] = -1;
   PetscOptionsBegin(sim->comm, NULL, "Scene sluice_gate: a reservoir drains under a vertical gate", "");
   PetscCall(PetscOptionsReal("-water_width", "Reservoir (water) width W between the left wall and the gate (m)", "", c->W, &c->W, NULL));
@@ -65,6 +67,8 @@ static PetscErrorCode Create(Sim sim)
   PetscCall(PetscOptionsInt("-wall_rows", "Rows of wall + dummy particles of the tank", "", c->rows, &c->rows, NULL));
   PetscCall(PetscOptionsInt("-gate_rows", "Gate thickness in particle rows (>= 4: no gate particle sees water on both sides)", "", c->gate_rows, &c->gate_rows, NULL));
   PetscCall(PetscOptionsReal("-gate_bevel", "Angle (deg) from the horizontal of the chamfer under the gate's downstream side, which leaves a sharp upstream edge; 0 = square-cut bottom", "", c->bevel, &c->bevel, NULL));
+  PetscCall(PetscOptionsReal("-dx_coarse", "Spacing of the water away from the gate (m); -dx is the spacing next to it, in the channel and of the gate; default -dx (uniform)", "", c->dxc, &c->dxc, NULL));
+  PetscCall(PetscOptionsReal("-fine_width", "Width of the fine zone of water before the gate (m), with -dx_coarse", "", c->fine, &c->fine, NULL));
   PetscCall(PetscOptionsRealArray("-q_window", "t0,t1: quasi-steady window (s) of the errors against the sluice relation; default 2 W / sqrt(g H) (the drawdown wave's round trip across the reservoir), t_end", "", c->win, &nwin, &win_set));
   PetscOptionsEnd();
   PetscCheck(c->W > 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-water_width %g must be > 0", (double)c->W);
@@ -93,6 +97,8 @@ static PetscErrorCode Create(Sim sim)
   c->a   = RoundToInt(c->a / sim->dx) * sim->dx;
   c->Lc  = RoundToInt(c->Lc / sim->dx) * sim->dx;
   c->top = RoundToInt(c->top / sim->dx) * sim->dx;
+  if (c->dxc < 0) c->dxc = sim->dx;
+  PetscCall(SceneZonesSetUp(sim, c->dxc, &c->W, &c->fine, &c->H));
   c->xg0 = c->W;
   c->xg1 = c->W + c->gate_rows * sim->dx;
   /* h_up mid-reservoir; h_down two openings past the gate's sharp upstream edge, beyond the vena
@@ -101,9 +107,10 @@ static PetscErrorCode Create(Sim sim)
   c->x_down = c->xg0 + 2 * c->a;
   PetscCheck(c->x_down + 2 * sim->dx < c->xg1 + c->Lc, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "The h_down station x = %g lies outside the channel: increase -channel_length", (double)c->x_down);
   sim->v_ref     = vmax;
-  sim->dom_lo[0] = -(c->rows + 0.5) * sim->dx;
-  sim->dom_hi[0] = c->xg1 + c->Lc + (c->rows + 0.5) * sim->dx;
-  sim->dom_lo[1] = -(c->rows + 0.5) * sim->dx;
+  /* walls: rows at the coarse spacing, or the fine rows as deep (< rows dc + dx) */
+  sim->dom_lo[0] = -(c->rows + 0.5) * c->dxc;
+  sim->dom_hi[0] = c->xg1 + c->Lc + c->rows * c->dxc + 1.5 * sim->dx;
+  sim->dom_lo[1] = -(c->rows * c->dxc + 1.5 * sim->dx);
   sim->dom_hi[1] = c->top + c->H; /* room for splashes above the walls */
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -112,13 +119,13 @@ static PetscErrorCode Populate(Sim sim)
 {
   Sluice   *c  = (Sluice *)sim->scene_ctx;
   PetscReal dx = sim->dx, rho0 = sim->fl.rho0;
-  PetscInt  nx = RoundToInt(c->W / dx), ny = RoundToInt(c->H / dx), ng = c->gate_rows, nj = RoundToInt((c->top - c->a) / dx);
+  PetscInt  ng = c->gate_rows, nj = RoundToInt((c->top - c->a) / dx);
   PetscReal tb = PetscTanReal(c->bevel * PETSC_PI / 180);
   PetscFunctionBeginUser;
   PetscCheck(RoundToInt((ng - 1) * tb) < nj - ng, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-gate_bevel %g is too steep for a %" PetscInt_FMT "-row gate below -tank_height %g: the chamfer would cut the gate through", (double)c->bevel, ng, (double)c->top);
-  PetscCall(SceneAddLattice(sim, KIND_FLUID, 0.5 * dx, 0.5 * dx, nx, ny, dx, rho0));
-  /* floor from the left wall to the channel's far end, closed at both ends */
-  PetscCall(SceneAddTank(sim, 0, c->xg1 + c->Lc, 0, c->top, dx, c->rows, PETSC_TRUE, PETSC_TRUE));
+  /* the water (coarse and fine zones) and the floor from the left wall to the channel's far end,
+   * closed at both ends */
+  PetscCall(SceneAddZonedWater(sim, c->dxc, c->W, c->fine, c->H, c->top, c->rows, c->xg1 + c->Lc, PETSC_TRUE));
   /* gate: column i starts j0(i) = round(i tan(bevel)) rows above the edge (the chamfer); particles on
    * a face touching water (upstream, downstream, underside) are wall, the inside dummy */
   for (PetscInt i = 0; i < ng; i++) {
@@ -145,7 +152,8 @@ static inline PetscReal BSpline1(PetscReal r, PetscReal s)
 /* Section integrals over the fluid, V_a = m_a / rho_a, phi = BSpline1:
  *   q      = sum_a V_a u_a phi_dx(x_a - x_c),  x_c the gate's centre: ~ int u dy through the
  *            section under the gate (phi's support 2 dx lies under a gate of >= 4 rows);
- *   h_up   = sum_a V_a phi_2dx(x_a - W/2):       the water column's volume per unit length = depth;
+ *   h_up   = sum_a V_a phi_2dc(x_a - W/2):       the water column's volume per unit length = depth
+ *            (dc the coarse spacing: exact on either zone's lattice);
  *   h_down = sum_a V_a phi_dx(x_a - (x_g0 + 2a)): the jet's depth the same way.
  * Also the fluid volume upstream of x_c, whose rate of decrease is q by mass conservation. */
 static PetscErrorCode Probe(Sim sim, PetscReal *vals)
@@ -160,7 +168,7 @@ static PetscErrorCode Probe(Sim sim, PetscReal *vals)
     if (!KindIsFluid(P->kind[a])) continue;
     V = m[a] / rho[a];
     s[0] += V * v[2 * a] * BSpline1(xa - xc, dx);
-    s[1] += V * BSpline1(xa - c->x_up, 2 * dx);
+    s[1] += V * BSpline1(xa - c->x_up, 2 * c->dxc);
     s[2] += V * BSpline1(xa - c->x_down, dx);
     if (xa < xc) s[3] += V;
   }

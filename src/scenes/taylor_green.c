@@ -35,6 +35,7 @@ static PetscErrorCode Create(Sim sim)
   PetscCheck(n >= 8, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dx %g leaves fewer than 8 particles across the %g m period: choose -dx <= %g", (double)sim->dx, (double)c->L, (double)(c->L / 8));
   if (PetscAbsReal(sim->dx - c->L / n) > 1e-12 * c->L) PetscCall(PetscInfo(NULL, "taylor_green: -dx %g rounded to %g = L / %" PetscInt_FMT "\n", (double)sim->dx, (double)(c->L / n), n));
   sim->dx          = c->L / n;
+  sim->confined    = PETSC_TRUE; /* no free surface */
   sim->periodic[0] = sim->periodic[1] = PETSC_TRUE;
   sim->dom_lo[0] = sim->dom_lo[1] = 0;
   sim->dom_hi[0] = sim->dom_hi[1] = c->L;

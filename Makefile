@@ -99,7 +99,7 @@ bench: deps
 	@$(MAKE) --no-print-directory all $(BINDIR)/partition_model
 	@BINDIR=$(BINDIR) bash tools/bench.sh
 
-# Hard cases of issue 6 (tools/hard.sh; each case PASS/FAIL with why, out/hard/hard.md, ~30 min on 2
+# Hard cases of issue 6 (tools/hard.sh; each case PASS/FAIL with why, out/hard/hard.md, ~25 min on 2
 # cores).  2 ranks unless NP is given on the command line or in the environment.
 hard: deps
 	@$(MAKE) --no-print-directory all

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Hard-case suite of issue 6 (`make hard`; ~25-30 min on 2 idle cores): where each scheme breaks.
+# Hard-case suite of issue 6 (`make hard`; 25 min on the 2 cores here at load 2-4): where each scheme breaks.
 # Every case runs bin/sphfsi on NP ranks into out/hard/RUN/, then tools/hard_check.py prints one line
 # 'PASS|FAIL CASE: why, with the measured numbers and the bound'; the suite ends with
 # 'N passed, N failed' and writes out/hard/hard.md (case, scheme, result, measured, bound, wall s).

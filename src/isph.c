@@ -105,6 +105,11 @@ PetscErrorCode ISPHTimeStep(Sim sim, PetscReal *dt)
   }
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &hmin, 1, MPIU_REAL, MPIU_MIN, sim->comm));
   if (lim == PETSC_MAX_REAL) lim = sim->cfl * hmin / sim->v_ref; /* nothing moves and no force yet */
+  if (sim->solid) { /* the pressure is frozen over the solid sub-steps: at most about one elastic transit */
+    PetscReal lt;
+    PetscCall(SolidTransitLimit(sim, &lt));
+    lim = PetscMin(lim, lt);
+  }
   PetscCall(MPIU_Allreduce(&lim, dt, 1, MPIU_REAL, MPIU_MIN, sim->comm));
   PetscFunctionReturn(PETSC_SUCCESS);
 }

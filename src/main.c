@@ -41,12 +41,12 @@ static PetscErrorCode NameTheOption(MPI_Comm comm, int line, const char *fun, co
   return PetscTraceBackErrorHandler(comm, line, fun, file, n, p, mess, ctx);
 }
 
-/* Options nobody read are an error: a misspelt -t_ned would otherwise pass silently.  The ISPH
- * family (-isph_*, -fsi_implicit, PETSc's -ksp_*, -pc_*) and PETSc's own (-log_*, ...) only warn: a case file
- * may carry them for -fluid isph and still run with wcsph.  -unused_options warn: only warnings. */
+/* Options nobody read are an error: a misspelt -t_ned would otherwise pass silently.  The scheme
+ * families (-isph_*, -wcsph_*, -fsi_implicit, -fsi_dt_transit, PETSc's -ksp_*, -pc_*) and PETSc's
+ * own (-log_*, ...) only warn: a case file may carry them for the other fluid scheme.  -unused_options warn: only warnings. */
 static PetscErrorCode CheckUnusedOptions(MPI_Comm comm)
 {
-  const char *petsc[] = {"isph_", "fsi_implicit", "ksp_", "pc_", "mat_", "vec_", "sf_", "log", "info", "malloc", "options_", "viewer", "history", "on_error", "no_signal_handler", "fp_trap", "check_pointer_intensity", "memory_view", "error_output", "help", "nox", "use_gpu_aware_mpi", "unused_options"};
+  const char *petsc[] = {"isph_", "wcsph_", "fsi_implicit", "fsi_dt_transit", "ksp_", "pc_", "mat_", "vec_", "sf_", "log", "info", "malloc", "options_", "viewer", "history", "on_error", "no_signal_handler", "fp_trap", "check_pointer_intensity", "memory_view", "error_output", "help", "nox", "use_gpu_aware_mpi", "unused_options"};
   const char *modes[] = {"error", "warn", "UnusedMode", "UNUSED_", NULL};
   PetscInt    n, mode = 0, nbad = 0;
   char      **names, **values, list[2048] = "";

@@ -233,6 +233,10 @@ PetscErrorCode SimSetUp(Sim sim)
   PetscCall(ParticlesSetUp(sim->P));
   PetscCall(sim->scene->populate(sim));
   PetscCall(ParticlesGlobalCount(sim->P, &sim->nparticles));
+  if (sim->solid) { /* the solids' extent as built (a restart reads its state after this) */
+    PetscReal dt_transit;
+    PetscCall(SolidTransitLimit(sim, &dt_transit));
+  }
   { /* the largest smoothing length sets the cells (scenes may mix particle sizes) */
     const PetscReal *h = PField(sim->P, FIELD_H);
     sim->h_max = SPH_H_FACTOR * sim->dx;

@@ -20,6 +20,8 @@ struct _p_Solid {
   PetscBool     subcycle;  /* multi-rate: solid sub-steps inside the fluid step */
   PetscReal     cfl;       /* Courant number of the solid's step */
   PetscBool     implicit;  /* ISPH: the solid's rows of the pressure equation answer its acceleration (ppe.c) */
+  PetscReal     transit;   /* ISPH: fluid step <= transit * (solid extent) / c0_solid; 0 = no limit */
+  PetscReal     extent;    /* largest side of the moving solids' bounding box at the start (0: not yet known) */
   PetscReal    *R;     /* artificial stress (xx, xy, yy) of owned + ghost particles, Eqs. 32-34 */
   PetscInt      cap_R;
   PetscReal     support[2];      /* force of the supports on the owned clamp particles at the last rates (N/m; reduce to sum) */
@@ -41,6 +43,10 @@ PetscErrorCode SolidBeginSubsteps(Sim sim);
  * SolidPrepare or a sub-step). */
 PetscErrorCode SolidRates(Sim sim);
 /* Step limit from the solid sound speed: cfl h / (c0 + |v|), and the force limit. */
+/* ISPH + solid: the largest fluid step, -fsi_dt_transit times the solid's extent over its c0
+ * (PETSC_MAX_REAL without a limit); collective at its first call, which SimSetUp makes on the
+ * solids as built. */
+PetscErrorCode SolidTransitLimit(Sim sim, PetscReal *dt);
 PetscErrorCode SolidTimeStep(Sim sim, PetscReal *dt);
 /* One kick-drift-kick step of length dt of the solids (fluids held still): ghosts refreshed, no
  * rebuild unless a solid has moved half the skin since SolidPrepare. */

@@ -59,7 +59,7 @@ MPIEXEC ?= mpiexec
 MPIEXEC_FLAGS ?= $(shell $(MPIEXEC) --version 2>/dev/null | grep -q "Open MPI" && echo --oversubscribe)
 export MPIEXEC MPIEXEC_FLAGS
 
-.PHONY: all deps run check check-unit bench hard clean tests
+.PHONY: all deps run check check-unit bench hard study clean tests
 all: $(BIN) $(TEST_BIN)
 
 $(BUILD)/%.o: %.c $(wildcard include/sphfsi/*.h)
@@ -104,6 +104,13 @@ bench: deps
 hard: deps
 	@$(MAKE) --no-print-directory all
 	@BINDIR=$(BINDIR) NP=$(if $(filter command line environment,$(origin NP)),$(NP),2) bash tools/hard.sh
+
+# Speed against error: every validated scene, each scheme at 3 resolutions on NP ranks (tools/study.sh;
+# out/study/study.md + one PNG per scene, ~30 min on 2 cores).  STUDY_SCENES (subset), STUDY_REUSE=1
+# (keep earlier results), STUDY_SIZE=cluster (5 resolutions, for a cluster), NP (ranks; 2 unless given).
+study: deps
+	@$(MAKE) --no-print-directory all
+	@BINDIR=$(BINDIR) $(if $(filter command line environment,$(origin NP)),NP=$(NP)) bash tools/study.sh
 
 # Partition statistics of a scene's cell graph for many ranks (tools/partition_model.c)
 $(BINDIR)/partition_model: $(BUILD)/tools/partition_model.o $(BUILD)/libsphfsi.a

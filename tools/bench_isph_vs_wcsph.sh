@@ -18,7 +18,7 @@
 #   BENCH_ARGS (extra sphfsi options for every run), SPHFSI_REFDATA (reference data directory;
 #   default ../shared/refdata, else the shared/refdata beside the repository this one was cloned from).
 cd "$(dirname "$0")/.."
-MPI="${MPIEXEC:-mpiexec} ${MPIEXEC_FLAGS:-}"
+. tools/lib_runs.sh
 NP=${BENCH_NP:-1}
 OUT=out/bench/isph_vs_wcsph; mkdir -p $OUT
 A=0.05715
@@ -30,11 +30,7 @@ SHIFT_DIV=${BENCH_SHIFT_DIV-20}
 SHIFT_A=${BENCH_SHIFT_A:-1 6}
 TMO=${BENCH_TIMEOUT:-900}
 [ -x bin/sphfsi ] || { echo "bin/sphfsi missing: run make first" >&2; exit 1; }
-if [ -z "${SPHFSI_REFDATA:-}" ] && [ ! -d ../shared/refdata ]; then
-  origin=$(git config --get remote.origin.url 2>/dev/null)
-  [ -n "$origin" ] && [ -d "$origin/../shared/refdata" ] && export SPHFSI_REFDATA=$(cd "$origin/../shared/refdata" && pwd)
-fi
-[ -n "${SPHFSI_REFDATA:-}" ] || [ -d ../shared/refdata ] || echo "warning: no reference data found (set SPHFSI_REFDATA): no errors in the tables" >&2
+find_refdata
 
 # run NAME DIV FLUID [extra options...]
 run() {
@@ -46,14 +42,11 @@ run() {
   if [ -n "${BENCH_REUSE:-}" ] && { [ -f $dir/summary.json ] || [ -f $dir/FAILED ]; }; then
     echo "$name: reusing the earlier result in $dir" >&2; return 0
   fi
-  rm -rf $dir; mkdir -p $dir
   local t0=$SECONDS
-  local TIMEFORMAT="%U %S"   # CPU seconds (user, system) of the whole run, set-up included
-  { time timeout $TMO $MPI -n $NP bin/sphfsi -options_file cases/dam_break.opts -fluid $fluid -dx $dx -t_end $TEND \
-    -output_interval 0 -progress_every 0 -output_dir $dir ${BENCH_ARGS:-} "$@" > $OUT/$name.log 2>&1 ; } 2> $dir/cpu_s
+  run_sphfsi $dir $OUT/$name.log $TMO $NP -options_file cases/dam_break.opts -fluid $fluid -dx $dx -t_end $TEND \
+    -output_interval 0 -progress_every 0 ${BENCH_ARGS:-} "$@"
   local rc=$?
   echo "$name: -fluid $fluid -dx $dx $*: exit $rc, $((SECONDS - t0)) s elapsed" >&2
-  [ $rc -eq 0 ] || echo "$rc" > $dir/FAILED
 }
 
 RAN=""

@@ -1,0 +1,113 @@
+#!/usr/bin/env bash
+# Speed-versus-error study of issue 6 (not a test; `make study`, ~30 min on 2 idle cores).
+# For each validated scene, each scheme at 3 resolutions (Taylor-Green 4) on NP ranks, then tools/study_report.py
+# writes out/study/study.md (table with the observed convergence order, and per scene which scheme
+# reaches a given error faster) and out/study/<scene>.png (error against wall time, log-log).
+#   dam_break           cases/dam_break.opts, WCSPH and ISPH, dx = a/20, a/40, a/80, to 0.3 s;
+#                       error: surge front against Martin & Moyce (rms, relative)
+#   taylor_green        cases/taylor_green.opts (ISPH with shifting A = 20; WCSPH without: -wcsph_shift came later), dx = L/25, L/50,
+#                       L/100, L/200, to 1 s; error: L2 velocity error at t = 1 s (relative)
+#   poiseuille          cases/poiseuille.opts, WCSPH and ISPH, dx = Hc/10, Hc/20, Hc/40, to 2 s;
+#                       error: L2 velocity error at t = 2 s (relative)
+#   oscillating_plate   cases/oscillating_plate.opts (WCSPH solid), 6, 10, 14 particles across, to
+#                       0.8 s; error: |period - thin-plate period| / thin-plate period
+#   elastic_gate        cases/elastic_gate.opts (ISPH + solid), cases/elastic_gate_wcsph.opts (WCSPH +
+#                       solid), uniform dx (-dx_coarse = -dx) 1.667, 1.25, 1 mm (3, 4, 5 particles
+#                       across the gate; the scene needs at least 3; the case files' 1 mm at the gate
+#                       and 2 mm further away would mix two spacings), to 0.4 s (the case's t_end:
+#                       the experiment's 10 points); error: rms of tip_dx against the experiment (m)
+# Each run: out/study/<scene>/<scheme>_<res>/ (summary.json, run.json with the exit code, elapsed
+# and CPU seconds and the load average before and after; FAILED when the exit code is not 0) and
+# out/study/<scene>/<scheme>_<res>.log; out/study/<scene>/plan.tsv lists the runs of the scene.
+# A run that fails stays in the table as failed with its exit code and message.
+#
+# Environment:
+#   NP             ranks per run (2)
+#   STUDY_SCENES   subset, space-separated (dam_break taylor_green poiseuille oscillating_plate
+#                  elastic_gate); the report covers every scene with a plan.tsv in out/study
+#   STUDY_REUSE=1  keep the result of an earlier run with the same options (its run.json)
+#   STUDY_SIZE     default | cluster | quick.  cluster: 4-5 resolutions per scheme (the default ones and
+#                  finer ones: dam break to a/320, Taylor-Green to L/400, Poiseuille to Hc/80,
+#                  plate to 30 across, elastic gate to 0.5 mm), i.e. days on 2
+#                  cores, hours on 64+ ranks: on a cluster, e.g. in a batch job,
+#                     make study STUDY_SIZE=cluster NP=64 STUDY_TIMEOUT=86400
+#                  with MPIEXEC=srun MPIEXEC_FLAGS= for SLURM (the finest runs are what costs; the
+#                  coarse ones waste ranks, so several scenes may go to separate jobs with
+#                  STUDY_SCENES=... and a last `STUDY_SIZE=cluster STUDY_REUSE=1 make study` for the
+#                  report, or `python3 tools/study_report.py out/study`).
+#                  quick: tiny runs that check the script; not numbers to quote
+#   STUDY_TIMEOUT  seconds per run (3600)
+#   MPIEXEC, MPIEXEC_FLAGS, BINDIR (bin), SPHFSI_REFDATA (see tools/lib_runs.sh)
+cd "$(dirname "$0")/.."
+. tools/lib_runs.sh
+BIN=${BINDIR:-bin}
+NP=${NP:-2}
+OUT=out/study
+SIZE=${STUDY_SIZE:-default}
+SCENES=${STUDY_SCENES:-dam_break taylor_green poiseuille oscillating_plate elastic_gate}
+TMO=${STUDY_TIMEOUT:-3600}
+[ -x $BIN/sphfsi ] || { echo "$BIN/sphfsi missing: run make first (or make study)" >&2; exit 1; }
+case $SIZE in default|cluster|quick) ;; *) echo "STUDY_SIZE must be default, cluster or quick" >&2; exit 1;; esac
+find_refdata
+mkdir -p $OUT
+T0=$SECONDS
+
+# Per scene: SCHEMES ("name:options", ';'-separated), RES ("label:nominal dx:options", ';'-separated,
+# coarse to fine), COMMON (options of every run).  Resolutions as divisions of a length: the dam-break
+# column width a, the Taylor-Green box L, the Poiseuille channel height Hc, the plate thickness
+# (particles across) and the gate thickness (5 mm).
+f7() { python3 -c "print(f'{$1:.7g}')"; }
+pick() { case $SIZE in default) echo "$1";; cluster) echo "$2";; quick) echo "$3";; esac; }
+# fluid CASE LENGTH LABEL DIVS_DEFAULT DIVS_CLUSTER DIVS_QUICK: WCSPH and ISPH, -dx LENGTH/div
+fluid() {
+  SCHEMES="wcsph:-options_file cases/$1.opts -fluid wcsph;isph:-options_file cases/$1.opts -fluid isph"
+  for d in $(pick "$4" "$5" "$6"); do RES="$RES;$3$d:$(f7 $2/$d):-dx $(f7 $2/$d)"; done
+}
+scene() {
+  local d
+  RES=""; COMMON="-output_interval 0 -progress_every 0"
+  case $1 in
+  dam_break)    fluid dam_break 0.05715 a "20 40 80" "20 40 80 160 320" "10 14" ;;
+  taylor_green) fluid taylor_green 1 L "25 50 100 200" "25 50 100 200 400" "10 20" ;;
+  poiseuille)   fluid poiseuille 1e-3 Hc "10 20 40" "10 20 40 80" "10 20" ;;
+  oscillating_plate)
+    SCHEMES="solid:-options_file cases/oscillating_plate.opts"
+    for d in $(pick "6 10 14" "6 10 14 20 30" "4 6"); do RES="$RES;ny$d:$(f7 0.02/$d):-plate_ny $d"; done ;;
+  elastic_gate)
+    SCHEMES="isph:-options_file cases/elastic_gate.opts;wcsph:-options_file cases/elastic_gate_wcsph.opts"
+    for d in $(pick "3 4 5" "3 4 5 7 10" "3"); do
+      RES="$RES;$(python3 -c "print(f'{5/$d:.3g}')")mm:$(f7 0.005/$d):-dx $(f7 0.005/$d) -dx_coarse $(f7 0.005/$d)"
+    done ;;
+  *) echo "unknown scene $1 (STUDY_SCENES)" >&2; return 1;;
+  esac
+  # every scene runs to its case file's t_end, but for STUDY_SIZE=quick
+  [ $SIZE = quick ] && COMMON="$COMMON -t_end $(case $1 in oscillating_plate) echo 0.3;; elastic_gate) echo 0.01;; *) echo 0.1;; esac)"
+  RES=${RES#;}
+}
+
+for sc in $SCENES; do
+  scene $sc || exit 1
+  mkdir -p $OUT/$sc
+  plan=$OUT/$sc/plan.tsv
+  printf '# size %s, %s ranks, options of every run: %s\n' "$SIZE" "$NP" "$COMMON" > $plan.part
+  IFS=';' read -ra schemes <<< "$SCHEMES"; IFS=';' read -ra resl <<< "$RES"
+  # resolution by resolution, the schemes one after the other: on a shared machine the two runs at
+  # the same dx then see about the same load
+  for r in "${resl[@]}"; do
+    IFS=':' read -r rlab rdx ropts <<< "$r"
+    for s in "${schemes[@]}"; do
+      sname=${s%%:*}; sopts=${s#*:}
+      name=${sname}_$rlab; dir=$OUT/$sc/$name
+      printf '%s\t%s\t%s\t%s\t%s\n' "$sname" "$rlab" "$rdx" "$name" "$sopts $ropts" >> $plan.part
+      if [ -n "${STUDY_REUSE:-}" ] && [ -f $dir/run.json ] && \
+         python3 -c "import json, sys; sys.exit(json.load(open('$dir/run.json'))['options'] != sys.argv[1])" "$(echo $sopts $ropts $COMMON)"; then
+        echo "$sc $name: reusing the earlier result (same options)" >&2; continue
+      fi
+      run_sphfsi $dir $OUT/$sc/$name.log $TMO $NP $sopts $ropts $COMMON
+      echo "$sc $name: exit $?, $(python3 -c "import json; r = json.load(open('$dir/run.json')); print(f\"{r['elapsed_s']:.1f} s, load {r['load_before']} -> {r['load_after']}\")")" >&2
+    done
+  done
+  mv $plan.part $plan
+done
+echo "study: $((SECONDS - T0)) s for the runs of: $SCENES" >&2
+python3 tools/study_report.py $OUT

@@ -32,6 +32,7 @@ check "-isph_source"          -case dam_break -fluid isph -isph_source magic
 check "DIVERGED_ITS"          -case hydrostatic -fluid isph -dx 0.01 -ksp_max_it 1 -ksp_error_if_not_converged
 check "DIVERGED_ITS"          -case hydrostatic -fluid isph -dx 0.01 -ksp_max_it 1
 check "-solid_K"              -case oscillating_plate -solid_K -1
+check "-floor_downstream"     -case elastic_gate -dx 0.00125 -floor_downstream -0.1
 check "-solid_G"              -case oscillating_plate -solid_G -5
 check "-solid_art_stress"     -case oscillating_plate -solid_art_stress 2
 check "-solid_gradient"       -case oscillating_plate -solid_gradient magic

@@ -1,8 +1,10 @@
 /* Water column released through an elastic gate (paper section 3.3; Antoci, Gallati & Sibilla
  * 2007).  Water W wide and H deep in a tank; on its right a rubber gate of length L and thickness
  * t, clamped at its top into a rigid wall that holds the water above it, free at the bottom where
- * it closes the outflow.  The water pushes the gate open and leaves through the opening: fluid
- * that leaves the domain box is removed.  x points downstream, y up. */
+ * it rests on the floor and closes the outflow.  The water pushes the gate open and runs out along
+ * the floor, which goes on downstream of the gate (the experiment's tank bottom: the opening is then
+ * the gap between the gate's end and the floor, not the whole swing of the gate); fluid that leaves
+ * the domain box is removed.  x points downstream, y up. */
 #include <sphfsi/scene.h>
 #include <sphfsi/solid.h>
 #include <sphfsi/refdata.h>
@@ -10,6 +12,7 @@
 typedef struct {
   PetscReal W, H, L, t, top;   /* water width and depth, gate length and thickness, wall top */
   PetscReal dxc, fine;         /* coarse spacing away from the gate; width of the fine zone before it */
+  PetscReal floor;             /* length of the floor downstream of the gate */
   PetscInt  rows, nclamp;      /* wall rows (coarse spacing); clamp rows of the gate inside its support */
   Series    dx_tip, dy_tip;
 } Gate;
@@ -22,7 +25,7 @@ static PetscErrorCode Create(Sim sim)
   sim->scene_ctx = c;
   PetscCall(SceneKeepSeries(sim, &c->dx_tip)); /* checkpoints carry the histories */
   PetscCall(SceneKeepSeries(sim, &c->dy_tip));
-  c->W = 0.1; c->H = 0.14; c->L = 0.079; c->t = 0.005; c->top = 0.16; c->rows = 3; c->nclamp = 4; c->dxc = -1; c->fine = 0.02;
+  c->W = 0.1; c->H = 0.14; c->L = 0.079; c->t = 0.005; c->top = 0.16; c->rows = 3; c->nclamp = 4; c->dxc = -1; c->fine = 0.02; c->floor = 0.1;
   sim->sl.rho0 = 1100; sim->sl.K = 2.0e7; sim->sl.G = 4.27e6; /* rubber, paper section 3.3 */
   sim->fl.mu   = 1.0e-3;
   PetscOptionsBegin(sim->comm, NULL, "Scene elastic_gate: water column released through an elastic gate (Antoci et al. 2007)", "");
@@ -35,11 +38,13 @@ static PetscErrorCode Create(Sim sim)
   PetscCall(PetscOptionsInt("-clamp_rows", "Rows of clamp particles at the top of the gate", "", c->nclamp, &c->nclamp, NULL));
   PetscCall(PetscOptionsReal("-dx_coarse", "Spacing of the fluid away from the gate (m); default -dx (uniform)", "", c->dxc, &c->dxc, NULL));
   PetscCall(PetscOptionsReal("-fine_width", "Width of the fine fluid zone before the gate (m), with -dx_coarse", "", c->fine, &c->fine, NULL));
+  PetscCall(PetscOptionsReal("-floor_downstream", "Length of the floor downstream of the gate (m); 0 = the floor ends under the gate and the water falls freely past it", "", c->floor, &c->floor, NULL));
   PetscOptionsEnd();
   PetscCheck(c->W > 0 && c->H > 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-water_width %g and -water_depth %g must be > 0", (double)c->W, (double)c->H);
   PetscCheck(c->t > 0 && c->L > c->t, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-gate_length %g must exceed -gate_thickness %g > 0", (double)c->L, (double)c->t);
   PetscCheck(c->L < c->H, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-gate_length %g must be less than -water_depth %g (the rigid wall above the gate holds the rest)", (double)c->L, (double)c->H);
   PetscCheck(c->top > c->H, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-tank_height %g must exceed -water_depth %g", (double)c->top, (double)c->H);
+  PetscCheck(c->floor >= 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-floor_downstream %g must be >= 0", (double)c->floor);
   PetscCheck(c->rows >= 1, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-wall_rows %" PetscInt_FMT " must be >= 1", c->rows);
   PetscCheck(c->nclamp >= 3, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-clamp_rows %" PetscInt_FMT " must be >= 3 (the clamp must fill the kernel support)", c->nclamp);
   if (sim->dx < 0) sim->dx = 0.001;
@@ -51,7 +56,7 @@ static PetscErrorCode Create(Sim sim)
   sim->outflow   = PETSC_TRUE;
   sim->v_ref     = PetscSqrtReal(2 * 9.81 * c->H);
   sim->dom_lo[0] = -(c->rows + 0.5) * c->dxc;
-  sim->dom_hi[0] = c->W + c->t + 0.1;  /* fluid beyond leaves */
+  sim->dom_hi[0] = c->W + c->t + PetscMax(0.1, c->floor + 2 * c->dxc); /* fluid beyond leaves */
   sim->dom_lo[1] = -0.1;
   sim->dom_hi[1] = c->top + sim->dx;
   PetscCall(ParticlesEnableField(sim->P, FIELD_X0, PETSC_FALSE));
@@ -64,7 +69,7 @@ static PetscErrorCode Populate(Sim sim)
   PetscReal dx = sim->dx, xg = c->W; /* gate's upstream face */
   PetscInt  nt = RoundToInt(c->t / dx), nl = RoundToInt(c->L / dx), ntop = RoundToInt(c->top / dx);
   PetscFunctionBeginUser;
-  PetscCall(SceneAddZonedWater(sim, c->dxc, c->W, c->fine, c->H, c->top, c->rows, xg + nt * dx, PETSC_FALSE));
+  PetscCall(SceneAddZonedWater(sim, c->dxc, c->W, c->fine, c->H, c->top, c->rows, xg + nt * dx + RoundToInt(c->floor / dx) * dx, PETSC_FALSE));
   /* the gate and its clamp */
   PetscCall(SceneAddLattice(sim, KIND_SOLID, xg + 0.5 * dx, 0.5 * dx, nt, nl, dx, sim->sl.rho0));
   PetscCall(SceneAddLattice(sim, KIND_CLAMP, xg + 0.5 * dx, (nl + 0.5) * dx, nt, c->nclamp, dx, sim->sl.rho0));

@@ -263,6 +263,24 @@ static void JsonReal(FILE *f, const char *key, PetscReal v)
   else fprintf(f, "  \"%s\": %.9g,\n", key, (double)v);
 }
 
+/* The scenes print their errors with %g: write s to f with every value that is not finite (nan,
+ * -nan, inf, -inf after ": ", ", " or "[", before ",", "]", "}" or the end) written null. */
+static void JsonPutsFinite(FILE *f, const char *s)
+{
+  for (const char *c = s; *c; c++) {
+    const char *v, *e;
+    fputc(*c, f);
+    if (*c == '[') v = c + 1;
+    else if ((*c == ':' || *c == ',') && c[1] == ' ') v = c + 2;
+    else continue;
+    e = v + (*v == '-');
+    if ((strncmp(e, "nan", 3) && strncmp(e, "inf", 3)) || (e[3] && e[3] != ',' && e[3] != ']' && e[3] != '}')) continue;
+    if (v == c + 2) fputc(' ', f);
+    fputs("null", f);
+    c = e + 2; /* the loop's c++ steps past the token */
+  }
+}
+
 static void JsonString(FILE *f, const char *key, const char *v)
 {
   fprintf(f, "  \"%s\": \"", key);
@@ -332,7 +350,21 @@ PetscErrorCode IOSummary(Sim sim)
       if (sim->P->f[k].on) { fprintf(f, "%s\"%s\"", first ? "" : ", ", sim->P->f[k].name); first = 0; }
     fprintf(f, "],\n  \"errors\": {");
   }
-  if (sim->scene->errors) PetscCall(sim->scene->errors(sim, f));
+  if (sim->scene->errors) { /* collective; rank 0 writes through a memory stream, made valid JSON */
+    char  *buf = NULL;
+    size_t len = 0;
+    FILE  *mem = NULL;
+    if (!sim->rank) {
+      mem = open_memstream(&buf, &len);
+      if (!mem) err = errno;
+    }
+    PetscCall(sim->scene->errors(sim, mem));
+    if (mem) {
+      fclose(mem);
+      JsonPutsFinite(f, buf);
+      free(buf);
+    }
+  }
   if (!sim->rank) {
     fprintf(f, "}\n}\n");
     fclose(f);

@@ -28,7 +28,7 @@ else
   METIS_LIBS   := -lmetis
 endif
 
-OPT     ?= -O3 -march=native
+OPT     ?= -O3 -march=native -fno-math-errno
 SAN     ?=
 ifeq ($(SAN),1)
   SANFLAGS := -fsanitize=address,undefined

@@ -82,12 +82,12 @@ PetscErrorCode CellsBuild(Cells c, Particles P)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-/* W and F of a pair at distance r for smoothing length h, given sw = KernelSigma(h) and
+/* W and F of a pair at distance r for smoothing length h, given ih = 1 / h, sw = KernelSigma(h) and
  * sf = sw / (h h): the operations of KernelW and KernelF (kernel.h) without the per-pair
- * normalisation (three divisions). */
-static inline void PairKernel(PetscReal r, PetscReal h, PetscReal sw, PetscReal sf, PetscReal *w, PetscReal *f)
+ * normalisation; one division, in the outer ring only. */
+static inline void PairKernel(PetscReal r, PetscReal ih, PetscReal sw, PetscReal sf, PetscReal *w, PetscReal *f)
 {
-  PetscReal R = r / h;
+  PetscReal R = r * ih; /* ih = 1 / h: no division for the pairs inside h */
   if (R < 1.0) {
     *w = sw * (1.0 - 1.5 * R * R + 0.75 * R * R * R);
     *f = sf * (-3.0 + 2.25 * R);
@@ -96,6 +96,24 @@ static inline void PairKernel(PetscReal r, PetscReal h, PetscReal sw, PetscReal 
     *w = sw * 0.25 * t * t * t;
     *f = -0.75 * sf * t * t / R;
   } else *w = *f = 0.0;
+}
+
+/* Kernel values of n pairs of smoothing length h (ih = 1 / h) from their r^2, stored in w: PairKernel
+ * without branches, so that the compiler vectorises the square roots and divisions.  With hn (the
+ * particles' h), the pairs whose neighbour has another h than ha are left as they are. */
+static void UniformPairKernels(PetscReal *restrict w, PetscReal *restrict f, PetscInt n, PetscReal ih, PetscReal sw, PetscReal sf, const PetscReal *hn, PetscReal ha, const PetscInt *nbr)
+{
+  if (!hn) {
+    for (PetscInt k = 0; k < n; k++) {
+      PetscReal R = PetscSqrtReal(w[k]) * ih, t = 2.0 - R, tt = t * t;
+      PetscReal win = sw * (1.0 - 1.5 * R * R + 0.75 * R * R * R), fin = sf * (-3.0 + 2.25 * R);
+      PetscReal wout = sw * 0.25 * tt * t, fout = -0.75 * sf * tt / (R > 0 ? R : 1.0);
+      w[k] = R < 1.0 ? win : (R < 2.0 ? wout : 0.0);
+      f[k] = R < 1.0 ? fin : (R < 2.0 ? fout : 0.0);
+    }
+  } else
+    for (PetscInt k = 0; k < n; k++)
+      if (hn[nbr[k]] == ha) PairKernel(PetscSqrtReal(w[k]), ih, sw, sf, &w[k], &f[k]);
 }
 
 /* Neighbour list into `out` of the owned particles that `keep` accepts (NULL: all), using the
@@ -121,7 +139,8 @@ static PetscErrorCode NeighbourPass(Cells bins, Particles P, PetscBool (*keep)(P
   for (PetscInt a = 0; a < n; a++) {
     PetscInt  ca = c->cell[a], ia = ca % c->n[0], ja = ca / c->n[0];
     PetscReal xa = x[2 * a], ya = x[2 * a + 1], ha = h[a], rca = 2.0 * ha + skin, rc2a = rca * rca;
-    PetscReal swa = KernelSigma(ha), sfa = swa / (ha * ha);
+    PetscReal swa = KernelSigma(ha), sfa = swa / (ha * ha), iha = 1.0 / ha;
+    PetscBool mixed = PETSC_FALSE; /* a pair of another h: its kernel values are already in place */
     out->nstart[a] = cnt;
     if (keep && !keep(P->kind[a])) continue;
     for (PetscInt dj = -1; dj <= 1; dj++) {
@@ -145,20 +164,25 @@ static PetscErrorCode NeighbourPass(Cells bins, Particles P, PetscBool (*keep)(P
         for (PetscInt s = c->start[cb]; s < c->start[cb + 1]; s++) {
           PetscInt  b = c->list[s];
           /* r2 as the compiler contracted dx dx + dy dy before: the same bits as earlier versions */
-          PetscReal dx = xa - x[2 * b], dy = ya - x[2 * b + 1], r2 = fma(dy, dy, dx * dx), hab = ha, sw = swa, sf = sfa;
+          PetscReal dx = xa - x[2 * b], dy = ya - x[2 * b + 1], r2 = fma(dy, dy, dx * dx), ih = iha, sw = swa, sf = sfa;
           if (h[b] == ha) {
             if (b == a || !(r2 < rc2a)) continue;
           } else {
-            PetscReal rc;
-            hab = PairH(ha, h[b]); rc = 2.0 * hab + skin;
+            PetscReal rc, hab = PairH(ha, h[b]);
+            rc = 2.0 * hab + skin;
             if (b == a || !(r2 < rc * rc)) continue;
-            sw = KernelSigma(hab); sf = sw / (hab * hab);
+            sw = KernelSigma(hab); sf = sw / (hab * hab); ih = 1.0 / hab;
           }
-          PairKernel(PetscSqrtReal(r2), hab, sw, sf, &out->w[cnt], &out->f[cnt]);
+          if (ih == iha) out->w[cnt] = r2; /* the kernel follows, for all of a's pairs at once */
+          else {
+            PairKernel(PetscSqrtReal(r2), ih, sw, sf, &out->w[cnt], &out->f[cnt]);
+            mixed = PETSC_TRUE;
+          }
           out->nbr[cnt++] = b;
         }
       }
     }
+    UniformPairKernels(out->w + out->nstart[a], out->f + out->nstart[a], cnt - out->nstart[a], iha, swa, sfa, mixed ? h : NULL, ha, out->nbr + out->nstart[a]);
     out->max_nbr = PetscMax(out->max_nbr, cnt - out->nstart[a]);
   }
   out->nstart[n] = cnt;

@@ -164,18 +164,15 @@ static PetscErrorCode NeighbourPass(Cells bins, Particles P, PetscBool (*keep)(P
         for (PetscInt s = c->start[cb]; s < c->start[cb + 1]; s++) {
           PetscInt  b = c->list[s];
           /* r2 as the compiler contracted dx dx + dy dy before: the same bits as earlier versions */
-          PetscReal dx = xa - x[2 * b], dy = ya - x[2 * b + 1], r2 = fma(dy, dy, dx * dx), ih = iha, sw = swa, sf = sfa;
+          PetscReal dx = xa - x[2 * b], dy = ya - x[2 * b + 1], r2 = fma(dy, dy, dx * dx);
           if (h[b] == ha) {
             if (b == a || !(r2 < rc2a)) continue;
+            out->w[cnt] = r2; /* the kernel follows, for all of a's pairs at once */
           } else {
-            PetscReal rc, hab = PairH(ha, h[b]);
-            rc = 2.0 * hab + skin;
+            PetscReal hab = PairH(ha, h[b]), rc = 2.0 * hab + skin, sw;
             if (b == a || !(r2 < rc * rc)) continue;
-            sw = KernelSigma(hab); sf = sw / (hab * hab); ih = 1.0 / hab;
-          }
-          if (ih == iha) out->w[cnt] = r2; /* the kernel follows, for all of a's pairs at once */
-          else {
-            PairKernel(PetscSqrtReal(r2), ih, sw, sf, &out->w[cnt], &out->f[cnt]);
+            sw = KernelSigma(hab);
+            PairKernel(PetscSqrtReal(r2), 1.0 / hab, sw, sw / (hab * hab), &out->w[cnt], &out->f[cnt]);
             mixed = PETSC_TRUE;
           }
           out->nbr[cnt++] = b;

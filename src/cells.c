@@ -99,21 +99,16 @@ static inline void PairKernel(PetscReal r, PetscReal ih, PetscReal sw, PetscReal
 }
 
 /* Kernel values of n pairs of smoothing length h (ih = 1 / h) from their r^2, stored in w: PairKernel
- * without branches, so that the compiler vectorises the square roots and divisions.  With hn (the
- * particles' h), the pairs whose neighbour has another h than ha are left as they are. */
-static void UniformPairKernels(PetscReal *restrict w, PetscReal *restrict f, PetscInt n, PetscReal ih, PetscReal sw, PetscReal sf, const PetscReal *hn, PetscReal ha, const PetscInt *nbr)
+ * without branches, so that the compiler vectorises the square roots and divisions. */
+static void UniformPairKernels(PetscReal *restrict w, PetscReal *restrict f, PetscInt n, PetscReal ih, PetscReal sw, PetscReal sf)
 {
-  if (!hn) {
-    for (PetscInt k = 0; k < n; k++) {
-      PetscReal R = PetscSqrtReal(w[k]) * ih, t = 2.0 - R, tt = t * t;
-      PetscReal win = sw * (1.0 - 1.5 * R * R + 0.75 * R * R * R), fin = sf * (-3.0 + 2.25 * R);
-      PetscReal wout = sw * 0.25 * tt * t, fout = -0.75 * sf * tt / (R > 0 ? R : 1.0);
-      w[k] = R < 1.0 ? win : (R < 2.0 ? wout : 0.0);
-      f[k] = R < 1.0 ? fin : (R < 2.0 ? fout : 0.0);
-    }
-  } else
-    for (PetscInt k = 0; k < n; k++)
-      if (hn[nbr[k]] == ha) PairKernel(PetscSqrtReal(w[k]), ih, sw, sf, &w[k], &f[k]);
+  for (PetscInt k = 0; k < n; k++) {
+    PetscReal R = PetscSqrtReal(w[k]) * ih, t = 2.0 - R, tt = t * t;
+    PetscReal win = sw * (1.0 - 1.5 * R * R + 0.75 * R * R * R), fin = sf * (-3.0 + 2.25 * R);
+    PetscReal wout = sw * 0.25 * tt * t, fout = -0.75 * sf * tt / (R > 0 ? R : 1.0);
+    w[k] = R < 1.0 ? win : (R < 2.0 ? wout : 0.0);
+    f[k] = R < 1.0 ? fin : (R < 2.0 ? fout : 0.0);
+  }
 }
 
 /* Neighbour list into `out` of the owned particles that `keep` accepts (NULL: all), using the
@@ -179,7 +174,10 @@ static PetscErrorCode NeighbourPass(Cells bins, Particles P, PetscBool (*keep)(P
         }
       }
     }
-    UniformPairKernels(out->w + out->nstart[a], out->f + out->nstart[a], cnt - out->nstart[a], iha, swa, sfa, mixed ? h : NULL, ha, out->nbr + out->nstart[a]);
+    if (!mixed) UniformPairKernels(out->w + out->nstart[a], out->f + out->nstart[a], cnt - out->nstart[a], iha, swa, sfa);
+    else /* the pairs of another h hold their kernel values already */
+      for (PetscInt k = out->nstart[a]; k < cnt; k++)
+        if (h[out->nbr[k]] == ha) PairKernel(PetscSqrtReal(out->w[k]), iha, swa, sfa, &out->w[k], &out->f[k]);
     out->max_nbr = PetscMax(out->max_nbr, cnt - out->nstart[a]);
   }
   out->nstart[n] = cnt;

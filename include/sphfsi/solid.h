@@ -42,11 +42,11 @@ PetscErrorCode SolidBeginSubsteps(Sim sim);
 /* Pressure, artificial stress and accelerations of solids at the current state (after
  * SolidPrepare or a sub-step). */
 PetscErrorCode SolidRates(Sim sim);
-/* Step limit from the solid sound speed: cfl h / (c0 + |v|), and the force limit. */
 /* ISPH + solid: the largest fluid step, -fsi_dt_transit times the solid's extent over its c0
  * (PETSC_MAX_REAL without a limit); collective at its first call, which SimSetUp makes on the
  * solids as built. */
 PetscErrorCode SolidTransitLimit(Sim sim, PetscReal *dt);
+/* Step limit from the solid sound speed: cfl h / (c0 + |v|), and the force limit. */
 PetscErrorCode SolidTimeStep(Sim sim, PetscReal *dt);
 /* One kick-drift-kick step of length dt of the solids (fluids held still): ghosts refreshed, no
  * rebuild unless a solid has moved half the skin since SolidPrepare. */

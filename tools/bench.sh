@@ -10,7 +10,7 @@
 #      2 ranks, one after the other; memory from -memory_view (maximum resident set, summed over
 #      ranks) and an empty-problem baseline
 #   5. partition statistics of the dam break (a/700, 1.02 M particles) and the elastic gate
-#      (dx 0.12 mm, 1.04 M) for 2..1024 ranks (bin/partition_model) and the scaling model
+#      (dx 0.12 mm everywhere, 1.04 M) for 2..1024 ranks (bin/partition_model) and the scaling model
 #      (tools/scaling_model.py) from them and the costs measured in 4.
 # particle-steps/s = particles x steps / wall seconds of the time loop (summary.json).  Every run
 # keeps its -log_view in out/bench/NAME/log_view.txt.  The load average is recorded next to each
@@ -76,7 +76,7 @@ if has model; then
   # Cost of a solid particle per fluid step in work units (a wall particle = 1): 4 + n_sub c_solid / c_work,
   # with c_solid from the plate (rank-seconds per solid particle-step), c_work from the 400k WCSPH run,
   # n_sub = 8 solid sub-steps per fluid step of the gate.  The gate is partitioned as the code does
-  # (solids weighted 4) and with the solids weighted by that cost.
+  # (solids a second METIS constraint, -decomp_split_solids) and with the solids weighted by that cost.
   SC=$(python3 - $OUT <<'PY' 2>/dev/null || echo 36
 import json, re, sys
 o = sys.argv[1]
@@ -88,7 +88,7 @@ c_work = w["wall_s"] / w["steps"] / work; c_solid = 2.0 / p["particle_steps_per_
 print(f"{4 + 8 * c_solid / c_work:.0f}")
 PY
 )
-  for s in "dam_break $DDB dam_break" "elastic_gate $DGATE elastic_gate -solid_cost $SC" "elastic_gate $DGATE elastic_gate_solidw -solid_cost $SC -solid_weight $SC"; do
+  for s in "dam_break $DDB dam_break" "elastic_gate $DGATE elastic_gate -dx_coarse $DGATE -solid_cost $SC -split_solids" "elastic_gate $DGATE elastic_gate_solidw -dx_coarse $DGATE -solid_cost $SC -solid_weight $SC"; do
     set -- $s
     echo "partition_model: $1, dx $2 ${*:4}" >&2
     timeout $TMO $BIN/partition_model -options_file cases/$1.opts -dx $2 -nparts_max 1024 "${@:4}" > $OUT/partition_$3.csv 2> $OUT/partition_$3.log || echo "partition_model $3 failed: $OUT/partition_$3.log" >&2

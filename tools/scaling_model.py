@@ -176,7 +176,7 @@ def main():
               f"halo: {cw['n_msg']:.1f} (WCSPH) / {ci['n_msg']:.1f} (ISPH) messages and {cw['n_red']:.1f} / {ci['n_red']:.1f} reductions per step outside the PPE; "
               f"solid sub-step {c['solid']['c_solid'] * 1e9:.0f} ns per solid particle.\n")
     for case, N, rows in tables:
-        title = case.replace("_solidw", f", solid and clamp particles weighted {sc} (their cost with the sub-steps) in the partition instead of 4")
+        title = case.replace("_solidw", f", solid and clamp particles weighted {sc} (their cost with the sub-steps) in the partition instead of 4").replace("elastic_gate", "elastic_gate (solid particles balanced as METIS's second constraint, as the code does by default)", 1) if case == "elastic_gate" else case.replace("_solidw", f", solid and clamp particles weighted {sc} (their cost with the sub-steps) in the partition instead of 4")
         md.append(f"\n**{title}**, {N} particles, {rows[0]['cells']} cells, solid particles on the busiest rank at 2 / 64 ranks: "
                   f"{rows[0]['solid_max']} / {rows[min(5, len(rows) - 1)]['solid_max']}\n" if case.startswith("elastic") else f"\n**{title}**, {N} particles, {rows[0]['cells']} cells\n")
         hdr = "| ranks | particles/rank | work imbalance | cost imbalance (solid sub-steps counted) | PPE-row imbalance | halo/owned (max) | neighbour ranks max | cut edges |"
@@ -214,7 +214,7 @@ def main():
         for k, (N, pts) in series.items():
             P = [p[0] for p in pts]; t = [p[1] * 1e3 for p in pts]; e = [100 * p[2] for p in pts]
             ls = "-" if k[2] == "as is" else "--"
-            name = k[0].replace("elastic_gate_solidw", "elastic gate (solids weighted by their cost)").replace("elastic_gate", "elastic gate (solids weighted 4, as now)").replace("_", " ")
+            name = k[0].replace("elastic_gate_solidw", "elastic gate (solids weighted by their cost)").replace("elastic_gate", "elastic gate (solids a second constraint, as now)").replace("_", " ")
             lab = f"{name} {k[1].upper()}{'' if k[2] == 'as is' else ', neighbour exchanges'}"
             ax[0].loglog(P, t, ls, marker="o", ms=3, color=colors[(k[0], k[1])], label=lab)
             if k[2] == "as is": ax[0].loglog(P, [t[0] / p for p in P], ":", color=colors[(k[0], k[1])], lw=0.8)

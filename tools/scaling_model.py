@@ -141,7 +141,7 @@ def main():
     for case, schemes in (("dam_break", ("wcsph", "isph")), ("elastic_gate", ("wcsph",)), ("elastic_gate_solidw", ("wcsph",))):
         path = f"{out}/partition_{case}.csv"
         if not os.path.exists(path): continue
-        rows = list(csv.DictReader(open(path)))
+        rows = [r for r in csv.DictReader(open(path)) if r.get("case") == case.replace("_solidw", "") and r.get("ranks")]  # METIS may print into stdout
         if not rows: continue
         N = int(rows[0]["particles"])
         one = dict(rows[0]); one.update(ranks="1", work_max=str(float(rows[0]["work_mean"]) * 2), cost_max=str(float(rows[0]["cost_mean"]) * 2), ppe_rows_max=str(float(rows[0]["ppe_rows_mean"]) * 2),

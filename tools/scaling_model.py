@@ -176,7 +176,8 @@ def main():
               f"halo: {cw['n_msg']:.1f} (WCSPH) / {ci['n_msg']:.1f} (ISPH) messages and {cw['n_red']:.1f} / {ci['n_red']:.1f} reductions per step outside the PPE; "
               f"solid sub-step {c['solid']['c_solid'] * 1e9:.0f} ns per solid particle.\n")
     for case, N, rows in tables:
-        title = case.replace("_solidw", f", solid and clamp particles weighted {sc} (their cost with the sub-steps) in the partition instead of 4").replace("elastic_gate", "elastic_gate (solid particles balanced as METIS's second constraint, as the code does by default)", 1) if case == "elastic_gate" else case.replace("_solidw", f", solid and clamp particles weighted {sc} (their cost with the sub-steps) in the partition instead of 4")
+        title = {"elastic_gate": "elastic_gate (solid particles balanced as METIS's second constraint, as the code does by default)",
+                 "elastic_gate_solidw": f"elastic_gate, solid and clamp particles weighted {sc} (their cost with the sub-steps) in the partition instead of 4"}.get(case, case)
         md.append(f"\n**{title}**, {N} particles, {rows[0]['cells']} cells, solid particles on the busiest rank at 2 / 64 ranks: "
                   f"{rows[0]['solid_max']} / {rows[min(5, len(rows) - 1)]['solid_max']}\n" if case.startswith("elastic") else f"\n**{title}**, {N} particles, {rows[0]['cells']} cells\n")
         hdr = "| ranks | particles/rank | work imbalance | cost imbalance (solid sub-steps counted) | PPE-row imbalance | halo/owned (max) | neighbour ranks max | cut edges |"

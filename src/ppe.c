@@ -27,6 +27,10 @@ PetscErrorCode PPESetFromOptions(PPE ppe, PetscBool symmetric)
 #endif
   PetscCall(KSPSetTolerances(ppe->ksp, 1e-8, 1e-50, PETSC_DEFAULT, 200));
   PetscCall(KSPSetInitialGuessNonzero(ppe->ksp, PETSC_TRUE)); /* last step's pressure */
+  PetscOptionsBegin(ppe->comm, NULL, "Pressure Poisson equation", "PPE");
+  PetscCall(PetscOptionsReal("-ppe_pc_qmax", "Build the preconditioner from the PPE without the pairs beyond r = q h (their weight goes to the diagonal); 0: from the PPE itself", "", ppe->pc_qmax, &ppe->pc_qmax, NULL));
+  PetscOptionsEnd();
+  PetscCheck(ppe->pc_qmax >= 0, ppe->comm, PETSC_ERR_ARG_OUTOFRANGE, "-ppe_pc_qmax %g must be >= 0 (0: the preconditioner sees the whole matrix)", (double)ppe->pc_qmax);
   PetscCall(KSPSetFromOptions(ppe->ksp));
   { /* a direct solve (-ksp_type preonly -pc_type lu) takes no initial guess */
     PetscBool preonly;
@@ -52,11 +56,14 @@ PetscErrorCode PPEDestroy(PPE *ppe)
   if (!*ppe) PetscFunctionReturn(PETSC_SUCCESS);
   PetscCall(KSPDestroy(&(*ppe)->ksp));
   PetscCall(MatDestroy(&(*ppe)->A));
+  PetscCall(MatDestroy(&(*ppe)->Ap));
+  PetscCall(SplitCSRDestroy(&(*ppe)->csr));
+  PetscCall(SplitCSRDestroy(&(*ppe)->csrp));
   PetscCall(VecDestroy(&(*ppe)->x));
   PetscCall(VecDestroy(&(*ppe)->b));
   PetscCall(MatNullSpaceDestroy(&(*ppe)->nullsp));
-  PetscCall(PetscFree4((*ppe)->rowpart, (*ppe)->dnnz, (*ppe)->onnz, (*ppe)->hyd));
-  PetscCall(PetscFree2((*ppe)->cols, (*ppe)->vals));
+  PetscCall(PetscFree2((*ppe)->rowpart, (*ppe)->hyd));
+  PetscCall(PetscFree4((*ppe)->cols, (*ppe)->vals, (*ppe)->colsp, (*ppe)->valsp));
   PetscCall(PetscFree(*ppe));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -78,9 +85,9 @@ PetscErrorCode PPENumber(PPE ppe, Sim sim)
 
   PetscFunctionBeginUser;
   if (P->n > ppe->cap_rows) {
-    PetscCall(PetscFree4(ppe->rowpart, ppe->dnnz, ppe->onnz, ppe->hyd));
+    PetscCall(PetscFree2(ppe->rowpart, ppe->hyd));
     ppe->cap_rows = (PetscInt)(1.2 * P->n) + 16;
-    PetscCall(PetscMalloc4(ppe->cap_rows, &ppe->rowpart, ppe->cap_rows, &ppe->dnnz, ppe->cap_rows, &ppe->onnz, ppe->cap_rows, &ppe->hyd));
+    PetscCall(PetscMalloc2(ppe->cap_rows, &ppe->rowpart, ppe->cap_rows, &ppe->hyd));
   }
   for (PetscInt a = 0; a < P->n; a++) {
     PetscBool r = KindIsFluid(P->kind[a]) || (KindIsBoundary(P->kind[a]) && HasFluidNeighbour(sim->cells, P, a));
@@ -118,27 +125,34 @@ static inline NbrRole Role(Particles P, const PetscReal *row, const PetscReal *f
 
 static inline PetscBool IsDirichlet(const PetscReal *fs, PetscInt a) { return (PetscBool)(fs[a] > 0); }
 
-/* Exact preallocation: one diagonal entry plus one per unknown neighbour. */
-static PetscErrorCode Preallocate(PPE ppe, Sim sim)
+/* Whether pair k of a, with b, enters the preconditioner's matrix: a pair of fluid particles when
+ * r <= pc_qmax h_ab, i.e. |F_ab| >= |F(pc_qmax h_ab)| (|F| falls with r), fa being that bound for
+ * h_a; every pair with a wall (the outer wall layers reach the fluid only through far pairs).
+ * Symmetric in a, b. */
+static inline PetscBool InPC(PPE ppe, Particles P, Cells C, const PetscReal *h, PetscInt a, PetscInt k, PetscReal fa)
 {
-  Particles        P = sim->P;
-  Cells            C = sim->cells;
-  const PetscReal *row = PField(P, FIELD_ROW), *fs = PField(P, FIELD_FS);
-  const PetscInt   rend = ppe->rstart + ppe->nrow;
-
-  PetscFunctionBeginUser;
-  for (PetscInt r = 0; r < ppe->nrow; r++) {
-    PetscInt a = ppe->rowpart[r];
-    ppe->dnnz[r] = 1; ppe->onnz[r] = 0;
-    if (IsDirichlet(fs, a)) continue;
-    for (PetscInt k = C->nstart[a]; k < C->nstart[a + 1]; k++) {
-      PetscInt b = C->nbr[k], gb;
-      if (Role(P, row, fs, a, b) != NBR_UNKNOWN) continue;
-      gb = (PetscInt)row[b];
-      if (gb >= ppe->rstart && gb < rend) ppe->dnnz[r]++;
-      else ppe->onnz[r]++;
-    }
+  PetscInt b = C->nbr[k];
+  if (!KindIsFluid(P->kind[a]) || !KindIsFluid(P->kind[b])) return PETSC_TRUE;
+  if (h[b] != h[a]) {
+    PetscReal hab = PairH(h[a], h[b]);
+    fa = KernelF(ppe->pc_qmax * hab, hab);
   }
+  return (PetscBool)(PetscAbsReal(C->f[k]) >= PetscAbsReal(fa));
+}
+
+static PetscErrorCode CreateMatrix(PPE ppe, SplitCSR *S, Mat *A)
+{
+  PetscFunctionBeginUser;
+  PetscCall(SplitCSRCreateMat(S, ppe->comm, ppe->nrow_global, A));
+  PetscCall(MatSetOption(*A, MAT_SYMMETRIC, ppe->symmetric));
+  PetscCall(MatSetOption(*A, MAT_SYMMETRY_ETERNAL, PETSC_FALSE));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* A new matrix for this step's rows (the rows are appended in PPEAssemble). */
+static PetscErrorCode Reset(PPE ppe, Sim sim)
+{
+  PetscFunctionBeginUser;
   /* The neighbour graph changes every step, so does the pattern: reset the KSP (it keeps its type
    * and options).  A multigrid PC keeps its levels through a reset, and they no longer fit:
    * rebuild it from its type and options.  Our vectors stay while the local row count does. */
@@ -168,20 +182,21 @@ static PetscErrorCode Preallocate(PPE ppe, Sim sim)
       PetscCall(VecDestroy(&ppe->b));
     }
   }
-  PetscCall(MatDestroy(&ppe->A));
-  PetscCall(MatCreate(ppe->comm, &ppe->A));
-  PetscCall(MatSetSizes(ppe->A, ppe->nrow, ppe->nrow, ppe->nrow_global, ppe->nrow_global));
-  PetscCall(MatSetType(ppe->A, MATAIJ));
-  PetscCall(MatXAIJSetPreallocation(ppe->A, 1, ppe->dnnz, ppe->onnz, NULL, NULL));
-  PetscCall(MatSetOption(ppe->A, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_TRUE));
-  PetscCall(MatSetOption(ppe->A, MAT_SYMMETRIC, ppe->symmetric));
-  PetscCall(MatSetOption(ppe->A, MAT_SYMMETRY_ETERNAL, PETSC_FALSE));
-  if (C->max_nbr + 1 > ppe->cap_cols) {
-    PetscCall(PetscFree2(ppe->cols, ppe->vals));
-    ppe->cap_cols = 2 * C->max_nbr + 16;
-    PetscCall(PetscMalloc2(ppe->cap_cols, &ppe->cols, ppe->cap_cols, &ppe->vals));
+  PetscCall(MatDestroy(&ppe->A)); /* before its arrays may move */
+  PetscCall(MatDestroy(&ppe->Ap));
+  PetscCall(SplitCSRBegin(&ppe->csr, ppe->nrow, ppe->rstart));
+  if (ppe->pc_qmax > 0) PetscCall(SplitCSRBegin(&ppe->csrp, ppe->nrow, ppe->rstart));
+  if (sim->cells->max_nbr + 1 > ppe->cap_cols) {
+    PetscCall(PetscFree4(ppe->cols, ppe->vals, ppe->colsp, ppe->valsp));
+    ppe->cap_cols = 2 * sim->cells->max_nbr + 16;
+    PetscCall(PetscMalloc4(ppe->cap_cols, &ppe->cols, ppe->cap_cols, &ppe->vals, ppe->cap_cols, &ppe->colsp, ppe->cap_cols, &ppe->valsp));
   }
-  if (!ppe->x) PetscCall(MatCreateVecs(ppe->A, &ppe->x, &ppe->b));
+  if (!ppe->x) {
+    PetscCall(VecCreate(ppe->comm, &ppe->x));
+    PetscCall(VecSetSizes(ppe->x, ppe->nrow, ppe->nrow_global));
+    PetscCall(VecSetFromOptions(ppe->x));
+    PetscCall(VecDuplicate(ppe->x, &ppe->b));
+  }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -241,16 +256,17 @@ PetscErrorCode PPEAssemble(PPE ppe, Sim sim, const PetscReal *src)
   const PetscReal *row = PField(P, FIELD_ROW), *fs = PField(P, FIELD_FS), *x = PField(P, FIELD_X);
   const PetscReal *rho = PField(P, FIELD_RHO), *m = PField(P, FIELD_M), *h = PField(P, FIELD_H), *fv = PField(P, FIELD_FVIEW);
   const PetscReal  rho0 = sim->fl.rho0;
+  const PetscBool  sparse = (PetscBool)(ppe->pc_qmax > 0);
   PetscScalar     *bb;
-  MatInfo          info;
 
   PetscFunctionBeginUser;
   PetscCall(PetscLogStagePush(sim->stage[STAGE_PPE_ASSEMBLY]));
-  PetscCall(Preallocate(ppe, sim));
+  PetscCall(Reset(ppe, sim));
   PetscCall(VecGetArrayWrite(ppe->b, &bb));
   for (PetscInt r = 0; r < ppe->nrow; r++) {
     PetscInt  a = ppe->rowpart[r], ga = ppe->rstart + r, nc = 1;
-    PetscReal ma, ra, pa, va, diag = 0, hyd = 0;
+    PetscReal ma, ra, pa, va, diag = 0, hyd = 0, lumped = 0, fa = sparse ? KernelF(ppe->pc_qmax * h[a], h[a]) : 0;
+    PetscInt  ncp = 1;
     const PetscReal gx = sim->g[0], gy = sim->g[1];
     PetscBool wall = KindIsBoundary(P->kind[a]), dir = IsDirichlet(fs, a);
     FluidView(fv, P->kind[a], a, m, rho, NULL, &ma, &ra, &pa);
@@ -259,7 +275,8 @@ PetscErrorCode PPEAssemble(PPE ppe, Sim sim, const PetscReal *src)
       ppe->cols[0] = ga;
       ppe->hyd[r]  = 0;
       bb[r]        = MovingSolidRow(ppe, sim, a, va, &nc);
-      PetscCall(MatSetValues(ppe->A, 1, &ga, nc, ppe->cols, ppe->vals, INSERT_VALUES));
+      PetscCall(SplitCSRAppendRow(&ppe->csr, nc, ppe->cols, ppe->vals));
+      if (sparse) PetscCall(SplitCSRAppendRow(&ppe->csrp, nc, ppe->cols, ppe->vals));
       continue;
     }
     for (PetscInt k = C->nstart[a]; k < C->nstart[a + 1]; k++) {
@@ -274,21 +291,25 @@ PetscErrorCode PPEAssemble(PPE ppe, Sim sim, const PetscReal *src)
       if (wall) hyd += c * rho0 * (gx * dx + gy * dy); /* L_a(rho0 g . r) */
       if (dir || role == NBR_KNOWN) continue; /* free surface: P = 0 */
       ppe->cols[nc] = (PetscInt)row[b]; ppe->vals[nc++] = va * c;
+      if (!sparse) continue;
+      if (InPC(ppe, P, C, h, a, k, fa)) { ppe->colsp[ncp] = (PetscInt)row[b]; ppe->valsp[ncp++] = va * c; }
+      else lumped += c; /* left out of Ap and off its diagonal: the row sum stays */
     }
     ppe->cols[0] = ga;
     ppe->vals[0] = -va * diag;
+    ppe->colsp[0] = ga;
+    ppe->valsp[0] = -va * (diag - lumped);
     ppe->hyd[r]  = wall && diag != 0 ? hyd / diag : 0; /* P_a = mean_c(P_f) + hyd[r] */
     if (diag == 0) ppe->vals[0] = va / (rho0 * h[a] * h[a]); /* isolated free-surface particle */
-    if (dir) { nc = 1; bb[r] = 0; }
+    if (diag - lumped == 0) ppe->valsp[0] = ppe->vals[0];
+    if (dir) { nc = ncp = 1; bb[r] = 0; ppe->valsp[0] = ppe->vals[0]; }
     else bb[r] = -va * (wall ? hyd : src[a]);
-    PetscCall(MatSetValues(ppe->A, 1, &ga, nc, ppe->cols, ppe->vals, INSERT_VALUES));
+    PetscCall(SplitCSRAppendRow(&ppe->csr, nc, ppe->cols, ppe->vals));
+    if (sparse) PetscCall(SplitCSRAppendRow(&ppe->csrp, ncp, ppe->colsp, ppe->valsp));
   }
   PetscCall(VecRestoreArrayWrite(ppe->b, &bb));
-  PetscCall(MatAssemblyBegin(ppe->A, MAT_FINAL_ASSEMBLY));
-  PetscCall(MatAssemblyEnd(ppe->A, MAT_FINAL_ASSEMBLY));
-  PetscCall(MatGetInfo(ppe->A, MAT_GLOBAL_SUM, &info));
-  ppe->mallocs = info.mallocs;
-  PetscCheck(info.mallocs == 0, ppe->comm, PETSC_ERR_PLIB, "PPE assembly needed %g mallocs: preallocation is wrong", (double)info.mallocs);
+  PetscCall(CreateMatrix(ppe, &ppe->csr, &ppe->A));
+  if (sparse) PetscCall(CreateMatrix(ppe, &ppe->csrp, &ppe->Ap));
   PetscCall(MatNullSpaceDestroy(&ppe->nullsp));
   if (!ppe->ndirichlet_global) { /* no free surface: P is defined up to a constant */
     PetscCall(MatNullSpaceCreate(ppe->comm, PETSC_TRUE, 0, NULL, &ppe->nullsp));
@@ -316,7 +337,7 @@ PetscErrorCode PPESolve(PPE ppe, Sim sim)
     xx[r]      = KindIsSolid(P->kind[a]) ? fv[3 * a] : p[a];
   }
   PetscCall(VecRestoreArrayWrite(ppe->x, &xx));
-  PetscCall(KSPSetOperators(ppe->ksp, ppe->A, ppe->A));
+  PetscCall(KSPSetOperators(ppe->ksp, ppe->A, ppe->Ap ? ppe->Ap : ppe->A));
   PetscCall(KSPSolve(ppe->ksp, ppe->b, ppe->x));
   PetscCall(KSPGetConvergedReason(ppe->ksp, &reason));
   PetscCall(KSPGetIterationNumber(ppe->ksp, &its));

@@ -15,25 +15,27 @@
  * closed domains) the constant is a null space and is attached to the matrix. */
 #pragma once
 #include <sphfsi/sim.h>
+#include <sphfsi/csr.h>
 #include <petscksp.h>
 
 typedef struct _p_PPE *PPE;
 struct _p_PPE {
   MPI_Comm     comm;
   KSP          ksp;
-  Mat          A;
+  Mat          A, Ap;                           /* the operator; the matrix the preconditioner is built from (A itself when pc_qmax = 0) */
+  SplitCSR     csr, csrp;                       /* their arrays */
   Vec          x, b;
   MatNullSpace nullsp;
   PetscInt     nrow, rstart, nrow_global, ndirichlet_global;
-  PetscInt    *rowpart, *dnnz, *onnz, cap_rows; /* per local row: owned particle, preallocation */
+  PetscInt    *rowpart, cap_rows;               /* per local row: owned particle */
+  PetscReal    pc_qmax;                         /* Ap leaves out pairs with r / h_ab > pc_qmax (0: Ap = A) */
   PetscReal   *hyd;                             /* per local wall row: hydrostatic part of its P, L_a(rho0 g . r) / sum_b c_ab */
   PetscBool    symmetric;                       /* no implicit solid rows (ppe.c): CG applies */
-  PetscInt    *cols, cap_cols;
-  PetscScalar *vals;
+  PetscInt    *cols, *colsp, cap_cols;
+  PetscScalar *vals, *valsp;
   /* statistics */
   PetscInt  nsolve, its_last, its_max;
   PetscReal its_sum;
-  PetscLogDouble mallocs; /* mallocs during the last assembly: must stay 0 */
 };
 
 PetscErrorCode PPECreate(MPI_Comm comm, PPE *ppe);

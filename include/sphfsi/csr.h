@@ -1,0 +1,22 @@
+/* A matrix's local rows as two CSR arrays, the diagonal block (columns local to the rank) and the
+ * off-diagonal block (global columns), appended row by row and handed to PETSc without a copy
+ * (MatCreateMPIAIJWithSplitArrays).  Cheaper than preallocating and calling MatSetValues, which
+ * searches the row for every entry it inserts; the arrays stay ours and must outlive the matrix. */
+#pragma once
+#include <sphfsi/base.h>
+#include <petscmat.h>
+
+typedef struct {
+  PetscInt     m, rstart, nrow;      /* local rows, first global row (= first local column), rows appended */
+  PetscInt    *di, *oi, *dj, *oj;    /* row pointers and columns of the two blocks */
+  PetscScalar *da, *oa;
+  PetscInt     cap_m, cap_d, cap_o;  /* the entry arrays keep their size from step to step, growing when needed */
+} SplitCSR;
+
+/* Start a matrix of m local rows from global row rstart (the arrays of the last one are reused). */
+PetscErrorCode SplitCSRBegin(SplitCSR *S, PetscInt m, PetscInt rstart);
+/* Append the next row: nc entries with global columns, each block's columns then sorted. */
+PetscErrorCode SplitCSRAppendRow(SplitCSR *S, PetscInt nc, const PetscInt cols[], const PetscScalar vals[]);
+/* The assembled matrix (AIJ: sequential on one rank) of the m rows, M global rows and columns. */
+PetscErrorCode SplitCSRCreateMat(SplitCSR *S, MPI_Comm comm, PetscInt M, Mat *A);
+PetscErrorCode SplitCSRDestroy(SplitCSR *S);

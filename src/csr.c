@@ -1,8 +1,16 @@
 #include <sphfsi/csr.h>
 
-PetscErrorCode SplitCSRBegin(SplitCSR *S, PetscInt m, PetscInt rstart)
+/* Room for n entries in a block (j, a of capacity *cap, len of them in use). */
+static PetscErrorCode Grow(PetscInt n, PetscInt len, PetscInt *cap, PetscInt **j, PetscScalar **a);
+
+PetscErrorCode SplitCSRBegin(SplitCSR *S, PetscInt m, PetscInt rstart, PetscInt bound)
 {
   PetscFunctionBeginUser;
+  if (bound > S->cap_d) { /* at once: growing by copies would leave the old arrays in the heap */
+    PetscCall(PetscFree2(S->dj, S->da));
+    S->cap_d = bound;
+    PetscCall(PetscMalloc2(S->cap_d, &S->dj, S->cap_d, &S->da));
+  }
   if (m + 1 > S->cap_m) {
     PetscCall(PetscFree2(S->di, S->oi));
     S->cap_m = (PetscInt)(1.2 * m) + 16;
@@ -13,7 +21,6 @@ PetscErrorCode SplitCSRBegin(SplitCSR *S, PetscInt m, PetscInt rstart)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-/* Room for n entries in a block (j, a of capacity *cap, len of them in use). */
 static PetscErrorCode Grow(PetscInt n, PetscInt len, PetscInt *cap, PetscInt **j, PetscScalar **a)
 {
   PetscInt    *nj;

@@ -42,11 +42,11 @@ static PetscErrorCode NameTheOption(MPI_Comm comm, int line, const char *fun, co
 }
 
 /* Options nobody read are an error: a misspelt -t_ned would otherwise pass silently.  The scheme
- * families (-isph_*, -wcsph_*, -fsi_implicit, -fsi_dt_transit, PETSc's -ksp_*, -pc_*) and PETSc's
+ * families (-isph_*, -wcsph_*, -ppe_*, -fsi_implicit, -fsi_dt_transit, PETSc's -ksp_*, -pc_*) and PETSc's
  * own (-log_*, ...) only warn: a case file may carry them for the other fluid scheme.  -unused_options warn: only warnings. */
 static PetscErrorCode CheckUnusedOptions(MPI_Comm comm)
 {
-  const char *petsc[] = {"isph_", "wcsph_", "fsi_implicit", "fsi_dt_transit", "ksp_", "pc_", "mat_", "vec_", "sf_", "log", "info", "malloc", "options_", "viewer", "history", "on_error", "no_signal_handler", "fp_trap", "check_pointer_intensity", "memory_view", "error_output", "help", "nox", "use_gpu_aware_mpi", "unused_options"};
+  const char *petsc[] = {"isph_", "wcsph_", "ppe_", "fsi_implicit", "fsi_dt_transit", "ksp_", "pc_", "mat_", "vec_", "sf_", "log", "info", "malloc", "options_", "viewer", "history", "on_error", "no_signal_handler", "fp_trap", "check_pointer_intensity", "memory_view", "error_output", "help", "nox", "use_gpu_aware_mpi", "unused_options"};
   const char *modes[] = {"error", "warn", "UnusedMode", "UNUSED_", NULL};
   PetscInt    n, mode = 0, nbad = 0;
   char      **names, **values, list[2048] = "";

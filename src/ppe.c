@@ -132,12 +132,11 @@ static inline PetscBool IsDirichlet(const PetscReal *fs, PetscInt a) { return (P
 static inline PetscBool InPC(PPE ppe, Particles P, Cells C, const PetscReal *h, PetscInt a, PetscInt k, PetscReal fa)
 {
   PetscInt b = C->nbr[k];
-  if (!KindIsFluid(P->kind[a]) || !KindIsFluid(P->kind[b])) return PETSC_TRUE;
   if (h[b] != h[a]) {
     PetscReal hab = PairH(h[a], h[b]);
     fa = KernelF(ppe->pc_qmax * hab, hab);
   }
-  return (PetscBool)(PetscAbsReal(C->f[k]) >= PetscAbsReal(fa));
+  return (PetscBool)((PetscAbsReal(C->f[k]) >= PetscAbsReal(fa)) | !KindIsFluid(P->kind[a]) | !KindIsFluid(P->kind[b]));
 }
 
 static PetscErrorCode CreateMatrix(PPE ppe, SplitCSR *S, Mat *A)
@@ -184,8 +183,11 @@ static PetscErrorCode Reset(PPE ppe, Sim sim)
   }
   PetscCall(MatDestroy(&ppe->A)); /* before its arrays may move */
   PetscCall(MatDestroy(&ppe->Ap));
-  PetscCall(SplitCSRBegin(&ppe->csr, ppe->nrow, ppe->rstart));
-  if (ppe->pc_qmax > 0) PetscCall(SplitCSRBegin(&ppe->csrp, ppe->nrow, ppe->rstart));
+  { /* a row has at most its particle's pairs and the diagonal */
+    PetscInt bound = sim->cells->nstart[sim->P->n] + ppe->nrow;
+    PetscCall(SplitCSRBegin(&ppe->csr, ppe->nrow, ppe->rstart, bound));
+    if (ppe->pc_qmax > 0) PetscCall(SplitCSRBegin(&ppe->csrp, ppe->nrow, ppe->rstart, bound));
+  }
   if (sim->cells->max_nbr + 1 > ppe->cap_cols) {
     PetscCall(PetscFree4(ppe->cols, ppe->vals, ppe->colsp, ppe->valsp));
     ppe->cap_cols = 2 * sim->cells->max_nbr + 16;
@@ -292,8 +294,12 @@ PetscErrorCode PPEAssemble(PPE ppe, Sim sim, const PetscReal *src)
       if (dir || role == NBR_KNOWN) continue; /* free surface: P = 0 */
       ppe->cols[nc] = (PetscInt)row[b]; ppe->vals[nc++] = va * c;
       if (!sparse) continue;
-      if (InPC(ppe, P, C, h, a, k, fa)) { ppe->colsp[ncp] = (PetscInt)row[b]; ppe->valsp[ncp++] = va * c; }
-      else lumped += c; /* left out of Ap and off its diagonal: the row sum stays */
+      { /* without a branch: whether a pair is kept is unpredictable */
+        PetscInt keep = InPC(ppe, P, C, h, a, k, fa);
+        ppe->colsp[ncp] = (PetscInt)row[b]; ppe->valsp[ncp] = va * c;
+        ncp += keep;
+        lumped += (1 - keep) * c; /* left out of Ap and off its diagonal: the row sum stays */
+      }
     }
     ppe->cols[0] = ga;
     ppe->vals[0] = -va * diag;

@@ -13,8 +13,9 @@ typedef struct {
   PetscInt     cap_m, cap_d, cap_o;  /* the entry arrays keep their size from step to step, growing when needed */
 } SplitCSR;
 
-/* Start a matrix of m local rows from global row rstart (the arrays of the last one are reused). */
-PetscErrorCode SplitCSRBegin(SplitCSR *S, PetscInt m, PetscInt rstart);
+/* Start a matrix of m local rows from global row rstart (the arrays of the last one are reused),
+ * with room for bound entries in the diagonal block (an upper bound spares copies as it grows). */
+PetscErrorCode SplitCSRBegin(SplitCSR *S, PetscInt m, PetscInt rstart, PetscInt bound);
 /* Append the next row: nc entries with global columns, each block's columns then sorted. */
 PetscErrorCode SplitCSRAppendRow(SplitCSR *S, PetscInt nc, const PetscInt cols[], const PetscScalar vals[]);
 /* The assembled matrix (AIJ: sequential on one rank) of the m rows, M global rows and columns. */

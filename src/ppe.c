@@ -307,7 +307,7 @@ PetscErrorCode PPEAssemble(PPE ppe, Sim sim, const PetscReal *src)
     ppe->valsp[0] = -va * (diag - lumped);
     ppe->hyd[r]  = wall && diag != 0 ? hyd / diag : 0; /* P_a = mean_c(P_f) + hyd[r] */
     if (diag == 0) ppe->vals[0] = va / (rho0 * h[a] * h[a]); /* isolated free-surface particle */
-    if (diag - lumped == 0) ppe->valsp[0] = ppe->vals[0];
+    if (PetscAbsReal(diag - lumped) <= 1e-9 * PetscAbsReal(diag)) ppe->valsp[0] = ppe->vals[0]; /* every pair was far: keep its own diagonal */
     if (dir) { nc = ncp = 1; bb[r] = 0; ppe->valsp[0] = ppe->vals[0]; }
     else bb[r] = -va * (wall ? hyd : src[a]);
     PetscCall(SplitCSRAppendRow(&ppe->csr, nc, ppe->cols, ppe->vals));

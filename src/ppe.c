@@ -44,6 +44,7 @@ PetscErrorCode PPEView(PPE ppe, PetscViewer v)
 {
   PetscFunctionBeginUser;
   PetscCall(PetscViewerASCIIPrintf(v, "Pressure Poisson equation (Eq. 22, 48):\n"));
+  if (ppe->pc_qmax > 0) PetscCall(PetscViewerASCIIPrintf(v, "  preconditioner built without the fluid pairs beyond r = %g h (lumped into the diagonal)\n", (double)ppe->pc_qmax));
   PetscCall(PetscViewerASCIIPushTab(v));
   PetscCall(KSPView(ppe->ksp, v));
   PetscCall(PetscViewerASCIIPopTab(v));
@@ -304,12 +305,12 @@ PetscErrorCode PPEAssemble(PPE ppe, Sim sim, const PetscReal *src)
     ppe->cols[0] = ga;
     ppe->vals[0] = -va * diag;
     ppe->colsp[0] = ga;
-    ppe->valsp[0] = -va * (diag - lumped);
     ppe->hyd[r]  = wall && diag != 0 ? hyd / diag : 0; /* P_a = mean_c(P_f) + hyd[r] */
     if (diag == 0) ppe->vals[0] = va / (rho0 * h[a] * h[a]); /* isolated free-surface particle */
-    if (PetscAbsReal(diag - lumped) <= 1e-9 * PetscAbsReal(diag)) ppe->valsp[0] = ppe->vals[0]; /* every pair was far: keep its own diagonal */
-    if (dir) { nc = ncp = 1; bb[r] = 0; ppe->valsp[0] = ppe->vals[0]; }
+    if (dir) { nc = ncp = 1; bb[r] = 0; }
     else bb[r] = -va * (wall ? hyd : src[a]);
+    /* Ap's diagonal: without the pairs left out; a row whose pairs were all far keeps A's */
+    ppe->valsp[0] = dir || PetscAbsReal(diag - lumped) <= 1e-9 * PetscAbsReal(diag) ? ppe->vals[0] : -va * (diag - lumped);
     PetscCall(SplitCSRAppendRow(&ppe->csr, nc, ppe->cols, ppe->vals));
     if (sparse) PetscCall(SplitCSRAppendRow(&ppe->csrp, ncp, ppe->colsp, ppe->valsp));
   }

@@ -19,6 +19,10 @@ ifdef PETSC_DIR
 else
   PETSC_CFLAGS := $(shell pkg-config --cflags PETSc 2>/dev/null) $(shell pkg-config --cflags hdf5-mpi 2>/dev/null || pkg-config --cflags hdf5 2>/dev/null)
   PETSC_LIBS   := $(shell pkg-config --libs PETSc 2>/dev/null)
+  # hypre, when PETSc has it: src/csr_hypre.c builds hypre matrices itself
+  PETSC_VARS   := $(shell pkg-config --variable=prefix PETSc 2>/dev/null)/lib/petsc/conf/petscvariables
+  PETSC_CFLAGS += $(shell sed -n 's/^HYPRE_INCLUDE = //p' $(PETSC_VARS) 2>/dev/null)
+  PETSC_LIBS   += $(shell sed -n 's/^HYPRE_LIB = //p' $(PETSC_VARS) 2>/dev/null)
   CC           := mpicc
 endif
 ifdef METIS_DIR

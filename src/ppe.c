@@ -27,8 +27,10 @@ PetscErrorCode PPESetFromOptions(PPE ppe, PetscBool symmetric)
 #endif
   PetscCall(KSPSetTolerances(ppe->ksp, 1e-8, 1e-50, PETSC_DEFAULT, 200));
   PetscCall(KSPSetInitialGuessNonzero(ppe->ksp, PETSC_TRUE)); /* last step's pressure */
+  ppe->mat_hypre = PETSC_TRUE;
   PetscOptionsBegin(ppe->comm, NULL, "Pressure Poisson equation", "PPE");
   PetscCall(PetscOptionsReal("-ppe_pc_qmax", "Build the preconditioner from the PPE without the pairs beyond r = q h (their weight goes to the diagonal); 0: from the PPE itself", "", ppe->pc_qmax, &ppe->pc_qmax, NULL));
+  PetscCall(PetscOptionsBool("-ppe_mat_hypre", "With a hypre preconditioner: build the matrix it reads (the PPE, or the sparser one of -ppe_pc_qmax) in hypre's ParCSR format, sharing our arrays, instead of a PETSc AIJ matrix that hypre copies at every set-up", "", ppe->mat_hypre, &ppe->mat_hypre, NULL));
   PetscOptionsEnd();
   PetscCheck(ppe->pc_qmax >= 0, ppe->comm, PETSC_ERR_ARG_OUTOFRANGE, "-ppe_pc_qmax %g must be >= 0 (0: the preconditioner sees the whole matrix)", (double)ppe->pc_qmax);
   PetscCall(KSPSetFromOptions(ppe->ksp));
@@ -37,6 +39,7 @@ PetscErrorCode PPESetFromOptions(PPE ppe, PetscBool symmetric)
     PetscCall(PetscObjectTypeCompare((PetscObject)ppe->ksp, KSPPREONLY, &preonly));
     if (preonly) PetscCall(KSPSetInitialGuessNonzero(ppe->ksp, PETSC_FALSE));
   }
+  PetscCall(PetscObjectTypeCompare((PetscObject)pc, PCHYPRE, &ppe->pc_hypre));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -45,6 +48,7 @@ PetscErrorCode PPEView(PPE ppe, PetscViewer v)
   PetscFunctionBeginUser;
   PetscCall(PetscViewerASCIIPrintf(v, "Pressure Poisson equation (Eq. 22, 48):\n"));
   if (ppe->pc_qmax > 0) PetscCall(PetscViewerASCIIPrintf(v, "  preconditioner built without the fluid pairs beyond r = %g h (lumped into the diagonal)\n", (double)ppe->pc_qmax));
+  if (ppe->pc_hypre && ppe->mat_hypre) PetscCall(PetscViewerASCIIPrintf(v, "  the preconditioner's matrix built in hypre's format (-ppe_mat_hypre)\n"));
   PetscCall(PetscViewerASCIIPushTab(v));
   PetscCall(KSPView(ppe->ksp, v));
   PetscCall(PetscViewerASCIIPopTab(v));
@@ -140,10 +144,13 @@ static inline PetscBool InPC(PPE ppe, Particles P, Cells C, const PetscReal *h, 
   return (PetscBool)((PetscAbsReal(C->f[k]) >= PetscAbsReal(fa)) | !KindIsFluid(P->kind[a]) | !KindIsFluid(P->kind[b]));
 }
 
-static PetscErrorCode CreateMatrix(PPE ppe, SplitCSR *S, Mat *A)
+/* pc: the matrix the preconditioner is built from; with hypre's, in hypre's format (-ppe_mat_hypre) */
+static PetscErrorCode CreateMatrix(PPE ppe, SplitCSR *S, PetscBool pc, Mat *A)
 {
   PetscFunctionBeginUser;
-  PetscCall(SplitCSRCreateMat(S, ppe->comm, ppe->nrow_global, A));
+  *A = NULL;
+  if (pc && ppe->pc_hypre && ppe->mat_hypre) PetscCall(SplitCSRCreateHypreMat(S, ppe->comm, ppe->nrow_global, A));
+  if (!*A) PetscCall(SplitCSRCreateMat(S, ppe->comm, ppe->nrow_global, A));
   PetscCall(MatSetOption(*A, MAT_SYMMETRIC, ppe->symmetric));
   PetscCall(MatSetOption(*A, MAT_SYMMETRY_ETERNAL, PETSC_FALSE));
   PetscFunctionReturn(PETSC_SUCCESS);
@@ -315,8 +322,8 @@ PetscErrorCode PPEAssemble(PPE ppe, Sim sim, const PetscReal *src)
     if (sparse) PetscCall(SplitCSRAppendRow(&ppe->csrp, ncp, ppe->colsp, ppe->valsp));
   }
   PetscCall(VecRestoreArrayWrite(ppe->b, &bb));
-  PetscCall(CreateMatrix(ppe, &ppe->csr, &ppe->A));
-  if (sparse) PetscCall(CreateMatrix(ppe, &ppe->csrp, &ppe->Ap));
+  PetscCall(CreateMatrix(ppe, &ppe->csr, (PetscBool)!sparse, &ppe->A));
+  if (sparse) PetscCall(CreateMatrix(ppe, &ppe->csrp, PETSC_TRUE, &ppe->Ap));
   PetscCall(MatNullSpaceDestroy(&ppe->nullsp));
   if (!ppe->ndirichlet_global) { /* no free surface: P is defined up to a constant */
     PetscCall(MatNullSpaceCreate(ppe->comm, PETSC_TRUE, 0, NULL, &ppe->nullsp));

@@ -3,6 +3,7 @@
  *    increasing columns (the rows are written straight into PETSc's arrays, csr.h);
  *  - the preconditioner's matrix without the far pairs (-ppe_pc_qmax 1.6) is symmetric, has fewer
  *    entries, and the same row sums as the PPE (the pairs left out are lumped into the diagonal);
+ *    built in hypre's format (-ppe_mat_hypre) it has hypre's layout and equals the AIJ one;
  *  - at fluid rows far from the surface and the walls, the Eq. 22 Laplacian of the quadratic
  *    f = x^2 + 2 y^2 matches div(grad f / rho) = 6 / rho0 within 0.5 %: on a regular lattice the
  *    operator is exact for quadratics up to the kernel's lattice-sum error (the second moment of
@@ -11,13 +12,55 @@
 #include <sphfsi/sim.h>
 #include <sphfsi/isph.h>
 #include <sphfsi/kernel.h>
+#include <petscmathypre.h>
+
+/* An AIJ copy of M (converted from hypre's format) */
+static PetscErrorCode ToAIJ(Mat M, Mat *B)
+{
+  PetscBool hyp;
+  PetscFunctionBeginUser;
+  PetscCall(PetscObjectTypeCompare((PetscObject)M, MATHYPRE, &hyp));
+  if (hyp) PetscCall(MatConvert(M, MATAIJ, MAT_INITIAL_MATRIX, B));
+  else PetscCall(MatDuplicate(M, MAT_COPY_VALUES, B));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* |M - M^T| <= 1e-12 nrm, from the entries (MatIsSymmetric would trust the MAT_SYMMETRIC flag) */
+static PetscErrorCode CheckSymmetric(Mat M, PetscReal nrm, const char *what)
+{
+  Mat       T;
+  PetscReal d;
+  PetscFunctionBeginUser;
+  PetscCall(MatTranspose(M, MAT_INITIAL_MATRIX, &T));
+  PetscCall(MatAXPY(T, -1.0, M, DIFFERENT_NONZERO_PATTERN));
+  PetscCall(MatNorm(T, NORM_INFINITY, &d));
+  PetscCheck(d <= 1e-12 * nrm, PETSC_COMM_WORLD, PETSC_ERR_PLIB, "%s is not symmetric: |M - M^T| = %g, |M| = %g", what, (double)d, (double)nrm);
+  PetscCall(MatDestroy(&T));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* hypre's ParCSR layout: each row's diagonal entry first, off-diagonal columns through an increasing map */
+static PetscErrorCode CheckHypreLayout(Mat M)
+{
+  hypre_ParCSRMatrix *H;
+  hypre_CSRMatrix    *D, *O;
+  PetscBool           hyp;
+  PetscFunctionBeginUser;
+  PetscCall(PetscObjectTypeCompare((PetscObject)M, MATHYPRE, &hyp));
+  PetscCheck(hyp, PETSC_COMM_WORLD, PETSC_ERR_PLIB, "With BoomerAMG the preconditioner's matrix should be MATHYPRE (-ppe_mat_hypre)");
+  PetscCall(MatHYPREGetParCSR(M, &H));
+  D = hypre_ParCSRMatrixDiag(H);
+  O = hypre_ParCSRMatrixOffd(H);
+  for (HYPRE_Int r = 0; r < hypre_CSRMatrixNumRows(D); r++) PetscCheck(hypre_CSRMatrixJ(D)[hypre_CSRMatrixI(D)[r]] == r, PETSC_COMM_SELF, PETSC_ERR_PLIB, "hypre row %d does not start with its diagonal", (int)r);
+  for (HYPRE_Int k = 1; k < hypre_CSRMatrixNumCols(O); k++) PetscCheck(hypre_ParCSRMatrixColMapOffd(H)[k] > hypre_ParCSRMatrixColMapOffd(H)[k - 1], PETSC_COMM_SELF, PETSC_ERR_PLIB, "hypre's off-diagonal column map is not increasing");
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
 
 int main(int argc, char **argv)
 {
   Sim        sim;
   PPE        ppe;
   Vec        f, Lf;
-  PetscBool  sym;
   PetscReal  worst = 0, nrm;
   PetscInt   nin = 0;
   const PetscScalar *y;
@@ -49,27 +92,39 @@ int main(int argc, char **argv)
     PetscCheck(diag, PETSC_COMM_SELF, PETSC_ERR_PLIB, "Row %" PetscInt_FMT " has no diagonal entry", r);
   }
   PetscCall(MatNorm(ppe->A, NORM_INFINITY, &nrm));
-  PetscCall(MatIsSymmetric(ppe->A, 1e-12 * nrm, &sym));
-  PetscCheck(sym, PETSC_COMM_WORLD, PETSC_ERR_PLIB, "The PPE matrix is not symmetric");
+  PetscCall(CheckSymmetric(ppe->A, nrm, "The PPE matrix"));
   { /* the preconditioner's matrix */
     Vec       sa, sp;
     MatInfo   ia, ip;
     PetscReal d;
+    Mat       Bp, Bh;
     PetscCheck(ppe->Ap, PETSC_COMM_WORLD, PETSC_ERR_PLIB, "-ppe_pc_qmax 1.6 built no preconditioner matrix");
-    PetscCall(MatIsSymmetric(ppe->Ap, 1e-12 * nrm, &sym));
-    PetscCheck(sym, PETSC_COMM_WORLD, PETSC_ERR_PLIB, "The preconditioner's matrix is not symmetric");
+    PetscCall(ToAIJ(ppe->Ap, &Bh));
+    PetscCall(CheckSymmetric(Bh, nrm, "The preconditioner's matrix"));
     PetscCall(MatGetInfo(ppe->A, MAT_GLOBAL_SUM, &ia));
-    PetscCall(MatGetInfo(ppe->Ap, MAT_GLOBAL_SUM, &ip));
+    PetscCall(MatGetInfo(Bh, MAT_GLOBAL_SUM, &ip));
     PetscCheck(ip.nz_used < 0.8 * ia.nz_used, PETSC_COMM_WORLD, PETSC_ERR_PLIB, "The preconditioner's matrix has %g entries, the PPE %g: no far pair left out", ip.nz_used, ia.nz_used);
     PetscCall(MatCreateVecs(ppe->A, &sa, &sp));
     PetscCall(MatGetRowSum(ppe->A, sa));
-    PetscCall(MatGetRowSum(ppe->Ap, sp));
+    PetscCall(MatGetRowSum(Bh, sp));
     PetscCall(VecAXPY(sp, -1.0, sa));
     PetscCall(VecNorm(sp, NORM_INFINITY, &d));
     PetscCheck(d <= 1e-12 * nrm, PETSC_COMM_WORLD, PETSC_ERR_PLIB, "Row sums of the preconditioner's matrix differ from the PPE's by %g (norm %g)", (double)d, (double)nrm);
     PetscCall(PetscPrintf(PETSC_COMM_WORLD, "ppe: preconditioner matrix (q = 1.6) symmetric, %.0f of %.0f entries, row sums equal within %.1e of the norm\n", ip.nz_used, ia.nz_used, (double)(d / nrm)));
     PetscCall(VecDestroy(&sa));
     PetscCall(VecDestroy(&sp));
+    /* in hypre's format (-ppe_mat_hypre, the default with BoomerAMG): hypre's layout, and the same
+     * matrix as the AIJ one assembled without it */
+    PetscCall(CheckHypreLayout(ppe->Ap));
+    ppe->mat_hypre = PETSC_FALSE;
+    PetscCall(ISPHPressureEquation(sim));
+    PetscCall(MatDuplicate(ppe->Ap, MAT_COPY_VALUES, &Bp));
+    PetscCall(MatAXPY(Bh, -1.0, Bp, DIFFERENT_NONZERO_PATTERN));
+    PetscCall(MatNorm(Bh, NORM_INFINITY, &d));
+    PetscCheck(d == 0, PETSC_COMM_WORLD, PETSC_ERR_PLIB, "The preconditioner's matrix in hypre's format differs from the AIJ one by %g", (double)d);
+    PetscCall(PetscPrintf(PETSC_COMM_WORLD, "ppe: preconditioner matrix in hypre's format: diagonal first, sorted column map, equal to the AIJ one\n"));
+    PetscCall(MatDestroy(&Bp));
+    PetscCall(MatDestroy(&Bh));
   }
   /* A f = -V_a L_a(f) at rows whose neighbours are all unknowns (interior, no Dirichlet neighbour) */
   PetscCall(MatCreateVecs(ppe->A, &f, &Lf));

@@ -20,4 +20,12 @@ PetscErrorCode SplitCSRBegin(SplitCSR *S, PetscInt m, PetscInt rstart, PetscInt 
 PetscErrorCode SplitCSRAppendRow(SplitCSR *S, PetscInt nc, const PetscInt cols[], const PetscScalar vals[]);
 /* The assembled matrix (AIJ: sequential on one rank) of the m rows, M global rows and columns. */
 PetscErrorCode SplitCSRCreateMat(SplitCSR *S, MPI_Comm comm, PetscInt M, Mat *A);
+/* The same rows as hypre's ParCSR matrix (MATHYPRE) that shares the column and value arrays: no
+ * copy, and BoomerAMG takes a MATHYPRE preconditioner matrix as it is (an AIJ one it converts,
+ * i.e. copies, at every set-up).  Rearranges S into hypre's layout (each row's diagonal entry
+ * first, off-diagonal columns numbered through a sorted map of their global numbers), so S then
+ * makes no other matrix until the next SplitCSRBegin.  Every row must hold its diagonal.  *A is
+ * NULL where hypre's integer or scalar types are not PETSc's (no sharing possible) or PETSc has
+ * no hypre: make an AIJ matrix then. */
+PetscErrorCode SplitCSRCreateHypreMat(SplitCSR *S, MPI_Comm comm, PetscInt M, Mat *A);
 PetscErrorCode SplitCSRDestroy(SplitCSR *S);

@@ -6,7 +6,9 @@
 #endif
 
 #if defined(PETSC_HAVE_HYPRE) && !defined(HYPRE_USING_GPU)
-/* Each row's diagonal entry first, where hypre's smoothers look for it; the rest keeps its order. */
+/* Each row's diagonal entry first, where hypre's smoothers look for it, swapped with the row's first
+ * entry as hypre's own assembly does (hypre_CSRMatrixReorder): the smoother then visits the entries
+ * in the order it did when PETSc converted an AIJ matrix, so the runs are the same bit for bit. */
 static PetscErrorCode DiagonalFirst(SplitCSR *S)
 {
   PetscFunctionBeginUser;
@@ -16,7 +18,7 @@ static PetscErrorCode DiagonalFirst(SplitCSR *S)
     while (k < e && S->dj[k] != r) k++;
     PetscCheck(k < e, PETSC_COMM_SELF, PETSC_ERR_PLIB, "Row %" PetscInt_FMT " has no diagonal entry", S->rstart + r);
     c = S->dj[k]; v = S->da[k];
-    for (; k > s; k--) { S->dj[k] = S->dj[k - 1]; S->da[k] = S->da[k - 1]; }
+    S->dj[k] = S->dj[s]; S->da[k] = S->da[s];
     S->dj[s] = c; S->da[s] = v;
   }
   PetscFunctionReturn(PETSC_SUCCESS);

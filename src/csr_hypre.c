@@ -24,20 +24,19 @@ static PetscErrorCode DiagonalFirst(SplitCSR *S)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-/* The off-diagonal block's global columns, sorted and without repeats, into a map that hypre owns;
- * the block's columns become indices into it. */
+/* The off-diagonal block's global columns, sorted and without repeats, into a map that hypre owns
+ * (allocated for every entry, then sorted in place: no scratch array); the block's columns become
+ * indices into it.  HYPRE_BigInt is PetscInt here (SplitCSRCreateHypreMat). */
 static PetscErrorCode OffDiagonalMap(SplitCSR *S, HYPRE_BigInt **map, PetscInt *ncol)
 {
   PetscInt  no = S->oi[S->m], *cols;
   PetscFunctionBeginUser;
-  PetscCall(PetscMalloc1(no, &cols));
+  *map = hypre_CTAlloc(HYPRE_BigInt, no, HYPRE_MEMORY_HOST);
+  cols = (PetscInt *)*map;
   PetscCall(PetscArraycpy(cols, S->oj, no));
   *ncol = no;
   PetscCall(PetscSortRemoveDupsInt(ncol, cols));
   for (PetscInt k = 0; k < no; k++) PetscCall(PetscFindInt(S->oj[k], *ncol, cols, &S->oj[k]));
-  *map = hypre_CTAlloc(HYPRE_BigInt, *ncol, HYPRE_MEMORY_HOST);
-  for (PetscInt k = 0; k < *ncol; k++) (*map)[k] = (HYPRE_BigInt)cols[k];
-  PetscCall(PetscFree(cols));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -53,12 +52,21 @@ static void ShareBlock(hypre_CSRMatrix *B, PetscInt m, const PetscInt *i, PetscI
 }
 #endif
 
+PetscBool SplitCSRSharesWithHypre(void)
+{
+#if defined(PETSC_HAVE_HYPRE) && !defined(HYPRE_USING_GPU)
+  return (PetscBool)(sizeof(HYPRE_Int) == sizeof(PetscInt) && sizeof(HYPRE_BigInt) == sizeof(PetscInt) && sizeof(HYPRE_Complex) == sizeof(PetscScalar));
+#else
+  return PETSC_FALSE;
+#endif
+}
+
 PetscErrorCode SplitCSRCreateHypreMat(SplitCSR *S, MPI_Comm comm, PetscInt M, Mat *A)
 {
   PetscFunctionBeginUser;
   *A = NULL;
+  PetscCheck(SplitCSRSharesWithHypre(), comm, PETSC_ERR_SUP, "hypre cannot share these arrays (no hypre, hypre on a GPU, or other integer/scalar types than PETSc's): use an AIJ matrix");
 #if defined(PETSC_HAVE_HYPRE) && !defined(HYPRE_USING_GPU)
-  if (sizeof(HYPRE_Int) != sizeof(PetscInt) || sizeof(HYPRE_Complex) != sizeof(PetscScalar)) PetscFunctionReturn(PETSC_SUCCESS);
   {
     hypre_ParCSRMatrix *H;
     HYPRE_BigInt       *map = NULL, range[2] = {(HYPRE_BigInt)S->rstart, (HYPRE_BigInt)(S->rstart + S->m)};

@@ -39,7 +39,11 @@ PetscErrorCode PPESetFromOptions(PPE ppe, PetscBool symmetric)
     PetscCall(PetscObjectTypeCompare((PetscObject)ppe->ksp, KSPPREONLY, &preonly));
     if (preonly) PetscCall(KSPSetInitialGuessNonzero(ppe->ksp, PETSC_FALSE));
   }
-  PetscCall(PetscObjectTypeCompare((PetscObject)pc, PCHYPRE, &ppe->pc_hypre));
+  { /* -ppe_mat_hypre applies to a hypre preconditioner where hypre can share our arrays */
+    PetscBool hypre;
+    PetscCall(PetscObjectTypeCompare((PetscObject)pc, PCHYPRE, &hypre));
+    ppe->mat_hypre = (PetscBool)(ppe->mat_hypre && hypre && SplitCSRSharesWithHypre());
+  }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -48,7 +52,7 @@ PetscErrorCode PPEView(PPE ppe, PetscViewer v)
   PetscFunctionBeginUser;
   PetscCall(PetscViewerASCIIPrintf(v, "Pressure Poisson equation (Eq. 22, 48):\n"));
   if (ppe->pc_qmax > 0) PetscCall(PetscViewerASCIIPrintf(v, "  preconditioner built without the fluid pairs beyond r = %g h (lumped into the diagonal)\n", (double)ppe->pc_qmax));
-  if (ppe->pc_hypre && ppe->mat_hypre) PetscCall(PetscViewerASCIIPrintf(v, "  the preconditioner's matrix built in hypre's format (-ppe_mat_hypre)\n"));
+  if (ppe->mat_hypre) PetscCall(PetscViewerASCIIPrintf(v, "  the preconditioner's matrix built in hypre's format (-ppe_mat_hypre)\n"));
   PetscCall(PetscViewerASCIIPushTab(v));
   PetscCall(KSPView(ppe->ksp, v));
   PetscCall(PetscViewerASCIIPopTab(v));
@@ -148,9 +152,8 @@ static inline PetscBool InPC(PPE ppe, Particles P, Cells C, const PetscReal *h, 
 static PetscErrorCode CreateMatrix(PPE ppe, SplitCSR *S, PetscBool pc, Mat *A)
 {
   PetscFunctionBeginUser;
-  *A = NULL;
-  if (pc && ppe->pc_hypre && ppe->mat_hypre) PetscCall(SplitCSRCreateHypreMat(S, ppe->comm, ppe->nrow_global, A));
-  if (!*A) PetscCall(SplitCSRCreateMat(S, ppe->comm, ppe->nrow_global, A));
+  if (pc && ppe->mat_hypre) PetscCall(SplitCSRCreateHypreMat(S, ppe->comm, ppe->nrow_global, A));
+  else PetscCall(SplitCSRCreateMat(S, ppe->comm, ppe->nrow_global, A));
   PetscCall(MatSetOption(*A, MAT_SYMMETRIC, ppe->symmetric));
   PetscCall(MatSetOption(*A, MAT_SYMMETRY_ETERNAL, PETSC_FALSE));
   PetscFunctionReturn(PETSC_SUCCESS);

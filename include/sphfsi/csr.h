@@ -24,8 +24,10 @@ PetscErrorCode SplitCSRCreateMat(SplitCSR *S, MPI_Comm comm, PetscInt M, Mat *A)
  * copy, and BoomerAMG takes a MATHYPRE preconditioner matrix as it is (an AIJ one it converts,
  * i.e. copies, at every set-up).  Rearranges S into hypre's layout (each row's diagonal entry
  * first, off-diagonal columns numbered through a sorted map of their global numbers), so S then
- * makes no other matrix until the next SplitCSRBegin.  Every row must hold its diagonal.  *A is
- * NULL where hypre's integer or scalar types are not PETSc's (no sharing possible) or PETSc has
- * no hypre: make an AIJ matrix then. */
+ * makes no other matrix until the next SplitCSRBegin.  Every row must hold its diagonal.  Only
+ * where SplitCSRSharesWithHypre(). */
 PetscErrorCode SplitCSRCreateHypreMat(SplitCSR *S, MPI_Comm comm, PetscInt M, Mat *A);
+/* Whether SplitCSRCreateHypreMat can share the arrays (PETSc has hypre, on the host, with PETSc's
+ * integer and scalar types). */
+PetscBool SplitCSRSharesWithHypre(void);
 PetscErrorCode SplitCSRDestroy(SplitCSR *S);

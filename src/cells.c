@@ -111,14 +111,53 @@ static void UniformPairKernels(PetscReal *restrict w, PetscReal *restrict f, Pet
   }
 }
 
+/* Make room for `more` pairs after the first `cnt` of a list (doubling: the copies stay rare). */
+static PetscErrorCode ReserveNeighbours(Cells out, PetscInt cnt, PetscInt more)
+{
+  PetscInt  *nb;
+  PetscReal *nw, *nf;
+  PetscFunctionBeginUser;
+  if (cnt + more <= out->cap_nbr) PetscFunctionReturn(PETSC_SUCCESS);
+  out->cap_nbr = 2 * out->cap_nbr + more;
+  PetscCall(PetscMalloc3(out->cap_nbr, &nb, out->cap_nbr, &nw, out->cap_nbr, &nf));
+  PetscCall(PetscArraycpy(nb, out->nbr, cnt));
+  PetscCall(PetscArraycpy(nw, out->w, cnt));
+  PetscCall(PetscArraycpy(nf, out->f, cnt));
+  PetscCall(PetscFree3(out->nbr, out->w, out->f));
+  out->nbr = nb; out->w = nw; out->f = nf;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* Pairs (a, b) of one candidate range list[s0 .. s1) of particles with a's smoothing length:
+ * r^2 into w (the kernel follows for all of a's pairs at once); returns the new count.  Every
+ * candidate is stored and kept if it is a pair: in a splashing flow one candidate in three is a
+ * pair, in no order a branch predictor learns, and this runs twice as fast as a test per
+ * candidate (7 % slower on the initial lattice, where the test is predictable). */
+static inline PetscInt UniformCandidates(const PetscInt *restrict list, PetscInt s0, PetscInt s1, const PetscReal *restrict x, PetscInt a, PetscReal xa, PetscReal ya, PetscReal rc2, PetscInt *restrict nbr, PetscReal *restrict w, PetscInt cnt)
+{
+  for (PetscInt s = s0; s < s1; s++) {
+    PetscInt b = list[s];
+    /* r2 as the compiler contracted dx dx + dy dy before: the same bits as earlier versions */
+    PetscReal dx = xa - x[2 * b], dy = ya - x[2 * b + 1], r2 = fma(dy, dy, dx * dx);
+    w[cnt]   = r2;
+    nbr[cnt] = b;
+    cnt += (b != a) & (r2 < rc2);
+  }
+  return cnt;
+}
+
 /* Neighbour list into `out` of the owned particles that `keep` accepts (NULL: all), using the
  * binning of `bins`: pairs with r < 2 h_ab + skin, kernel values at r (zero beyond 2 h_ab).
- * Pairs of equal h (the usual case) use the cut-off and kernel normalisation of particle a. */
+ * Pairs of equal h (the usual case) use the cut-off and kernel normalisation of particle a.
+ * The three cells of a stencil row are consecutive in the binning, so each row is one range of
+ * candidates, visited in the order of the cells and, within a cell, of the ids. */
 static PetscErrorCode NeighbourPass(Cells bins, Particles P, PetscBool (*keep)(PetscInt), PetscReal skin, Cells out)
 {
   Cells            c = bins;
   const PetscReal *x = PField(P, FIELD_X), *h = PField(P, FIELD_H);
-  PetscInt         n = P->n, cnt = 0;
+  const PetscInt  *list = c->list, *cstart = c->start;
+  PetscInt         n = P->n, ntot = P->n + P->ng, cnt = 0;
+  PetscBool        uniform = PETSC_TRUE; /* one smoothing length for owned and ghosts: no h per candidate */
 
   PetscFunctionBeginUser;
   if (n + 1 > out->cap_start) {
@@ -130,54 +169,53 @@ static PetscErrorCode NeighbourPass(Cells bins, Particles P, PetscBool (*keep)(P
     out->cap_nbr = PetscMax(64, (keep ? 4 : 32) * n);
     PetscCall(PetscMalloc3(out->cap_nbr, &out->nbr, out->cap_nbr, &out->w, out->cap_nbr, &out->f));
   }
+  for (PetscInt a = 1; a < ntot && uniform; a++) uniform = (PetscBool)(h[a] == h[0]);
   out->max_nbr = 0;
   for (PetscInt a = 0; a < n; a++) {
-    PetscInt  ca = c->cell[a], ia = ca % c->n[0], ja = ca / c->n[0];
+    PetscInt  ca = c->cell[a], ia = ca % c->n[0], ja = ca / c->n[0], r0[3], r1[3], nrow = 0, ncand = 0;
     PetscReal xa = x[2 * a], ya = x[2 * a + 1], ha = h[a], rca = 2.0 * ha + skin, rc2a = rca * rca;
     PetscReal swa = KernelSigma(ha), sfa = swa / (ha * ha), iha = 1.0 / ha;
     PetscBool mixed = PETSC_FALSE; /* a pair of another h: its kernel values are already in place */
+    PetscInt *nbr;
+    PetscReal *w, *f;
     out->nstart[a] = cnt;
     if (keep && !keep(P->kind[a])) continue;
     for (PetscInt dj = -1; dj <= 1; dj++) {
-      PetscInt j = ja + dj;
+      PetscInt j = ja + dj, i0 = PetscMax(ia - 1, 0), i1 = PetscMin(ia + 1, c->n[0] - 1);
       if (j < 0 || j >= c->n[1]) continue;
-      for (PetscInt di = -1; di <= 1; di++) {
-        PetscInt i = ia + di, cb;
-        if (i < 0 || i >= c->n[0]) continue;
-        cb = j * c->n[0] + i;
-        if (cnt + (c->start[cb + 1] - c->start[cb]) > out->cap_nbr) {
-          PetscInt  *nb;
-          PetscReal *nw, *nf;
-          out->cap_nbr = 2 * out->cap_nbr + (c->start[cb + 1] - c->start[cb]);
-          PetscCall(PetscMalloc3(out->cap_nbr, &nb, out->cap_nbr, &nw, out->cap_nbr, &nf));
-          PetscCall(PetscArraycpy(nb, out->nbr, cnt));
-          PetscCall(PetscArraycpy(nw, out->w, cnt));
-          PetscCall(PetscArraycpy(nf, out->f, cnt));
-          PetscCall(PetscFree3(out->nbr, out->w, out->f));
-          out->nbr = nb; out->w = nw; out->f = nf;
+      r0[nrow] = cstart[j * c->n[0] + i0];
+      r1[nrow] = cstart[j * c->n[0] + i1 + 1];
+      ncand += r1[nrow] - r0[nrow];
+      nrow++;
+    }
+    PetscCall(ReserveNeighbours(out, cnt, ncand));
+
+    nbr = out->nbr; w = out->w; f = out->f;
+    for (PetscInt r = 0; r < nrow; r++) {
+      if (uniform) {
+        cnt = UniformCandidates(list, r0[r], r1[r], x, a, xa, ya, rc2a, nbr, w, cnt);
+        continue;
+      }
+      for (PetscInt s = r0[r]; s < r1[r]; s++) {
+        PetscInt  b = list[s];
+        PetscReal dx = xa - x[2 * b], dy = ya - x[2 * b + 1], r2 = fma(dy, dy, dx * dx);
+        if (h[b] == ha) {
+          if (b == a || !(r2 < rc2a)) continue;
+          w[cnt] = r2;
+        } else {
+          PetscReal hab = PairH(ha, h[b]), rc = 2.0 * hab + skin, sw;
+          if (b == a || !(r2 < rc * rc)) continue;
+          sw = KernelSigma(hab);
+          PairKernel(PetscSqrtReal(r2), 1.0 / hab, sw, sw / (hab * hab), &w[cnt], &f[cnt]);
+          mixed = PETSC_TRUE;
         }
-        for (PetscInt s = c->start[cb]; s < c->start[cb + 1]; s++) {
-          PetscInt  b = c->list[s];
-          /* r2 as the compiler contracted dx dx + dy dy before: the same bits as earlier versions */
-          PetscReal dx = xa - x[2 * b], dy = ya - x[2 * b + 1], r2 = fma(dy, dy, dx * dx);
-          if (h[b] == ha) {
-            if (b == a || !(r2 < rc2a)) continue;
-            out->w[cnt] = r2; /* the kernel follows, for all of a's pairs at once */
-          } else {
-            PetscReal hab = PairH(ha, h[b]), rc = 2.0 * hab + skin, sw;
-            if (b == a || !(r2 < rc * rc)) continue;
-            sw = KernelSigma(hab);
-            PairKernel(PetscSqrtReal(r2), 1.0 / hab, sw, sw / (hab * hab), &out->w[cnt], &out->f[cnt]);
-            mixed = PETSC_TRUE;
-          }
-          out->nbr[cnt++] = b;
-        }
+        nbr[cnt++] = b;
       }
     }
-    if (!mixed) UniformPairKernels(out->w + out->nstart[a], out->f + out->nstart[a], cnt - out->nstart[a], iha, swa, sfa);
+    if (!mixed) UniformPairKernels(w + out->nstart[a], f + out->nstart[a], cnt - out->nstart[a], iha, swa, sfa);
     else /* the pairs of another h hold their kernel values already */
       for (PetscInt k = out->nstart[a]; k < cnt; k++)
-        if (h[out->nbr[k]] == ha) PairKernel(PetscSqrtReal(out->w[k]), iha, swa, sfa, &out->w[k], &out->f[k]);
+        if (h[nbr[k]] == ha) PairKernel(PetscSqrtReal(w[k]), iha, swa, sfa, &w[k], &f[k]);
     out->max_nbr = PetscMax(out->max_nbr, cnt - out->nstart[a]);
   }
   out->nstart[n] = cnt;

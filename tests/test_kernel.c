@@ -1,4 +1,5 @@
-/* Kernel (Eq. 12): normalisation, compact support, gradient antisymmetry; the corrected SPH gradient
+/* Kernel (Eq. 12): normalisation, compact support, gradient antisymmetry; the neighbour lists of a
+ * random cloud (one smoothing length, and two) equal a brute-force search; the corrected SPH gradient
  * of a linear field is exact to round-off on an irregular particle cloud. */
 #include <sphfsi/kernel.h>
 #include <sphfsi/cells.h>
@@ -28,6 +29,65 @@ static PetscErrorCode CheckKernel(void)
     PetscReal ga = KernelF(r, PairH(ha, hb)) * (xa[0] - xb[0]), gb = KernelF(r, PairH(hb, ha)) * (xb[0] - xa[0]);
     PetscCheck(ga == -gb, PETSC_COMM_SELF, PETSC_ERR_PLIB, "Gradient not antisymmetric");
   }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* Neighbour lists of a random cloud (no lattice: the order in which candidates are pairs is
+ * random, as in a splashing flow) against all pairs with r < 2 h_ab by brute force, with one
+ * smoothing length and with two; two particles share a position (a pair at r = 0). */
+static PetscErrorCode CheckNeighbours(PetscBool mixed)
+{
+  Particles   P;
+  Grid        g;
+  Cells       C;
+  PetscReal   dx = 0.01, h0 = 1.3 * dx, lo[2] = {0, 0}, hi[2] = {0.2, 0.15};
+  PetscBool   per[2] = {PETSC_FALSE, PETSC_FALSE};
+  PetscRandom rnd;
+  PetscInt    n = 300, pairs = 0, *mark;
+  PetscReal   errw = 0, errf = 0;
+
+  PetscFunctionBeginUser;
+  PetscCall(ParticlesCreate(PETSC_COMM_SELF, &P));
+  PetscCall(ParticlesSetUp(P));
+  PetscCall(PetscRandomCreate(PETSC_COMM_SELF, &rnd));
+  for (PetscInt a = 0; a < n; a++) {
+    PetscReal rx, ry, h = mixed && a % 3 == 0 ? 0.7 * h0 : h0;
+    PetscCall(PetscRandomGetValueReal(rnd, &rx));
+    PetscCall(PetscRandomGetValueReal(rnd, &ry));
+    if (a == n - 1) { rx = PField(P, FIELD_X)[0] / hi[0]; ry = PField(P, FIELD_X)[1] / hi[1]; } /* on particle 0 */
+    PetscCall(ParticlesAdd(P, a, KIND_FLUID, rx * hi[0], ry * hi[1], 1000 * dx * dx, h, 1000));
+  }
+  PetscCall(GridSetUp(&g, lo, hi, 2 * h0, per));
+  PetscCall(CellsCreate(&g, &C));
+  PetscCall(CellsBuild(C, P));
+  PetscCall(PetscCalloc1(n, &mark));
+  for (PetscInt a = 0; a < n; a++) {
+    const PetscReal *x = PField(P, FIELD_X), *h = PField(P, FIELD_H);
+    PetscInt         found = 0;
+    for (PetscInt k = C->nstart[a]; k < C->nstart[a + 1]; k++) {
+      PetscInt  b = C->nbr[k];
+      PetscReal r = PetscSqrtReal((x[2 * a] - x[2 * b]) * (x[2 * a] - x[2 * b]) + (x[2 * a + 1] - x[2 * b + 1]) * (x[2 * a + 1] - x[2 * b + 1])), hab = PairH(h[a], h[b]);
+      PetscCheck(b != a && !mark[b], PETSC_COMM_SELF, PETSC_ERR_PLIB, "Neighbour list of %d holds %d twice or itself", (int)a, (int)b);
+      mark[b] = 1;
+      errw    = PetscMax(errw, PetscAbsReal(C->w[k] - KernelW(r, hab)) / KernelW(0, hab));
+      errf    = PetscMax(errf, PetscAbsReal(C->f[k] - KernelF(r, hab)) / PetscAbsReal(KernelF(hab, hab)));
+    }
+    for (PetscInt b = 0; b < n; b++) {
+      PetscReal r2 = (x[2 * a] - x[2 * b]) * (x[2 * a] - x[2 * b]) + (x[2 * a + 1] - x[2 * b + 1]) * (x[2 * a + 1] - x[2 * b + 1]), hab = PairH(h[a], h[b]);
+      PetscBool pair = (PetscBool)(b != a && r2 < 4 * hab * hab);
+      PetscCheck(pair == (PetscBool)mark[b], PETSC_COMM_SELF, PETSC_ERR_PLIB, "Particles %d and %d at r = %g h_ab: %s", (int)a, (int)b, (double)(PetscSqrtReal(r2) / hab), pair ? "a pair the list misses" : "listed but no pair");
+      found += pair;
+      mark[b] = 0;
+    }
+    PetscCheck(found == C->nstart[a + 1] - C->nstart[a], PETSC_COMM_SELF, PETSC_ERR_PLIB, "Neighbour count of %d wrong", (int)a);
+    pairs += found;
+  }
+  PetscCall(PetscPrintf(PETSC_COMM_WORLD, "neighbours (%s): %d particles, %d pairs as by brute force, max error of W %.1e, of F %.1e (relative)\n", mixed ? "two smoothing lengths" : "one smoothing length", (int)n, (int)pairs, (double)errw, (double)errf));
+  PetscCheck(errw < 1e-12 && errf < 1e-12, PETSC_COMM_SELF, PETSC_ERR_PLIB, "Kernel values of the list differ from KernelW/KernelF");
+  PetscCall(PetscFree(mark));
+  PetscCall(CellsDestroy(&C));
+  PetscCall(PetscRandomDestroy(&rnd));
+  PetscCall(ParticlesDestroy(&P));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -79,6 +139,8 @@ int main(int argc, char **argv)
 {
   PetscCall(PetscInitialize(&argc, &argv, NULL, NULL));
   PetscCall(CheckKernel());
+  PetscCall(CheckNeighbours(PETSC_FALSE));
+  PetscCall(CheckNeighbours(PETSC_TRUE));
   PetscCall(CheckGradient());
   PetscCall(PetscPrintf(PETSC_COMM_WORLD, "test_kernel: ok\n"));
   PetscCall(PetscFinalize());

@@ -135,15 +135,19 @@ static PetscErrorCode ReserveNeighbours(Cells out, PetscInt cnt, PetscInt more)
  * candidate (7 % slower on the initial lattice, where the test is predictable). */
 static inline PetscInt UniformCandidates(const PetscInt *restrict list, PetscInt s0, PetscInt s1, const PetscReal *restrict x, PetscInt a, PetscReal xa, PetscReal ya, PetscReal rc2, PetscInt *restrict nbr, PetscReal *restrict w, PetscInt cnt)
 {
+  PetscInt  *nb = nbr + cnt; /* pointers advanced by the test: no index to widen in the loop's chain */
+  PetscReal *wb = w + cnt;
   for (PetscInt s = s0; s < s1; s++) {
     PetscInt b = list[s];
     /* r2 as the compiler contracted dx dx + dy dy before: the same bits as earlier versions */
     PetscReal dx = xa - x[2 * b], dy = ya - x[2 * b + 1], r2 = fma(dy, dy, dx * dx);
-    w[cnt]   = r2;
-    nbr[cnt] = b;
-    cnt += (b != a) & (r2 < rc2);
+    size_t    keep = (size_t)((b != a) & (r2 < rc2));
+    *wb = r2;
+    *nb = b;
+    wb += keep;
+    nb += keep;
   }
-  return cnt;
+  return (PetscInt)(nb - nbr);
 }
 
 /* Neighbour list into `out` of the owned particles that `keep` accepts (NULL: all), using the

@@ -180,7 +180,7 @@ static PetscErrorCode NeighbourPass(Cells bins, Particles P, PetscBool (*keep)(P
     PetscReal xa = x[2 * a], ya = x[2 * a + 1], ha = h[a], rca = 2.0 * ha + skin, rc2a = rca * rca;
     PetscReal swa = KernelSigma(ha), sfa = swa / (ha * ha), iha = 1.0 / ha;
     PetscBool mixed = PETSC_FALSE; /* a pair of another h: its kernel values are already in place */
-    PetscInt *nbr;
+    PetscInt  *nbr;
     PetscReal *w, *f;
     out->nstart[a] = cnt;
     if (keep && !keep(P->kind[a])) continue;
@@ -193,7 +193,6 @@ static PetscErrorCode NeighbourPass(Cells bins, Particles P, PetscBool (*keep)(P
       nrow++;
     }
     PetscCall(ReserveNeighbours(out, cnt, ncand));
-
     nbr = out->nbr; w = out->w; f = out->f;
     for (PetscInt r = 0; r < nrow; r++) {
       if (uniform) {

@@ -6,9 +6,12 @@ static PetscErrorCode Grow(PetscInt n, PetscInt len, PetscInt *cap, PetscInt **j
 PetscErrorCode SplitCSRBegin(SplitCSR *S, PetscInt m, PetscInt rstart, PetscInt bound)
 {
   PetscFunctionBeginUser;
-  if (bound > S->cap_d) { /* at once: growing by copies would leave the old arrays in the heap */
+  if (bound > S->cap_d) { /* at once: growing by copies would leave the old arrays in the heap;
+                           * 1/8 room above the bound, since the pair count drifts from step to
+                           * step and each new block goes on top of the heap (the room is never
+                           * written, so it takes no memory) */
     PetscCall(PetscFree2(S->dj, S->da));
-    S->cap_d = bound;
+    S->cap_d = bound + bound / 8;
     PetscCall(PetscMalloc2(S->cap_d, &S->dj, S->cap_d, &S->da));
   }
   if (m + 1 > S->cap_m) {

@@ -258,8 +258,8 @@ PetscErrorCode SimSetUp(Sim sim)
   sim->next_ckpt  = sim->ckpt_interval;
   if (sim->restart[0]) PetscCall(CheckpointRestart(sim)); /* the particles and state of the checkpoint */
   else {
-    PetscCall(DecompMigrate(sim->decomp, sim->P)); /* wraps and checks every particle is inside */
-    PetscCall(DecompPartition(sim->decomp, sim->P));
+    PetscCall(DecompPartition(sim->decomp, sim->P)); /* from the scene's round-robin spread, so no rank ever holds them all */
+    PetscCall(DecompMigrate(sim->decomp, sim->P));   /* wraps and checks every particle is inside */
     PetscCall(SimRebuild(sim));
     PetscCall(SimTotalMass(sim, &sim->mass0));
     if (sim->has_fluid && sim->fluid == FLUID_ISPH) PetscCall(ISPHInitialize(sim));

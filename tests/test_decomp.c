@@ -59,6 +59,37 @@ static PetscErrorCode Check(Sim sim, PetscInt step)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* The partition of the cell graph: every occupied cell to a rank, every empty cell to the rank of
+ * an occupied cell at the smallest Chebyshev distance (decomp.c partitions only the occupied ones). */
+static PetscErrorCode CheckEmptyCells(Sim sim)
+{
+  const Grid  *g  = &sim->grid;
+  PetscInt     nc = GridNumCells(g), *work, bad = 0, nempty = 0;
+  PetscMPIInt *owner = sim->decomp->owner;
+  PetscFunctionBeginUser;
+  PetscCall(PetscCalloc1(nc, &work));
+  DecompCellWork(g, sim->P, work, NULL);
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, work, (PetscMPIInt)nc, MPIU_INT, MPI_SUM, sim->comm));
+  for (PetscInt e = 0; e < nc; e++) {
+    PetscInt  dmin = PETSC_MAX_INT, ie = e % g->n[0], je = e / g->n[0];
+    PetscBool match = PETSC_FALSE;
+    if (owner[e] < 0 || owner[e] >= sim->size) bad++;
+    if (work[e]) continue;
+    nempty++;
+    for (PetscInt c = 0; c < nc; c++) {
+      PetscInt d = PetscMax(PetscAbsInt(c % g->n[0] - ie), PetscAbsInt(c / g->n[0] - je));
+      if (!work[c] || d > dmin) continue;
+      if (d < dmin) { dmin = d; match = PETSC_FALSE; }
+      match = (PetscBool)(match || owner[c] == owner[e]);
+    }
+    bad += !match;
+  }
+  PetscCheck(!bad, sim->comm, PETSC_ERR_PLIB, "%" PetscInt_FMT " of %" PetscInt_FMT " cells with an owner out of range or, if empty, not that of a nearest occupied cell", bad, nc);
+  PetscCheck(nempty > 0, sim->comm, PETSC_ERR_PLIB, "No empty cell: the check tested nothing");
+  PetscCall(PetscFree(work));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 int main(int argc, char **argv)
 {
   Sim      sim;
@@ -73,6 +104,7 @@ int main(int argc, char **argv)
   PetscCall(SimSetFromOptions(sim));
   PetscCall(SimSetUp(sim));
   PetscCall(Check(sim, 0));
+  PetscCall(CheckEmptyCells(sim));
   for (PetscInt s = 1; s <= nsteps; s++) {
     PetscCall(WCSPHTimeStep(sim, &sim->dt));
     sim->dt *= 4; /* larger steps: more particles change cells and owners (still stable for 60 steps) */

@@ -26,9 +26,10 @@ PetscErrorCode DecompCreate(MPI_Comm comm, Decomp *d);
 PetscErrorCode DecompSetFromOptions(Decomp d);
 PetscErrorCode DecompSetUp(Decomp d, const Grid *g);
 PetscErrorCode DecompDestroy(Decomp *d);
-/* Serial METIS k-way partition of the cell graph into nranks parts for per-cell work `count` and,
- * when scount is not NULL, per-cell solid particles balanced as a second constraint (what
- * DecompPartition runs on rank 0; also used by tools/partition_model.c). */
+/* Serial METIS k-way partition of the graph of occupied cells (count > 0) into nranks parts for
+ * per-cell work `count` and, when scount is not NULL, per-cell solid particles balanced as a second
+ * constraint; an empty cell goes to the rank of a nearest occupied cell (what DecompPartition runs
+ * on rank 0; also used by tools/partition_model.c). */
 PetscErrorCode DecompPartitionCells(const Grid *g, const PetscInt *count, const PetscInt *scount, PetscInt nranks, PetscMPIInt *owner);
 /* Add the kind-weighted work of the owned particles to wcount[cell] and, when scount is not NULL,
  * their solid and clamp particles to scount[cell]; the weight of one kind. */

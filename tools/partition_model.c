@@ -115,7 +115,9 @@ static PetscErrorCode PartitionStats(Sim sim, const CellCounts *cc, PetscInt np,
         if (dup) continue;
         got[ngot++] = q;
         halo[q] += cc->all[c]; /* rank q needs this cell's particles as ghosts */
-        if (!PetscBTLookupSet(seen, (PetscInt)q * np + r)) nbrs[q]++;
+        /* a message from r to q only if there is something to send: cells of two ranks that meet
+         * in empty space exchange nothing (HaloBuild loops over particles) */
+        if (cc->all[c] && !PetscBTLookupSet(seen, (PetscInt)q * np + r)) nbrs[q]++;
       }
     }
   MaxMean(owned, np, &mx[0], &mean[0]);

@@ -1,4 +1,5 @@
 #include <sphfsi/decomp.h>
+#include <sphfsi/exchange.h>
 #include <metis.h>
 
 /* Relative work of a particle by kind: fluid and solid particles run every neighbour pass, wall
@@ -34,13 +35,17 @@ PetscErrorCode DecompCreate(MPI_Comm comm, Decomp *d)
 
 PetscErrorCode DecompSetFromOptions(Decomp d)
 {
+  PetscInt sparse_ranks = 9; /* dense below: one round fewer (2 ranks: +6 % halo stage sparse) */
   PetscFunctionBeginUser;
   PetscOptionsBegin(d->comm, NULL, "Domain decomposition", "Decomp");
   PetscCall(PetscOptionsReal("-rebalance_threshold", "Repartition when max/mean work per rank exceeds this (>= 1)", "", d->threshold, &d->threshold, NULL));
   PetscCall(PetscOptionsInt("-rebalance_every", "Steps between load-imbalance checks (> 0)", "", d->check_every, &d->check_every, NULL));
+  PetscCall(PetscOptionsInt("-decomp_sparse_ranks", "From this many ranks on, migration and ghosts go to the ranks concerned only (a two-sided set-up, see -build_twosided) instead of MPI_Alltoallv, whose cost grows with the ranks", "", sparse_ranks, &sparse_ranks, NULL));
   PetscCall(PetscOptionsBool("-decomp_split_solids", "With fluid and solids: balance the solid particles over the ranks as a second METIS constraint (the solid sub-steps are a phase of their own)", "", d->split_solids, &d->split_solids, NULL));
   PetscOptionsEnd();
   PetscCheck(d->threshold >= 1.0, d->comm, PETSC_ERR_ARG_OUTOFRANGE, "-rebalance_threshold %g must be >= 1", (double)d->threshold);
+  PetscCheck(sparse_ranks > 0, d->comm, PETSC_ERR_ARG_OUTOFRANGE, "-decomp_sparse_ranks %" PetscInt_FMT " must be > 0", sparse_ranks);
+  d->sparse = (PetscBool)(d->size >= sparse_ranks);
   PetscCheck(d->check_every > 0, d->comm, PETSC_ERR_ARG_OUTOFRANGE, "-rebalance_every %" PetscInt_FMT " must be > 0", d->check_every);
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -244,7 +249,6 @@ PetscErrorCode DecompMigrate(Decomp d, Particles P)
   PetscInt     rs = RecordSize(P), nsend = 0, nrecv = 0, nkeep = 0, nbad = 0, gbad;
   PetscInt    *dest;
   PetscReal   *sbuf, *rbuf, *x = PField(P, FIELD_X);
-  MPI_Datatype rec;
 
   PetscFunctionBeginUser;
   P->ng = 0;
@@ -277,10 +281,8 @@ PetscErrorCode DecompMigrate(Decomp d, Particles P)
     SETERRQ(d->comm, PETSC_ERR_NOT_CONVERGED, "%" PetscInt_FMT " particle(s) left the domain [%g, %g] x [%g, %g], e.g. id %d (%s) at (%g, %g): the run is unstable (try a smaller -dt or -cfl) or the geometry lets particles escape", gbad, (double)g->lo[0], (double)g->hi[0], (double)g->lo[1], (double)g->hi[1], (int)all[4 * r], ParticleKindNames[(PetscInt)all[4 * r + 1]], (double)all[4 * r + 2], (double)all[4 * r + 3]);
   }
   if (size == 1) { PetscCall(PetscFree(dest)); PetscCall(PetscFree4(scnt, rcnt, sdisp, rdisp)); PetscFunctionReturn(PETSC_SUCCESS); }
-  PetscCallMPI(MPI_Alltoall(scnt, 1, MPI_INT, rcnt, 1, MPI_INT, d->comm));
-  for (PetscMPIInt r = 0; r < size; r++) { sdisp[r + 1] = sdisp[r] + scnt[r]; rdisp[r + 1] = rdisp[r] + rcnt[r]; }
-  nrecv = rdisp[size];
-  PetscCall(PetscMalloc2(nsend * rs + 1, &sbuf, nrecv * rs + 1, &rbuf));
+  for (PetscMPIInt r = 0; r < size; r++) sdisp[r + 1] = sdisp[r] + scnt[r];
+  PetscCall(PetscMalloc1(nsend * rs + 1, &sbuf));
   {
     PetscMPIInt *fill;
     PetscCall(PetscMalloc1(size, &fill));
@@ -291,15 +293,13 @@ PetscErrorCode DecompMigrate(Decomp d, Particles P)
     }
     PetscCall(PetscFree(fill));
   }
-  PetscCallMPI(MPI_Type_contiguous((PetscMPIInt)rs, MPIU_REAL, &rec));
-  PetscCallMPI(MPI_Type_commit(&rec));
-  PetscCallMPI(MPI_Alltoallv(sbuf, scnt, sdisp, rec, rbuf, rcnt, rdisp, rec, d->comm));
-  PetscCallMPI(MPI_Type_free(&rec));
+  PetscCall(ExchangeRecords(d->comm, d->sparse, rs, scnt, sdisp, sbuf, rcnt, rdisp, &rbuf, &nrecv));
   P->n = nkeep;
   PetscCall(ParticlesReserve(P, nkeep + nrecv));
   for (PetscInt k = 0; k < nrecv; k++) UnpackRecord(P, nkeep + k, rbuf + k * rs);
   P->n = nkeep + nrecv;
-  PetscCall(PetscFree2(sbuf, rbuf));
+  PetscCall(PetscFree(sbuf));
+  PetscCall(PetscFree(rbuf));
   PetscCall(PetscFree(dest));
   PetscCall(PetscFree4(scnt, rcnt, sdisp, rdisp));
   PetscFunctionReturn(PETSC_SUCCESS);
@@ -361,6 +361,6 @@ PetscErrorCode DecompBalance(Decomp d, Particles P, PetscInt step, PetscBool *re
 PetscErrorCode DecompView(Decomp d, PetscViewer v)
 {
   PetscFunctionBeginUser;
-  PetscCall(PetscViewerASCIIPrintf(v, "Decomposition: %d rank(s), %" PetscInt_FMT " x %" PetscInt_FMT " cells of %g m, rebalance past %.2f (checked every %" PetscInt_FMT " steps), %" PetscInt_FMT " repartition(s)\n", d->size, d->grid->n[0], d->grid->n[1], (double)d->grid->cs, (double)d->threshold, d->check_every, d->nrepartition));
+  PetscCall(PetscViewerASCIIPrintf(v, "Decomposition: %d rank(s), %" PetscInt_FMT " x %" PetscInt_FMT " cells of %g m, rebalance past %.2f (checked every %" PetscInt_FMT " steps), %" PetscInt_FMT " repartition(s), %s exchanges\n", d->size, d->grid->n[0], d->grid->n[1], (double)d->grid->cs, (double)d->threshold, d->check_every, d->nrepartition, d->sparse ? "sparse" : "all-to-all"));
   PetscFunctionReturn(PETSC_SUCCESS);
 }

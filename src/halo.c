@@ -1,4 +1,5 @@
 #include <sphfsi/halo.h>
+#include <sphfsi/exchange.h>
 
 PetscErrorCode HaloCreate(MPI_Comm comm, Halo *h)
 {
@@ -46,7 +47,6 @@ PetscErrorCode HaloBuild(Halo h, Decomp d, Particles P)
   PetscInt    *pa, *pr, *pc; /* (particle, rank, shift code) to send */
   PetscReal   *sbuf, *rbuf, *x = PField(P, FIELD_X);
   PetscSFNode *remote;
-  MPI_Datatype rec;
 
   PetscFunctionBeginUser;
   P->ng    = 0;
@@ -84,10 +84,8 @@ PetscErrorCode HaloBuild(Halo h, Decomp d, Particles P)
       }
   }
   nsend = npair;
-  PetscCallMPI(MPI_Alltoall(scnt, 1, MPI_INT, rcnt, 1, MPI_INT, d->comm));
-  for (PetscMPIInt r = 0; r < size; r++) { sdisp[r + 1] = sdisp[r] + scnt[r]; rdisp[r + 1] = rdisp[r] + rcnt[r]; }
-  nrecv = rdisp[size];
-  PetscCall(PetscMalloc2(nsend * rs + 1, &sbuf, nrecv * rs + 1, &rbuf));
+  for (PetscMPIInt r = 0; r < size; r++) sdisp[r + 1] = sdisp[r] + scnt[r];
+  PetscCall(PetscMalloc1(nsend * rs + 1, &sbuf));
   PetscCall(PetscMalloc1(size, &fill));
   for (PetscMPIInt r = 0; r < size; r++) fill[r] = sdisp[r];
   for (PetscInt k = 0; k < npair; k++) {
@@ -103,10 +101,7 @@ PetscErrorCode HaloBuild(Halo h, Decomp d, Particles P)
   }
   PetscCall(PetscFree(fill));
   h->nghost_sent = nsend;
-  PetscCallMPI(MPI_Type_contiguous((PetscMPIInt)rs, MPIU_REAL, &rec));
-  PetscCallMPI(MPI_Type_commit(&rec));
-  PetscCallMPI(MPI_Alltoallv(sbuf, scnt, sdisp, rec, rbuf, rcnt, rdisp, rec, d->comm));
-  PetscCallMPI(MPI_Type_free(&rec));
+  PetscCall(ExchangeRecords(d->comm, d->sparse, rs, scnt, sdisp, sbuf, rcnt, rdisp, &rbuf, &nrecv));
 
   PetscCall(ParticlesReserve(P, n + nrecv));
   if (nrecv > h->cap_shift) {
@@ -136,7 +131,8 @@ PetscErrorCode HaloBuild(Halo h, Decomp d, Particles P)
   /* leaves are contiguous: leafdata starts at the first ghost, never aliasing the roots */
   PetscCall(PetscSFSetGraph(h->sf, n, nrecv, NULL, PETSC_COPY_VALUES, remote, PETSC_OWN_POINTER));
   PetscCall(PetscSFSetUp(h->sf));
-  PetscCall(PetscFree2(sbuf, rbuf));
+  PetscCall(PetscFree(sbuf));
+  PetscCall(PetscFree(rbuf));
   PetscCall(PetscFree3(pa, pr, pc));
   PetscCall(PetscFree4(scnt, rcnt, sdisp, rdisp));
   PetscFunctionReturn(PETSC_SUCCESS);

@@ -34,6 +34,10 @@ run test_hdf5_isph $MPI "${BINDIR:-bin}"/test_hdf5 -fluid isph
 run test_hdf5_wcsph_shift $MPI "${BINDIR:-bin}"/test_hdf5 -wcsph_shift 1
 # WCSPH with shifting (free-surface flags of the neighbours from the last step, through the halo): exact
 run test_rank_agreement_wcsph_shift $MPI "${BINDIR:-bin}"/test_rank_agreement -wcsph_shift 1
+# Migration and ghosts by the sparse exchange (the default from 9 ranks on): the same answers, also
+# through the forced repartitions of test_decomp
+run test_rank_agreement_sparse $MPI "${BINDIR:-bin}"/test_rank_agreement -decomp_sparse_ranks 1
+run test_decomp_sparse $MPI "${BINDIR:-bin}"/test_decomp -decomp_sparse_ranks 1
 # ISPH: 1 and 2 ranks agree to the solver tolerance (tight rtol; the bound is 100x that)
 run test_rank_agreement_isph $MPI "${BINDIR:-bin}"/test_rank_agreement -fluid isph -ksp_rtol 1e-10 -tol 1e-8
 # Solid (oscillating plate, ~1000 steps): explicit and per rank, so 1 and 2 ranks agree exactly

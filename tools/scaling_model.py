@@ -14,9 +14,12 @@ Per rank and step (P ranks, max over ranks from the partition):
              work units per fluid step, from the partition's cost column)
   exchange  with k neighbour ranks: alpha + k * o + bytes / beta (messages posted together)
   halo      n_msg exchanges per step, ghost bytes scaled from the 2-rank run by halo_max
-  rebuilds  per rebuild: MPI_Alltoall of counts (Bruck: alpha_ar log2 P) and MPI_Alltoallv, which
-            Open MPI runs pairwise: alpha (P - 1) even for empty messages ("as is"), or
-            alpha nbr_max with neighbour-only exchanges ("neighbour exchanges")
+  rebuilds  per rebuild (migration and ghosts), as the code does ("as is"): below 9 ranks MPI_Alltoall
+            of counts (Bruck: alpha_ar log2 P) and MPI_Alltoallv, which Open MPI runs pairwise,
+            alpha (P - 1) even for empty messages; from 9 ranks the sparse exchange (exchange.h):
+            PETSc's two-sided set-up (an allreduce, alpha_ar log2 P) and two exchanges with the
+            neighbour ranks (counts, records).  "MPI_Alltoallv": the code before session 12, all-to-all
+            at every rank count
   reductions n_red * alpha_ar * log2 P  (time step, checks; ISPH: 3 per CG iteration)
   AMG       levels L = log4(rows / 10): per V-cycle 4 exchanges per level (smoothing, residual,
             restriction, prolongation), per set-up 10 exchanges and 2 reductions per level, each
@@ -102,7 +105,7 @@ def model(row, c, scheme, a, aar, beta, alltoallv, nsub=0, o=0.5e-6):
     lg = math.log2(P) if P > 1 else 0
     nbr, halo = float(row["nbr_ranks_max"]), float(row["halo_max"])
     ex = a + o * nbr  # one neighbour exchange
-    a2av = a * (P - 1) if alltoallv == "as is" else ex
+    reb = aar * lg + (a * (P - 1) if alltoallv == "MPI_Alltoallv" or P < 9 else 2 * ex)
     if scheme == "wcsph":
         cw = c["wcsph"]
         # FSI: the partition's cost column counts each solid particle with its sub-steps (bench.sh)
@@ -125,7 +128,7 @@ def model(row, c, scheme, a, aar, beta, alltoallv, nsub=0, o=0.5e-6):
     solid = 0.0  # in comp through the cost column
     if P == 1:
         return dict(comp=comp, ppe=ppe, solid=solid, comm=0.0, total=comp + ppe + solid)
-    comm = n_msg * ex + byt / beta + n_red * aar * lg + rebuilds * (aar * lg + a2av) + lat_ppe
+    comm = n_msg * ex + byt / beta + n_red * aar * lg + rebuilds * reb + lat_ppe
     return dict(comp=comp, ppe=ppe, solid=solid, comm=comm, total=comp + ppe + solid + comm, ppe_lat=lat_ppe)
 
 
@@ -153,7 +156,7 @@ def main():
             nsub = args["nsub"] if case.startswith("elastic_gate") else 0
             m1 = model(one, c, s, a, aar, beta, "as is", nsub)
             t1 = m1["total"]
-            for variant in ("as is", "neighbour exchanges"):
+            for variant in ("as is", "MPI_Alltoallv"):
                 pts = [(1, t1, 1.0, 0, 0, 1.0)]
                 for r in rows:
                     m = model(r, c, s, a, aar, beta, variant, nsub, args["o"])
@@ -184,7 +187,7 @@ def main():
         sep = "|---|---|---|---|---|---|---|---|"
         keys = [k for k in series if k[0] == case]
         for k in keys:
-            hdr += f" {k[1].upper()} {'' if k[2] == 'as is' else '(nbr. exch.) '}ms/step (eff.) |"
+            hdr += f" {k[1].upper()} {'' if k[2] == 'as is' else '(MPI_Alltoallv) '}ms/step (eff.) |"
             sep += "---|"
         md.append(hdr); md.append(sep)
         for i, r in enumerate(rows):
@@ -216,7 +219,7 @@ def main():
             P = [p[0] for p in pts]; t = [p[1] * 1e3 for p in pts]; e = [100 * p[2] for p in pts]
             ls = "-" if k[2] == "as is" else "--"
             name = k[0].replace("elastic_gate_solidw", "elastic gate (solids weighted by their cost)").replace("elastic_gate", "elastic gate (solids a second constraint, as now)").replace("_", " ")
-            lab = f"{name} {k[1].upper()}{'' if k[2] == 'as is' else ', neighbour exchanges'}"
+            lab = f"{name} {k[1].upper()}{'' if k[2] == 'as is' else ', all-to-all exchanges (before)'}"
             ax[0].loglog(P, t, ls, marker="o", ms=3, color=colors[(k[0], k[1])], label=lab)
             if k[2] == "as is": ax[0].loglog(P, [t[0] / p for p in P], ":", color=colors[(k[0], k[1])], lw=0.8)
             ax[1].semilogx(P, e, ls, marker="o", ms=3, color=colors[(k[0], k[1])], label=lab)

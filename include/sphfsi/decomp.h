@@ -20,6 +20,7 @@ struct _p_Decomp {
                                sub-steps are a phase of their own, every rank should hold a share) */
   PetscInt    *scount;      /* per-cell solid + clamp particles, with split_solids */
   PetscReal   imbalance_solid;
+  PetscBool   sparse;       /* exchange particles with the ranks concerned only (exchange.h) */
 };
 
 PetscErrorCode DecompCreate(MPI_Comm comm, Decomp *d);

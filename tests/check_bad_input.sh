@@ -26,6 +26,7 @@ check "-column_width"         -case dam_break -column_width 0
 check "options_file"          -options_file cases/does_not_exist.opts
 check "output directory"      -case hydrostatic -dx 0.01 -output_dir /proc/forbidden
 check "-rebalance_threshold"  -case dam_break -rebalance_threshold 0.5
+check "-decomp_sparse_ranks"  -case dam_break -decomp_sparse_ranks 0
 check "-delta"                -case dam_break -delta 2
 check "-isph_beta"            -case dam_break -fluid isph -isph_beta 1.5
 check "-isph_source"          -case dam_break -fluid isph -isph_source magic

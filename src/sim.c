@@ -279,7 +279,7 @@ static PetscErrorCode Progress(Sim sim)
   PetscFunctionBeginUser;
   PetscCall(PetscTime(&now));
   {
-    PetscReal el = now - sim->wall_start, left = sim->t > 0 ? el * (sim->t_end - sim->t) / sim->t : 0;
+    PetscReal el = now - sim->wall_start, done = sim->t - sim->t_start, left = done > 0 ? el * (sim->t_end - sim->t) / done : 0;
     char its[64] = "";
     if (sim->isph) PetscCall(PetscSNPrintf(its, sizeof(its), "  PPE its %" PetscInt_FMT " (free surface %" PetscInt_FMT ")", sim->isph->ppe->its_last, sim->isph->nfree));
     if (sim->has_fluid && sim->solid) PetscCall(PetscSNPrintf(its + strlen(its), sizeof(its) - strlen(its), "  solid sub-steps %" PetscInt_FMT, sim->solid->nsub_last));
@@ -356,7 +356,8 @@ PetscErrorCode SimRun(Sim sim)
   if (sim->isph) PetscCall(ISPHView(sim, PETSC_VIEWER_STDOUT_(sim->comm)));
   if (sim->solid) PetscCall(SolidView(sim, PETSC_VIEWER_STDOUT_(sim->comm)));
   PetscCall(PetscTime(&sim->wall_start));
-  last = sim->wall_start;
+  sim->t_start = sim->t;
+  last         = sim->wall_start;
   if (!sim->restart[0]) { /* a restart has the first probe row and snapshot already */
     PetscCall(IOProbes(sim));
     if (sim->out_interval > 0) PetscCall(IOSnapshot(sim));

@@ -59,6 +59,7 @@ struct _p_Sim {
   PetscInt   snap_cap;
   /* statistics */
   PetscLogDouble wall_start, wall_loop;
+  PetscReal      t_start; /* simulated time when this run's loop began (after a restart, not 0) */
   PetscReal      particle_steps, mass0, mass, mass_out; /* mass_out: fluid removed by the outflow */
   PetscInt       nparticles;
   PetscLogStage  stage[STAGE_COUNT];

@@ -145,8 +145,9 @@ PetscErrorCode DecompPartitionCells(const Grid *g, const PetscInt *count, const 
   METIS_SetDefaultOptions(opts);
   opts[METIS_OPTION_SEED]      = 1;
   opts[METIS_OPTION_NUMBERING] = 0;
-  status = nranks > 1 ? METIS_PartGraphKway(&nv, &ncon, xadj, adj, vw, NULL, ew, &nparts, NULL, NULL, opts, &objval, part) : METIS_OK;
-  for (PetscInt c = 0; c < nc; c++) owner[c] = vert[c] < 0 ? -1 : (nranks > 1 ? (PetscMPIInt)part[vert[c]] : 0);
+  status = METIS_PartGraphKway(&nv, &ncon, xadj, adj, vw, NULL, ew, &nparts, NULL, NULL, opts, &objval, part);
+  for (PetscInt c = 0; c < nc; c++)
+    if (vert[c] >= 0) owner[c] = (PetscMPIInt)part[vert[c]]; /* the empty ones: OwnEmptyCells */
   PetscCall(PetscFree5(xadj, adj, vw, ew, part));
   PetscCall(PetscFree(vert));
   PetscCheck(status == METIS_OK, PETSC_COMM_SELF, PETSC_ERR_LIB, "METIS_PartGraphKway failed with status %d", status);

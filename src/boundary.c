@@ -46,6 +46,7 @@ static PetscErrorCode WallState(Sim sim, PetscBool pressure)
     } else if (pressure) {
       /* Adami et al. 2012, Eq. 27 (static wall): p_w = (sum p_f W + g . sum rho_f r_wf W) / sum W */
       p[a]   = sw > 0 ? (sp + gx * sgx + gy * sgy) / sw : 0;
+      if (sim->fl.wall_clip) p[a] = PetscMax(p[a], 0.0); /* a wall pushes, never pulls: fluid in tension would stick to it */
       rho[a] = EOSDensity(&sim->fl, p[a]);
     }
   }

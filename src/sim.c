@@ -31,6 +31,7 @@ PetscErrorCode SimCreate(MPI_Comm comm, Sim *sim)
   s->fl.mu          = 1.0e-3;
   s->fl.alpha       = 0.02;
   s->fl.xsph        = 0.0;
+  s->fl.wall_clip   = PETSC_TRUE; /* WCSPH walls push, never pull (boundary.c) */
   s->g[1]           = -9.81;
   s->has_fluid      = PETSC_TRUE;
   s->sl.rho0        = 1000.0;

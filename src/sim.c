@@ -355,6 +355,7 @@ PetscErrorCode SimRun(Sim sim)
   PetscCall(ParticlesView(sim->P, PETSC_VIEWER_STDOUT_(sim->comm)));
   PetscCall(DecompView(sim->decomp, PETSC_VIEWER_STDOUT_(sim->comm)));
   if (sim->isph) PetscCall(ISPHView(sim, PETSC_VIEWER_STDOUT_(sim->comm)));
+  else if (sim->has_fluid) PetscCall(WCSPHView(sim, PETSC_VIEWER_STDOUT_(sim->comm)));
   if (sim->solid) PetscCall(SolidView(sim, PETSC_VIEWER_STDOUT_(sim->comm)));
   PetscCall(PetscTime(&sim->wall_start));
   sim->t_start = sim->t;

@@ -23,6 +23,14 @@ PetscErrorCode WCSPHSetUp(Sim sim)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+PetscErrorCode WCSPHView(Sim sim, PetscViewer v)
+{
+  const FluidMaterial *fl = &sim->fl;
+  PetscFunctionBeginUser;
+  PetscCall(PetscViewerASCIIPrintf(v, "WCSPH: c0 %g m/s, AV alpha %g, delta-SPH %g, XSPH %g, shifting A = %g, wall pressure %s\n", (double)fl->c0, (double)fl->alpha, (double)fl->delta, (double)fl->xsph, (double)fl->shift, fl->wall_clip ? "clipped at 0" : "as extrapolated (may be < 0)"));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 PetscErrorCode WCSPHPressure(Sim sim)
 {
   Particles  P = sim->P;

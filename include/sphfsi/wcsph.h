@@ -4,6 +4,8 @@
 #include <sphfsi/sim.h>
 
 PetscErrorCode WCSPHSetUp(Sim sim);
+/* One line of the run's header: the WCSPH fluid's settings. */
+PetscErrorCode WCSPHView(Sim sim, PetscViewer v);
 /* Pressure from density for owned and ghost fluid particles (Eq. 20). */
 PetscErrorCode WCSPHPressure(Sim sim);
 /* acc, drho, xsph of owned fluid particles at the current state. */

@@ -10,20 +10,18 @@ MPI=$1; OUT=$2; shift 2
 A=0.05715
 $MPI bin/sphfsi -options_file cases/dam_break.opts -dx $(python3 -c "print(f'{$A/40:.9g}')") -tank_height 1.0 -t_end 0.15 -output_interval 0.01 -probe_interval 0 -output_dir "$OUT" -progress_every 0 "$@"
 python3 - "$OUT" <<'PY'
-import glob, json, sys, h5py, numpy as np
+import glob, json, sys
+sys.path.insert(0, "tools")
+from hard_check import snap, tank_box, box_clearance  # the tank box of make hard's dam-break check
 snaps = sorted(glob.glob(sys.argv[1] + "/particles_*.h5"))
 assert len(snaps) >= 15, f"{len(snaps)} snapshots"
 dx = json.load(open(sys.argv[1] + "/summary.json"))["dx"]
-with h5py.File(snaps[0]) as f:
-    kind = f["kind"][:].ravel(); x = f["x"][:]
-w = x[kind == 1]
-left, right, floor = w[:, 0].min() + 0.5 * dx, w[:, 0].max() - 0.5 * dx, w[:, 1].min() + 0.5 * dx
-worst = (np.inf, None)
+box = tank_box(snap(snaps[0]), dx)
+worst = (float("inf"), None)
 for s in snaps:
-    with h5py.File(s) as f:
-        k = f["kind"][:].ravel(); x = f["x"][:][k == 0]; t = f.attrs["time"]
-    c = np.minimum.reduce([x[:, 0] - left, right - x[:, 0], x[:, 1] - floor]) / dx
-    if c.min() < worst[0]: worst = (c.min(), t)
+    d = snap(s)
+    c = box_clearance(d["x"][d["kind"] == 0], box, dx)
+    if c.min() < worst[0]: worst = (c.min(), d["time"])
 print(f"wall_clip: closest fluid centre to a wall face {worst[0]:+.2f} dx (t = {worst[1]:.3f} s) over {len(snaps)} snapshots (bound >= 0)")
 assert worst[0] >= 0, "a fluid centre is inside a wall's particle layer"
 PY

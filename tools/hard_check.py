@@ -257,6 +257,18 @@ def check_hydrostatic(runs):
     return verdict(fails, "; ".join(meas), "; ".join(bound))
 
 
+def tank_box(d0, dx):
+    """The tank box of a dam-break snapshot: the walls' inner faces, dx/2 in front of the first row."""
+    xw = d0["x"][d0["kind"] == 1]
+    return xw[:, 0].min() + 0.5 * dx, xw[:, 0].max() - 0.5 * dx, xw[:, 1].min() + 0.5 * dx, xw[:, 1].max() + 0.5 * dx
+
+
+def box_clearance(x, box, dx):
+    """Distance of each centre x inside the box to its nearest face, in dx (negative: outside)."""
+    left, right, floor, top = box
+    return np.minimum.reduce([x[:, 0] - left, right - x[:, 0], x[:, 1] - floor, top - x[:, 1]]) / dx
+
+
 def check_dam_break(runs):
     r = runs[0]
     if r.skipped():
@@ -266,10 +278,7 @@ def check_dam_break(runs):
     dx = r.summary["dx"]
     snaps = r.snapshots()
     d0 = snap(snaps[0])
-    wall = d0["kind"] == 1
-    xw = d0["x"][wall]
-    left, right = xw[:, 0].min() + 0.5 * dx, xw[:, 0].max() - 0.5 * dx
-    floor, top = xw[:, 1].min() + 0.5 * dx, xw[:, 1].max() + 0.5 * dx
+    box = tank_box(d0, dx)
     n0 = int(np.sum(d0["kind"] == 0))
     clear, first_out, counts, vmax, past_face, past_row = float("inf"), None, set(), 0.0, set(), set()
     for s in snaps:
@@ -277,7 +286,7 @@ def check_dam_break(runs):
         fl = d["kind"] == 0
         x = d["x"][fl]
         counts.add(int(fl.sum()))
-        c = np.minimum.reduce([x[:, 0] - left, right - x[:, 0], x[:, 1] - floor, top - x[:, 1]]) / dx
+        c = box_clearance(x, box, dx)
         clear = min(clear, c.min())
         past_face |= set(d["id"][fl][c < 0].tolist())
         past_row |= set(d["id"][fl][c < -0.5].tolist())

@@ -25,7 +25,7 @@ PetscErrorCode PPESetFromOptions(PPE ppe, PetscBool symmetric)
 #else
   PetscCall(PCSetType(pc, PCGAMG));
 #endif
-  PetscCall(KSPSetTolerances(ppe->ksp, 1e-8, 1e-50, PETSC_DEFAULT, 200));
+  PetscCall(KSPSetTolerances(ppe->ksp, PPE_RTOL_DEFAULT, 1e-50, PETSC_DEFAULT, 200));
   PetscCall(KSPSetInitialGuessNonzero(ppe->ksp, PETSC_TRUE)); /* last step's pressure */
   ppe->mat_hypre = PETSC_TRUE;
   PetscOptionsBegin(ppe->comm, NULL, "Pressure Poisson equation", "PPE");
@@ -383,5 +383,14 @@ PetscErrorCode PPESolve(PPE ppe, Sim sim)
   PetscCall(PetscLogStagePush(sim->stage[STAGE_HALO]));
   PetscCall(HaloRefresh(sim->halo, P, fv ? 2 : 1, refresh));
   PetscCall(PetscLogStagePop());
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode PPEFaultHint(PPE ppe)
+{
+  PetscReal rtol;
+  PetscFunctionBeginUser;
+  PetscCall(KSPGetTolerances(ppe->ksp, &rtol, NULL, NULL, NULL));
+  if (rtol > PPE_RTOL_DEFAULT) PetscCall(PetscPrintf(ppe->comm, "sphfsi: the pressure equation was solved to -ksp_rtol %g, looser than the default %g; in splashing flows a looser solve has let particles through walls (README, ISPH: known limitation): try the default first\n", (double)rtol, (double)PPE_RTOL_DEFAULT));
   PetscFunctionReturn(PETSC_SUCCESS);
 }

@@ -397,6 +397,7 @@ PetscErrorCode SimRun(Sim sim)
   if (sim->progress_every) PetscCall(Progress(sim));
   if (g->state == GUARD_STOP || (!g->state && sim->ckpt_interval > 0)) PetscCall(Checkpoint(sim));
   PetscCall(GuardFinish(sim));
+  if (sim->exit_status == SIM_EXIT_FAULT && sim->isph) PetscCall(PPEFaultHint(sim->isph->ppe));
   PetscCall(IOWriteProbes(sim));
   PetscCall(SimTotalMass(sim, &sim->mass));
   PetscCall(IOSummary(sim));

@@ -18,6 +18,8 @@
 #include <sphfsi/csr.h>
 #include <petscksp.h>
 
+#define PPE_RTOL_DEFAULT 1e-8 /* -ksp_rtol; looser ones let splashing particles through walls (README) */
+
 typedef struct _p_PPE *PPE;
 struct _p_PPE {
   MPI_Comm     comm;
@@ -53,3 +55,5 @@ PetscErrorCode PPEAssemble(PPE ppe, Sim sim, const PetscReal *src);
 /* Solve with the current pressure as initial guess; pressure of owned rows set, ghosts refreshed.
  * A solver failure is an error that names the KSP reason. */
 PetscErrorCode PPESolve(PPE ppe, Sim sim);
+/* After a fault: say so when the solve was looser than the default tolerance (collective). */
+PetscErrorCode PPEFaultHint(PPE ppe);

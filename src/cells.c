@@ -2,18 +2,20 @@
 #include <sphfsi/kernel.h>
 #include <math.h>
 
-PetscErrorCode CellsCreate(const Grid *g, Cells *c)
+PetscErrorCode CellsCreate(const Grid *g, const SPHKernel *K, Cells *c)
 {
   PetscFunctionBeginUser;
   PetscCall(PetscNew(c));
-  (*c)->grid = g;
+  (*c)->grid   = g;
+  (*c)->kernel = K;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode CellsCreateList(Cells *c)
+PetscErrorCode CellsCreateList(const SPHKernel *K, Cells *c)
 {
   PetscFunctionBeginUser;
   PetscCall(PetscNew(c));
+  (*c)->kernel = K;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -85,30 +87,55 @@ PetscErrorCode CellsBuild(Cells c, Particles P)
 /* W and F of a pair at distance r for smoothing length h, given ih = 1 / h, sw = KernelSigma(h) and
  * sf = sw / (h h): the operations of KernelW and KernelF (kernel.h) without the per-pair
  * normalisation; one division, in the outer ring only. */
-static inline void PairKernel(PetscReal r, PetscReal ih, PetscReal sw, PetscReal sf, PetscReal *w, PetscReal *f)
+static inline void PairKernel(KernelType t, PetscReal r, PetscReal ih, PetscReal sw, PetscReal sf, PetscReal *w, PetscReal *f)
 {
   PetscReal R = r * ih; /* ih = 1 / h: no division for the pairs inside h */
-  if (R < 1.0) {
-    *w = sw * (1.0 - 1.5 * R * R + 0.75 * R * R * R);
-    *f = sf * (-3.0 + 2.25 * R);
-  } else if (R < 2.0) {
-    PetscReal t = 2.0 - R;
-    *w = sw * 0.25 * t * t * t;
-    *f = -0.75 * sf * t * t / R;
-  } else *w = *f = 0.0;
+  if (R >= 2.0) { *w = *f = 0.0; return; }
+  if (t == KERNEL_CUBIC) {
+    if (R < 1.0) {
+      *w = sw * (1.0 - 1.5 * R * R + 0.75 * R * R * R);
+      *f = sf * (-3.0 + 2.25 * R);
+    } else {
+      PetscReal u = 2.0 - R;
+      *w = sw * 0.25 * u * u * u;
+      *f = -0.75 * sf * u * u / R;
+    }
+  } else if (t == KERNEL_WENDLAND_C2) {
+    PetscReal q = 0.5 * R, u = 1.0 - q, u3 = u * u * u;
+    *w = sw * u3 * u * (1.0 + 4.0 * q);
+    *f = -5.0 * sf * u3;
+  } else {
+    PetscReal q = 0.5 * R, u = 1.0 - q, u2 = u * u, u5 = u2 * u2 * u;
+    *w = sw * u5 * u * (1.0 + 6.0 * q + 35.0 / 3.0 * q * q);
+    *f = -14.0 / 3.0 * sf * (1.0 + 5.0 * q) * u5;
+  }
 }
 
 /* Kernel values of n pairs of smoothing length h (ih = 1 / h) from their r^2, stored in w: PairKernel
- * without branches, so that the compiler vectorises the square roots and divisions. */
-static void UniformPairKernels(PetscReal *restrict w, PetscReal *restrict f, PetscInt n, PetscReal ih, PetscReal sw, PetscReal sf)
+ * without branches, so that the compiler vectorises the square roots and divisions; one loop per
+ * kernel, chosen outside it. */
+static void UniformPairKernels(KernelType type, PetscReal *restrict w, PetscReal *restrict f, PetscInt n, PetscReal ih, PetscReal sw, PetscReal sf)
 {
-  for (PetscInt k = 0; k < n; k++) {
-    PetscReal R = PetscSqrtReal(w[k]) * ih, t = 2.0 - R, tt = t * t;
-    PetscReal win = sw * (1.0 - 1.5 * R * R + 0.75 * R * R * R), fin = sf * (-3.0 + 2.25 * R);
-    PetscReal wout = sw * 0.25 * tt * t, fout = -0.75 * sf * tt / (R > 0 ? R : 1.0);
-    w[k] = R < 1.0 ? win : (R < 2.0 ? wout : 0.0);
-    f[k] = R < 1.0 ? fin : (R < 2.0 ? fout : 0.0);
-  }
+  if (type == KERNEL_CUBIC)
+    for (PetscInt k = 0; k < n; k++) {
+      PetscReal R = PetscSqrtReal(w[k]) * ih, t = 2.0 - R, tt = t * t;
+      PetscReal win = sw * (1.0 - 1.5 * R * R + 0.75 * R * R * R), fin = sf * (-3.0 + 2.25 * R);
+      PetscReal wout = sw * 0.25 * tt * t, fout = -0.75 * sf * tt / (R > 0 ? R : 1.0);
+      w[k] = R < 1.0 ? win : (R < 2.0 ? wout : 0.0);
+      f[k] = R < 1.0 ? fin : (R < 2.0 ? fout : 0.0);
+    }
+  else if (type == KERNEL_WENDLAND_C2)
+    for (PetscInt k = 0; k < n; k++) {
+      PetscReal q = 0.5 * PetscSqrtReal(w[k]) * ih, u = q < 1.0 ? 1.0 - q : 0.0, u3 = u * u * u;
+      w[k] = sw * u3 * u * (1.0 + 4.0 * q);
+      f[k] = -5.0 * sf * u3;
+    }
+  else
+    for (PetscInt k = 0; k < n; k++) {
+      PetscReal q = 0.5 * PetscSqrtReal(w[k]) * ih, u = q < 1.0 ? 1.0 - q : 0.0, u2 = u * u, u5 = u2 * u2 * u;
+      w[k] = sw * u5 * u * (1.0 + 6.0 * q + 35.0 / 3.0 * q * q);
+      f[k] = -14.0 / 3.0 * sf * (1.0 + 5.0 * q) * u5;
+    }
 }
 
 /* Make room for `more` pairs after the first `cnt` of a list (doubling: the copies stay rare). */
@@ -162,6 +189,7 @@ static PetscErrorCode NeighbourPass(Cells bins, Particles P, PetscBool (*keep)(P
   const PetscInt  *list = c->list, *cstart = c->start;
   PetscInt         n = P->n, ntot = P->n + P->ng, cnt = 0;
   PetscBool        uniform = PETSC_TRUE; /* one smoothing length for owned and ghosts: no h per candidate */
+  const SPHKernel *K = out->kernel;
 
   PetscFunctionBeginUser;
   if (n + 1 > out->cap_start) {
@@ -178,7 +206,7 @@ static PetscErrorCode NeighbourPass(Cells bins, Particles P, PetscBool (*keep)(P
   for (PetscInt a = 0; a < n; a++) {
     PetscInt  ca = c->cell[a], ia = ca % c->n[0], ja = ca / c->n[0], r0[3], r1[3], nrow = 0, ncand = 0;
     PetscReal xa = x[2 * a], ya = x[2 * a + 1], ha = h[a], rca = 2.0 * ha + skin, rc2a = rca * rca;
-    PetscReal swa = KernelSigma(ha), sfa = swa / (ha * ha), iha = 1.0 / ha;
+    PetscReal swa = KernelSigma(K, ha), sfa = swa / (ha * ha), iha = 1.0 / ha;
     PetscBool mixed = PETSC_FALSE; /* a pair of another h: its kernel values are already in place */
     PetscInt  *nbr;
     PetscReal *w, *f;
@@ -208,17 +236,17 @@ static PetscErrorCode NeighbourPass(Cells bins, Particles P, PetscBool (*keep)(P
         } else {
           PetscReal hab = PairH(ha, h[b]), rc = 2.0 * hab + skin, sw;
           if (b == a || !(r2 < rc * rc)) continue;
-          sw = KernelSigma(hab);
-          PairKernel(PetscSqrtReal(r2), 1.0 / hab, sw, sw / (hab * hab), &w[cnt], &f[cnt]);
+          sw = KernelSigma(K, hab);
+          PairKernel(K->type, PetscSqrtReal(r2), 1.0 / hab, sw, sw / (hab * hab), &w[cnt], &f[cnt]);
           mixed = PETSC_TRUE;
         }
         nbr[cnt++] = b;
       }
     }
-    if (!mixed) UniformPairKernels(w + out->nstart[a], f + out->nstart[a], cnt - out->nstart[a], iha, swa, sfa);
+    if (!mixed) UniformPairKernels(K->type, w + out->nstart[a], f + out->nstart[a], cnt - out->nstart[a], iha, swa, sfa);
     else /* the pairs of another h hold their kernel values already */
       for (PetscInt k = out->nstart[a]; k < cnt; k++)
-        if (h[nbr[k]] == ha) PairKernel(PetscSqrtReal(w[k]), iha, swa, sfa, &w[k], &f[k]);
+        if (h[nbr[k]] == ha) PairKernel(K->type, PetscSqrtReal(w[k]), iha, swa, sfa, &w[k], &f[k]);
     out->max_nbr = PetscMax(out->max_nbr, cnt - out->nstart[a]);
   }
   out->nstart[n] = cnt;
@@ -248,8 +276,8 @@ PetscErrorCode CellsUpdatePairs(Cells sub, Particles P)
     for (PetscInt k = sub->nstart[a]; k < sub->nstart[a + 1]; k++) {
       PetscInt  b = sub->nbr[k];
       PetscReal dx = x[2 * a] - x[2 * b], dy = x[2 * a + 1] - x[2 * b + 1], r = PetscSqrtReal(dx * dx + dy * dy), hab = PairH(h[a], h[b]);
-      sub->w[k] = KernelW(r, hab);
-      sub->f[k] = KernelF(r, hab);
+      sub->w[k] = KernelW(sub->kernel, r, hab);
+      sub->f[k] = KernelF(sub->kernel, r, hab);
     }
   PetscFunctionReturn(PETSC_SUCCESS);
 }

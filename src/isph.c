@@ -40,8 +40,8 @@ PetscErrorCode ISPHSetUp(Sim sim)
   PetscCheck(s->shift >= 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-isph_shift %g must be >= 0", (double)s->shift);
   if (s->source == ISPH_SOURCE_DIVERGENCE) s->blend = 0;
   if (s->source == ISPH_SOURCE_DENSITY) s->blend = 1;
-  s->lat_w    = KernelLatticeSum(PETSC_FALSE);
-  s->lat_divr = KernelLatticeSum(PETSC_TRUE);
+  s->lat_w    = KernelLatticeSum(&sim->kernel, PETSC_FALSE);
+  s->lat_divr = KernelLatticeSum(&sim->kernel, PETSC_TRUE);
   PetscCall(PPECreate(sim->comm, &s->ppe));
   PetscCall(PPESetFromOptions(s->ppe, (PetscBool)!(sim->solid && sim->solid->implicit)));
   PetscCall(ParticlesEnableField(sim->P, FIELD_ACC, PETSC_FALSE));
@@ -176,7 +176,7 @@ static PetscErrorCode DensityFreeSurfaceSource(Sim sim)
       if (!KindIsSolid(P->kind[a])) rho[a] = rho0; /* a solid keeps its own */
       continue;
     }
-    sw = m[a] * KernelW(0, h[a]);
+    sw = m[a] * KernelW(&sim->kernel, 0, h[a]);
     for (PetscInt k = C->nstart[a]; k < C->nstart[a + 1]; k++) {
       PetscInt  b = C->nbr[k];
       PetscReal dx = x[2 * a] - x[2 * b], dy = x[2 * a + 1] - x[2 * b + 1], F = C->f[k], mb, rb, pb;
@@ -262,14 +262,17 @@ static PetscErrorCode Drift(Sim sim)
   PetscReal       *xs = PField(P, FIELD_XSPH);
   const PetscReal  dt = sim->dt, rho0 = sim->fl.rho0, eps = sim->fl.xsph;
   const FieldId    vel[] = {FIELD_V};
+  PetscReal       *dv = NULL; /* velocity corrections of shifted particles, applied after the loop */
 
   PetscFunctionBeginUser;
   PetscCall(PetscLogStagePush(sim->stage[STAGE_HALO]));
   PetscCall(HaloRefresh(sim->halo, P, 1, vel));
   PetscCall(PetscLogStagePop());
+  if (s->shift > 0 && sim->fl.shift_correct) PetscCall(PetscCalloc1(2 * P->n, &dv));
   for (PetscInt a = 0; a < P->n; a++) {
     PetscReal sx = 0, sy = 0, cx = 0, cy = 0;
     PetscBool near_fs = PETSC_FALSE;
+    ShiftGrad sg = {{0, 0, 0}, {0, 0, 0, 0}};
     xs[2 * a] = xs[2 * a + 1] = 0;
     if (!KindIsFluid(P->kind[a])) continue;
     for (PetscInt k = C->nstart[a]; k < C->nstart[a + 1]; k++) {
@@ -280,6 +283,7 @@ static PetscErrorCode Drift(Sim sim)
         sx -= w * (v[2 * a] - v[2 * b]);
         sy -= w * (v[2 * a + 1] - v[2 * b + 1]);
         if (fs[b] > 0) near_fs = PETSC_TRUE;
+        if (dv) ShiftGradAdd(&sg, m[b] / rho0, C->f[k], dx, dy, v[2 * a] - v[2 * b], v[2 * a + 1] - v[2 * b + 1]);
       }
       if (!KindIsSolid(P->kind[b])) { /* a solid's volume: its own mass over its own density */
         cx += m[b] / rho0 * C->f[k] * dx;
@@ -291,6 +295,12 @@ static PetscErrorCode Drift(Sim sim)
     }
     xs[2 * a] = eps * sx; xs[2 * a + 1] = eps * sy;
     ShiftVelocity(s->shift, fs[a] > 0 ? SHIFT_SURFACE : near_fs ? SHIFT_NEAR_SURFACE : SHIFT_BULK, h[a], v + 2 * a, dt, cx, cy, xs + 2 * a);
+    if (dv) ShiftCorrectVelocity(&sg, dt * (xs[2 * a] - eps * sx), dt * (xs[2 * a + 1] - eps * sy), dv + 2 * a);
+  }
+  if (dv) {
+    PetscReal *vv = PField(P, FIELD_V);
+    for (PetscInt k = 0; k < 2 * P->n; k++) vv[k] += dv[k];
+    PetscCall(PetscFree(dv));
   }
   PetscFunctionReturn(PETSC_SUCCESS);
 }

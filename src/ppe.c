@@ -143,7 +143,7 @@ static inline PetscBool InPC(PPE ppe, Particles P, Cells C, const PetscReal *h, 
   PetscInt b = C->nbr[k];
   if (h[b] != h[a]) {
     PetscReal hab = PairH(h[a], h[b]);
-    fa = KernelF(ppe->pc_qmax * hab, hab);
+    fa = KernelF(C->kernel, ppe->pc_qmax * hab, hab);
   }
   return (PetscBool)((PetscAbsReal(C->f[k]) >= PetscAbsReal(fa)) | !KindIsFluid(P->kind[a]) | !KindIsFluid(P->kind[b]));
 }
@@ -238,7 +238,7 @@ static PetscReal MovingSolidRow(PPE ppe, Sim sim, PetscInt a, PetscReal va, Pets
      * of its bonds): a free particle when the step is short, held by the solid when it is long
      * against the solid's own waves (a stiff plate under water barely moves in a step) */
     const SolidMaterial *sm = &sim->sl;
-    PetscReal            k = (sm->K + 4.0 * sm->G / 3.0) * h[a] / SPH_H_FACTOR;
+    PetscReal            k = (sm->K + 4.0 * sm->G / 3.0) * h[a] / sim->kernel.h_factor;
     kappa = ma / (m[a] + 0.25 * sim->dt * sim->dt * k);
   }
   for (PetscInt pass = 0; pass < 2; pass++)
@@ -278,7 +278,7 @@ PetscErrorCode PPEAssemble(PPE ppe, Sim sim, const PetscReal *src)
   PetscCall(VecGetArrayWrite(ppe->b, &bb));
   for (PetscInt r = 0; r < ppe->nrow; r++) {
     PetscInt  a = ppe->rowpart[r], ga = ppe->rstart + r, nc = 1;
-    PetscReal ma, ra, pa, va, diag = 0, hyd = 0, lumped = 0, fa = sparse ? KernelF(ppe->pc_qmax * h[a], h[a]) : 0;
+    PetscReal ma, ra, pa, va, diag = 0, hyd = 0, lumped = 0, fa = sparse ? KernelF(&sim->kernel, ppe->pc_qmax * h[a], h[a]) : 0;
     PetscInt  ncp = 1;
     const PetscReal gx = sim->g[0], gy = sim->g[1];
     PetscBool wall = KindIsBoundary(P->kind[a]), dir = IsDirichlet(fs, a);

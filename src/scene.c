@@ -48,7 +48,7 @@ static PetscErrorCode AddOne(Sim sim, ParticleKind kind, PetscReal x, PetscReal 
 {
   PetscInt id = sim->next_id++;
   PetscFunctionBeginUser;
-  if (id % sim->size == sim->rank) PetscCall(ParticlesAdd(sim->P, id, kind, x, y, rho0 * dx * dx, SPH_H_FACTOR * dx, rho0));
+  if (id % sim->size == sim->rank) PetscCall(ParticlesAdd(sim->P, id, kind, x, y, rho0 * dx * dx, sim->kernel.h_factor * dx, rho0));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -136,7 +136,7 @@ PetscErrorCode SceneProbePressure(Sim sim, const PetscReal x0[2], PetscReal *pva
     PetscReal dx, dy, w;
     if (!KindIsFluid(P->kind[a])) continue;
     dx = x0[0] - x[2 * a]; dy = x0[1] - x[2 * a + 1];
-    w  = KernelW(PetscSqrtReal(dx * dx + dy * dy), h[a]);
+    w  = KernelW(&sim->kernel, PetscSqrtReal(dx * dx + dy * dy), h[a]);
     if (w <= 0) continue;
     s[0] += w * (p[a] + rho[a] * (sim->g[0] * dx + sim->g[1] * dy));
     s[1] += w;

@@ -10,6 +10,7 @@
 #include <sphfsi/guard.h>
 
 const char *const FluidSchemes[] = {"wcsph", "isph", "FluidScheme", "FLUID_", NULL};
+const char *const KernelTypes[]  = {"cubic", "wendland_c2", "wendland_c4", "KernelType", "KERNEL_", NULL};
 
 PetscErrorCode SimCreate(MPI_Comm comm, Sim *sim)
 {
@@ -33,6 +34,7 @@ PetscErrorCode SimCreate(MPI_Comm comm, Sim *sim)
   s->fl.xsph        = 0.0;
   s->fl.wall_clip   = PETSC_TRUE; /* WCSPH walls push, never pull (boundary.c) */
   s->g[1]           = -9.81;
+  KernelInit(&s->kernel, KERNEL_CUBIC, 2, SPH_H_FACTOR);
   s->has_fluid      = PETSC_TRUE;
   s->sl.rho0        = 1000.0;
   s->sl.alpha       = 1.0;
@@ -76,13 +78,16 @@ PetscErrorCode SimSetFromOptions(Sim sim)
 {
   char      name[64] = "", names[512];
   PetscBool set, dx_set, t_set;
-  PetscInt  fluid = sim->fluid;
+  PetscInt  fluid = sim->fluid, ktype = sim->kernel.type;
+  PetscReal hfac = sim->kernel.h_factor;
 
   PetscFunctionBeginUser;
   PetscCall(SceneListNames(names, sizeof(names)));
   PetscOptionsBegin(sim->comm, NULL, "sphfsi: SPH for fluid-structure interaction", "Sim");
   PetscCall(PetscOptionsString("-case", "Scene to run", "", name, name, sizeof(name), &set));
   PetscCall(PetscOptionsEList("-fluid", "Fluid pressure scheme", "", FluidSchemes, 2, FluidSchemes[sim->fluid], &fluid, NULL));
+  PetscCall(PetscOptionsEList("-kernel", "Smoothing kernel of every scheme and the solid: cubic (Eq. 12), wendland_c2, wendland_c4 (Dehnen & Aly 2012); support 2h", "", KernelTypes, 3, KernelTypes[ktype], &ktype, NULL));
+  PetscCall(PetscOptionsReal("-h_factor", "Smoothing length over particle spacing, h / dx (the paper: 1.3); wall rows default to cover 2h", "", hfac, &hfac, NULL));
   PetscCall(PetscOptionsReal("-dx", "Particle spacing of the finest particles (m); default: the scene's", "", sim->dx, &sim->dx, &dx_set));
   PetscCall(PetscOptionsReal("-t_end", "Physical end time (s); default: the scene's", "", sim->t_end, &sim->t_end, &t_set));
   PetscCall(PetscOptionsReal("-dt", "Fixed time step (s); 0 = adaptive", "", sim->dt_fixed, &sim->dt_fixed, NULL));
@@ -97,6 +102,8 @@ PetscErrorCode SimSetFromOptions(Sim sim)
   PetscCall(PetscOptionsString("-refdata_dir", "Reference data for the errors in summary.json (default $SPHFSI_REFDATA, else ../shared/refdata)", "", sim->refdata_dir, sim->refdata_dir, sizeof(sim->refdata_dir), NULL));
   PetscOptionsEnd();
   sim->fluid = (FluidScheme)fluid;
+  PetscCheck(hfac >= 1 && hfac <= 3, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-h_factor %g must be in [1, 3] (h / dx; 1.3 for the cubic spline, 1.5-2.5 for the Wendland kernels)", (double)hfac);
+  KernelInit(&sim->kernel, (KernelType)ktype, 2, hfac);
   PetscCheck(set && name[0], sim->comm, PETSC_ERR_USER_INPUT, "No scene given: use -case NAME with NAME one of: %s (or -options_file cases/NAME.opts)", names);
   PetscCall(SceneFind(name, &sim->scene));
   PetscCheck(sim->scene, sim->comm, PETSC_ERR_USER_INPUT, "Unknown -case %s: choose one of %s", name, names);
@@ -126,6 +133,7 @@ static PetscErrorCode FluidOptions(Sim sim)
   PetscCall(PetscOptionsReal("-alpha", "Artificial viscosity coefficient, Eq. 24", "", sim->fl.alpha, &sim->fl.alpha, NULL));
   PetscCall(PetscOptionsReal("-delta", "Density diffusion coefficient (delta-SPH); 0 = off", "", sim->fl.delta, &sim->fl.delta, NULL));
   PetscCall(PetscOptionsReal("-xsph", "XSPH epsilon, Eq. 44; 0 = off", "", sim->fl.xsph, &sim->fl.xsph, NULL));
+  PetscCall(PetscOptionsBool("-shift_correct", "With particle shifting (-wcsph_shift, -isph_shift): correct a shifted particle's velocity to its new place, v += dr . grad v", "", sim->fl.shift_correct, &sim->fl.shift_correct, NULL));
   PetscOptionsEnd();
   PetscCheck(sim->fl.rho0 > 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-rho0 %g must be > 0", (double)sim->fl.rho0);
   PetscCheck(sim->fl.mu >= 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-mu %g must be >= 0", (double)sim->fl.mu);
@@ -240,7 +248,7 @@ PetscErrorCode SimSetUp(Sim sim)
   }
   { /* the largest smoothing length sets the cells (scenes may mix particle sizes) */
     const PetscReal *h = PField(sim->P, FIELD_H);
-    sim->h_max = SPH_H_FACTOR * sim->dx;
+    sim->h_max = sim->kernel.h_factor * sim->dx;
     for (PetscInt a = 0; a < sim->P->n; a++) sim->h_max = PetscMax(sim->h_max, h[a]);
     PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &sim->h_max, 1, MPIU_REAL, MPIU_MAX, sim->comm));
   }
@@ -254,7 +262,7 @@ PetscErrorCode SimSetUp(Sim sim)
   PetscCall(GridSetUp(&sim->grid, sim->dom_lo, sim->dom_hi, 2.0 * sim->h_max + (sim->solid ? sim->solid->skin * sim->dx : 0), sim->periodic));
   sim->decomp->split_solids = (PetscBool)(sim->decomp->split_solids && sim->has_fluid && sim->has_solid);
   PetscCall(DecompSetUp(sim->decomp, &sim->grid));
-  PetscCall(CellsCreate(&sim->grid, &sim->cells));
+  PetscCall(CellsCreate(&sim->grid, &sim->kernel, &sim->cells));
   sim->next_probe = sim->next_out = 0;
   sim->next_ckpt  = sim->ckpt_interval;
   if (sim->restart[0]) PetscCall(CheckpointRestart(sim)); /* the particles and state of the checkpoint */

@@ -64,13 +64,14 @@ PetscErrorCode SolidSetUp(Sim sim)
   /* ISPH: the solid's loads (after the step's last rebuild) and its PPE rows (after the predictor's)
    * read the fluid ghosts' pressure, which nothing else recomputes there */
   if (fluid && sim->fluid == FLUID_ISPH) PetscCall(ParticlesEnableField(sim->P, FIELD_P, PETSC_TRUE));
-  PetscCall(CellsCreateList(&s->nl));
+  PetscCall(CellsCreateList(&sim->kernel, &s->nl));
   { /* |sum V grad W| of a particle on a flat surface of a lattice of spacing 1 */
-    PetscReal g = 0, hh = SPH_H_FACTOR;
-    for (PetscInt j = 0; j <= 3; j++)
-      for (PetscInt i = -3; i <= 3; i++) {
+    PetscReal g = 0, hh = sim->kernel.h_factor;
+    PetscInt  nr = KernelSupportRows(&sim->kernel);
+    for (PetscInt j = 0; j <= nr; j++)
+      for (PetscInt i = -nr; i <= nr; i++) {
         PetscReal r = PetscSqrtReal((PetscReal)(i * i + j * j));
-        g += KernelF(r, hh) * j;
+        g += KernelF(&sim->kernel, r, hh) * j;
       }
     s->nrm_min = 0.5 * PetscAbsReal(g);
   }
@@ -164,7 +165,7 @@ static PetscErrorCode Momentum(Sim sim)
     PetscReal ax = 0, ay = 0, ra = rho[a], ia = 1.0 / (ra * ra), wdx, fl[2] = {0, 0};
     PetscReal sxx = (S[3 * a] - p[a]) * ia, sxy = S[3 * a + 1] * ia, syy = (S[3 * a + 2] - p[a]) * ia;
     if (!KindIsSolid(P->kind[a])) continue;
-    wdx = R ? KernelW(h[a] / SPH_H_FACTOR, h[a]) : 1;
+    wdx = R ? KernelW(&sim->kernel, h[a] / sim->kernel.h_factor, h[a]) : 1;
     for (PetscInt k = C->nstart[a]; k < C->nstart[a + 1]; k++) {
       PetscInt  b = C->nbr[k];
       PetscReal dx = x[2 * a] - x[2 * b], dy = x[2 * a + 1] - x[2 * b + 1], r2 = dx * dx + dy * dy;
@@ -221,7 +222,7 @@ static PetscErrorCode Normals(Sim sim)
 
   PetscFunctionBeginUser;
   for (PetscInt a = 0; a < P->n; a++) {
-    PetscReal gx = 0, gy = 0, gn, dxa = h[a] / SPH_H_FACTOR;
+    PetscReal gx = 0, gy = 0, gn, dxa = h[a] / sim->kernel.h_factor;
     nrm[2 * a] = nrm[2 * a + 1] = 0;
     if (!KindIsSolid(P->kind[a])) continue;
     for (PetscInt k = C->nstart[a]; k < C->nstart[a + 1]; k++) {

@@ -14,7 +14,7 @@ PetscErrorCode WCSPHSetUp(Sim sim)
   PetscCall(PetscOptionsBool("-wcsph_wall_clip", "Clip the wall pressure (Adami extrapolation) at 0: fluid in tension next to a wall is not held on it", "", fl->wall_clip, &fl->wall_clip, NULL));
   PetscOptionsEnd();
   PetscCheck(fl->shift >= 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-wcsph_shift %g must be >= 0", (double)fl->shift);
-  fl->lat_divr = KernelLatticeSum(PETSC_TRUE);
+  fl->lat_divr = KernelLatticeSum(&sim->kernel, PETSC_TRUE);
   PetscCall(ParticlesEnableField(sim->P, FIELD_ACC, PETSC_FALSE));
   PetscCall(ParticlesEnableField(sim->P, FIELD_DRHO, PETSC_FALSE));
   PetscCall(ParticlesEnableField(sim->P, FIELD_VWALL, PETSC_FALSE)); /* ghosts: refreshed by BoundaryWallState */
@@ -55,15 +55,18 @@ static PetscErrorCode Continuity(Sim sim)
   const PetscReal     *m = PField(P, FIELD_M), *h = PField(P, FIELD_H);
   PetscReal           *drho = PField(P, FIELD_DRHO), *xs = PField(P, FIELD_XSPH), *fs = PField(P, FIELD_FS);
   PetscBool           *surface = NULL;
+  PetscReal           *dv = NULL; /* velocity corrections of shifted particles, applied after the loop */
   const FluidMaterial *fl   = &sim->fl;
   const PetscReal      dcoef = fl->delta * fl->c0, dhyd = fl->rho0 / (fl->c0 * fl->c0);
   const PetscBool      shift = (PetscBool)(fl->shift > 0), surf = (PetscBool)(shift && fs);
 
   PetscFunctionBeginUser;
   if (surf) PetscCall(PetscCalloc1(P->n, &surface));
+  if (shift && fl->shift_correct) PetscCall(PetscCalloc1(2 * P->n, &dv));
   for (PetscInt a = 0; a < P->n; a++) {
     PetscReal dr = 0, dd = 0, sx = 0, sy = 0, cx = 0, cy = 0, divr = 0;
     PetscBool near = PETSC_FALSE;
+    ShiftGrad sg = {{0, 0, 0}, {0, 0, 0, 0}};
     PetscReal xa = x[2 * a], ya = x[2 * a + 1], vxa = v[2 * a], vya = v[2 * a + 1], ra = rho[a];
     if (!KindIsFluid(P->kind[a])) continue;
     for (PetscInt k = C->nstart[a]; k < C->nstart[a + 1]; k++) {
@@ -73,6 +76,7 @@ static PetscErrorCode Continuity(Sim sim)
       dr += vb * F * (dvx * dx + dvy * dy);
       if (shift) { cx += vb * F * dx; cy += vb * F * dy; divr -= vb * F * (dx * dx + dy * dy); }
       if (!KindIsFluid(P->kind[b])) continue;
+      if (dv) ShiftGradAdd(&sg, vb, F, dx, dy, dvx, dvy);
       if (surf && fs[b] > 0) near = PETSC_TRUE;
       if (dcoef > 0) {
         PetscReal dh = dhyd * (-sim->g[0] * dx - sim->g[1] * dy); /* rho_b^H - rho_a^H */
@@ -87,7 +91,16 @@ static PetscErrorCode Continuity(Sim sim)
     drho[a] = ra * dr + dcoef * dd;
     if (xs) { xs[2 * a] = fl->xsph * sx; xs[2 * a + 1] = fl->xsph * sy; }
     if (surf) surface[a] = (PetscBool)(2.0 * divr / fl->lat_divr < SHIFT_DIVR_SURFACE);
-    if (shift) ShiftVelocity(fl->shift, surf && surface[a] ? SHIFT_SURFACE : near ? SHIFT_NEAR_SURFACE : SHIFT_BULK, h[a], v + 2 * a, sim->dt, cx, cy, xs + 2 * a);
+    if (shift) {
+      PetscReal s0[2] = {xs[2 * a], xs[2 * a + 1]};
+      ShiftVelocity(fl->shift, surf && surface[a] ? SHIFT_SURFACE : near ? SHIFT_NEAR_SURFACE : SHIFT_BULK, h[a], v + 2 * a, sim->dt, cx, cy, xs + 2 * a);
+      if (dv) ShiftCorrectVelocity(&sg, sim->dt * (xs[2 * a] - s0[0]), sim->dt * (xs[2 * a + 1] - s0[1]), dv + 2 * a);
+    }
+  }
+  if (dv) {
+    PetscReal *vw = PField(P, FIELD_V);
+    for (PetscInt k = 0; k < 2 * P->n; k++) vw[k] += dv[k];
+    PetscCall(PetscFree(dv));
   }
   if (surf) {
     for (PetscInt a = 0; a < P->n; a++) fs[a] = surface[a] ? 1.0 : 0.0;

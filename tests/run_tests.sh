@@ -34,6 +34,10 @@ run test_hdf5_isph $MPI "${BINDIR:-bin}"/test_hdf5 -fluid isph
 run test_hdf5_wcsph_shift $MPI "${BINDIR:-bin}"/test_hdf5 -wcsph_shift 1
 # WCSPH with shifting (free-surface flags of the neighbours from the last step, through the halo): exact
 run test_rank_agreement_wcsph_shift $MPI "${BINDIR:-bin}"/test_rank_agreement -wcsph_shift 1
+# Another kernel and h / dx (-kernel, -h_factor: 4 wall rows for 2h = 4 dx) with shifting and the shifted
+# particles' velocity correction (-shift_correct): exact in WCSPH, to the solver tolerance in ISPH
+run test_rank_agreement_wendland $MPI "${BINDIR:-bin}"/test_rank_agreement -kernel wendland_c2 -h_factor 2 -wcsph_shift 1 -shift_correct
+run test_rank_agreement_wendland_isph $MPI "${BINDIR:-bin}"/test_rank_agreement -fluid isph -kernel wendland_c2 -h_factor 2 -isph_shift 5 -shift_correct -ksp_rtol 1e-10 -tol 1e-8
 # Migration and ghosts by the sparse exchange (the default from 9 ranks on): the same answers, also
 # through the forced repartitions of test_decomp
 run test_rank_agreement_sparse $MPI "${BINDIR:-bin}"/test_rank_agreement -decomp_sparse_ranks 1
@@ -53,6 +57,7 @@ run test_rank_agreement_fsi_isph $MPI "${BINDIR:-bin}"/test_rank_agreement -case
 run test_restart_fsi $MPI "${BINDIR:-bin}"/test_restart -case elastic_gate -fluid wcsph -dx 0.00125 -t_end 0.0015
 run test_restart_fsi_isph $MPI "${BINDIR:-bin}"/test_restart -case elastic_gate -fluid isph -dx 0.00125 -t_end 0.002 -ksp_rtol 1e-10 -tol 1e-8
 run test_restart_isph $MPI "${BINDIR:-bin}"/test_restart -fluid isph -ksp_rtol 1e-10 -tol 1e-8
+run test_restart_wendland $MPI "${BINDIR:-bin}"/test_restart -kernel wendland_c2 -h_factor 2 -wcsph_shift 1 -shift_correct
 run test_restart_solid $MPI "${BINDIR:-bin}"/test_restart -case oscillating_plate -plate_ny 6 -t_end 0.01
 
 if [ "${1:-}" != "--unit-only" ]; then

@@ -131,7 +131,7 @@ int main(int argc, char **argv)
   {
     Particles        P = sim->P;
     const PetscReal *x = PField(P, FIELD_X), *m = PField(P, FIELD_M);
-    const PetscReal  H = 0.1, W = 0.1, margin = 3 * SPH_H_FACTOR * sim->dx;
+    const PetscReal  H = 0.1, W = 0.1, margin = 3 * sim->kernel.h_factor * sim->dx;
     PetscCall(VecGetArrayWrite(f, &ff));
     for (PetscInt r = 0; r < ppe->nrow; r++) {
       const PetscReal *xa = x + 2 * ppe->rowpart[r];

@@ -31,7 +31,7 @@ static PetscErrorCode BuildScene(Sim sim)
   if (sim->fl.c0 <= 0) sim->fl.c0 = 10.0 * sim->v_ref; /* as SimSetUp: the EOS of the initial density */
   if (sim->has_solid) PetscCall(SolidSetUp(sim));
   PetscCall(ParticlesSetUp(sim->P));
-  sim->h_max = SPH_H_FACTOR * sim->dx;
+  sim->h_max = sim->kernel.h_factor * sim->dx;
   PetscCall(sim->scene->populate(sim));
   PetscCall(GridSetUp(&sim->grid, sim->dom_lo, sim->dom_hi, 2.0 * sim->h_max + (sim->solid ? sim->solid->skin * sim->dx : 0), sim->periodic));
   PetscFunctionReturn(PETSC_SUCCESS);

@@ -4,6 +4,7 @@
 #pragma once
 #include <sphfsi/grid.h>
 #include <sphfsi/particles.h>
+#include <sphfsi/kernel.h>
 
 typedef struct _p_Cells *Cells;
 struct _p_Cells {
@@ -14,14 +15,15 @@ struct _p_Cells {
   PetscInt   *nstart, *nbr, cap_nbr, cap_start, npart; /* neighbours of owned a < npart: nbr[nstart[a] .. nstart[a+1]) */
   PetscReal  *w, *f;                  /* per pair: W_ab and F_ab = (dW/dr)/r, so grad_a W_ab = F_ab (x_a - x_b) */
   PetscInt    max_nbr;
+  const SPHKernel *kernel; /* the run's kernel (W, F of the pairs) */
 };
 
-PetscErrorCode CellsCreate(const Grid *g, Cells *c);
+PetscErrorCode CellsCreate(const Grid *g, const SPHKernel *K, Cells *c);
 PetscErrorCode CellsDestroy(Cells *c);
 /* Bin owned + ghost particles and build the neighbour list (r < 2 h_ab) of owned particles. */
 PetscErrorCode CellsBuild(Cells c, Particles P);
 /* Cells with only a neighbour list (no bins of their own): for CellsBuildSubList. */
-PetscErrorCode CellsCreateList(Cells *c);
+PetscErrorCode CellsCreateList(const SPHKernel *K, Cells *c);
 /* Neighbour list in `sub` of the owned particles whose kind `keep` accepts, with the binning of
  * `c` and radius 2 h_ab + skin (skin + 2 h_max <= cell size), so that it stays complete while the
  * particles move less than skin / 2; kernel values at the current positions (zero beyond 2 h_ab). */

@@ -10,6 +10,7 @@ typedef struct {
   PetscReal delta;    /* density diffusion (delta-SPH), 0 = off */
   PetscReal xsph;     /* XSPH epsilon, Eq. 44, 0 = off */
   PetscReal shift;    /* WCSPH Fickian shifting coefficient A (shifting.h), 0 = off */
+  PetscBool shift_correct; /* both schemes: a shifted particle's velocity corrected to its new place (shifting.h) */
   PetscReal lat_divr; /* WCSPH with shifting: bulk value of -sum V F r^2, normalises div r */
   PetscBool wall_clip; /* WCSPH: the Adami wall pressure clipped at 0, so that a wall never pulls fluid */
 } FluidMaterial;

@@ -22,3 +22,34 @@ static inline void ShiftVelocity(PetscReal A, ShiftZone zone, PetscReal h, const
   if (len > 0.1 * h) { dxs *= 0.1 * h / len; dys *= 0.1 * h / len; }
   xs[0] += dxs / dt; xs[1] += dys / dt;
 }
+
+/* The shifted particle carries its velocity to a new place: corrected to first order there,
+ * v += dr . grad v (Xu et al. 2009, Lind et al. 2012), with grad v = G M^-1 from the fluid
+ * neighbours, G = sum V_b (v_b - v_a) (x) grad_a W and M = sum V_b (x_b - x_a) (x) grad_a W (the
+ * kernel-gradient correction, so that the gradient of a linear field is exact on any arrangement).
+ * Accumulate pair by pair with ShiftGradAdd, then apply with ShiftCorrectVelocity. */
+typedef struct {
+  PetscReal M[3]; /* xx, xy, yy (symmetric) */
+  PetscReal G[4]; /* row-major: G[i][j] = sum V (v_b - v_a)_i (grad_a W)_j */
+} ShiftGrad;
+
+/* pair with volume V, F = (dW/dr) / r, d = x_a - x_b, dv = v_a - v_b */
+static inline void ShiftGradAdd(ShiftGrad *s, PetscReal V, PetscReal F, PetscReal dx, PetscReal dy, PetscReal dvx, PetscReal dvy)
+{
+  PetscReal c = V * F;
+  s->M[0] -= c * dx * dx; s->M[1] -= c * dx * dy; s->M[2] -= c * dy * dy;
+  s->G[0] -= c * dvx * dx; s->G[1] -= c * dvx * dy; s->G[2] -= c * dvy * dx; s->G[3] -= c * dvy * dy;
+}
+
+/* v += dr . grad v for the shift dr = dt * (shift velocity); none where M cannot be inverted. */
+static inline void ShiftCorrectVelocity(const ShiftGrad *s, PetscReal drx, PetscReal dry, PetscReal v[2])
+{
+  PetscReal det = s->M[0] * s->M[2] - s->M[1] * s->M[1], ix, iy, jx, jy;
+  if (!(det > 1e-6 * (s->M[0] * s->M[0] + s->M[2] * s->M[2])) || (drx == 0 && dry == 0)) return;
+  /* w = M^-1 dr (M symmetric), then dv_i = sum_k G[i][k] w_k */
+  ix = (s->M[2] * drx - s->M[1] * dry) / det;
+  iy = (-s->M[1] * drx + s->M[0] * dry) / det;
+  jx = s->G[0] * ix + s->G[1] * iy;
+  jy = s->G[2] * ix + s->G[3] * iy;
+  v[0] += jx; v[1] += jy;
+}

@@ -7,6 +7,7 @@
 #include <sphfsi/decomp.h>
 #include <sphfsi/halo.h>
 #include <sphfsi/material.h>
+#include <sphfsi/kernel.h>
 #include <petscviewer.h>
 
 typedef enum { FLUID_WCSPH = 0, FLUID_ISPH } FluidScheme;
@@ -43,6 +44,7 @@ struct _p_Sim {
   SolidMaterial sl;
   Solid         solid; /* NULL unless the scene has solids */
   PetscReal     v_ref;      /* expected maximum speed: c0 = 10 v_ref when -c0 is not given */
+  SPHKernel     kernel;     /* -kernel, -h_factor: the smoothing kernel of every pair */
   PetscReal     dx, h_max;  /* finest spacing, largest smoothing length */
   PetscReal     dom_lo[2], dom_hi[2];
   PetscBool     periodic[2];

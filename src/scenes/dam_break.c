@@ -16,7 +16,7 @@ static PetscErrorCode Create(Sim sim)
   sim->scene_ctx = c;
   PetscCall(SceneKeepSeries(sim, &c->front));
   PetscCall(SceneKeepSeries(sim, &c->height));
-  c->a = 0.05715; c->H = -1; c->L = -1; c->top = -1; c->rows = 3;
+  c->a = 0.05715; c->H = -1; c->L = -1; c->top = -1; c->rows = KernelSupportRows(&sim->kernel);
   PetscOptionsBegin(sim->comm, NULL, "Scene dam_break: collapse of a water column", "");
   PetscCall(PetscOptionsReal("-column_width", "Column width a (m)", "", c->a, &c->a, NULL));
   PetscCall(PetscOptionsReal("-column_height", "Column height (m); default 2a", "", c->H, &c->H, NULL));

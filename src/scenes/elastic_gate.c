@@ -25,7 +25,7 @@ static PetscErrorCode Create(Sim sim)
   sim->scene_ctx = c;
   PetscCall(SceneKeepSeries(sim, &c->dx_tip)); /* checkpoints carry the histories */
   PetscCall(SceneKeepSeries(sim, &c->dy_tip));
-  c->W = 0.1; c->H = 0.14; c->L = 0.079; c->t = 0.005; c->top = 0.16; c->rows = 3; c->nclamp = 4; c->dxc = -1; c->fine = 0.02; c->floor = 0.1;
+  c->W = 0.1; c->H = 0.14; c->L = 0.079; c->t = 0.005; c->top = 0.16; c->rows = KernelSupportRows(&sim->kernel); c->nclamp = 4; c->dxc = -1; c->fine = 0.02; c->floor = 0.1;
   sim->sl.rho0 = 1100; sim->sl.K = 2.0e7; sim->sl.G = 4.27e6; /* rubber, paper section 3.3 */
   sim->fl.mu   = 1.0e-3;
   PetscOptionsBegin(sim->comm, NULL, "Scene elastic_gate: water column released through an elastic gate (Antoci et al. 2007)", "");

@@ -15,7 +15,7 @@ static PetscErrorCode Create(Sim sim)
   PetscCall(PetscNew(&c));
   sim->scene_ctx = c;
   PetscCall(SceneKeepSeries(sim, &c->pb));
-  c->W = 0.1; c->H = 0.1; c->rows = 3;
+  c->W = 0.1; c->H = 0.1; c->rows = KernelSupportRows(&sim->kernel);
   PetscOptionsBegin(sim->comm, NULL, "Scene hydrostatic: water at rest in a tank", "");
   PetscCall(PetscOptionsReal("-tank_width", "Tank (and water) width (m)", "", c->W, &c->W, NULL));
   PetscCall(PetscOptionsReal("-water_depth", "Water depth H (m)", "", c->H, &c->H, NULL));

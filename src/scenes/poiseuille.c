@@ -17,7 +17,7 @@ static PetscErrorCode Create(Sim sim)
 {
   Poiseuille *c;
   PetscReal   F;
-  PetscInt    nmin = (PetscInt)PetscCeilReal(3 * 2 * SPH_H_FACTOR); /* the periodic grid needs >= 3 cells of 2 h */
+  PetscInt    nmin = (PetscInt)PetscCeilReal(3 * 2 * sim->kernel.h_factor); /* the periodic grid needs >= 3 cells of 2 h */
   PetscFunctionBeginUser;
   PetscCall(PetscNew(&c));
   sim->scene_ctx = c;
@@ -26,7 +26,7 @@ static PetscErrorCode Create(Sim sim)
   PetscCall(SceneKeepReal(sim, &c->l2_last));
   PetscCall(SceneKeepReal(sim, &c->t_last));
   c->Hc = 1e-3; c->Re = 0.0125; c->nu = 1e-6;
-  c->rows = (PetscInt)PetscCeilReal(2 * SPH_H_FACTOR); /* wall rows covering the kernel support 2h */
+  c->rows = KernelSupportRows(&sim->kernel); /* wall rows covering the kernel support 2h */
   PetscOptionsBegin(sim->comm, NULL, "Scene poiseuille: body-force driven channel flow from rest (Morris et al. 1997); nu = 1e-6 m^2/s (mu = rho0 nu), F = 8 nu^2 Re / Hc^3 (Re 0.0125, Hc 1 mm: F = 1e-4 m/s^2, u_max = 1.25e-5 m/s)", "");
   PetscCall(PetscOptionsReal("-channel_height", "Channel height Hc between the walls (m)", "", c->Hc, &c->Hc, NULL));
   PetscCall(PetscOptionsReal("-re", "Reynolds number u_max Hc / nu; sets the body force F = 8 nu^2 Re / Hc^3", "", c->Re, &c->Re, NULL));

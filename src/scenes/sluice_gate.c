@@ -55,7 +55,7 @@ static PetscErrorCode Create(Sim sim)
   PetscCall(SceneKeepSeries(sim, &c->hup));
   PetscCall(SceneKeepSeries(sim, &c->hdown));
   PetscCall(SceneKeepSeries(sim, &c->vup));
-  c->W = 0.1; c->H = 0.14; c->a = 0.03; c->Lc = -1; c->top = -1; c->rows = 3; c->gate_rows = 4; c->bevel = 45;
+  c->W = 0.1; c->H = 0.14; c->a = 0.03; c->Lc = -1; c->top = -1; c->rows = KernelSupportRows(&sim->kernel); c->gate_rows = 4; c->bevel = 45;
   c->dxc = -1; c->fine = 0.02;
   c->win[0] = -1; c->win[1] = -1;
   PetscOptionsBegin(sim->comm, NULL, "Scene sluice_gate: a reservoir drains under a vertical gate", "");

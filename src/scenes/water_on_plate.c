@@ -37,7 +37,7 @@ static PetscErrorCode Create(Sim sim)
   PetscCheck(sim->dx <= 0.5 * PetscMin(c->W, c->H), sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dx %g is larger than half the water region (%g x %g m): choose a smaller -dx", (double)sim->dx, (double)c->W, (double)c->H);
   PetscCheck(c->nclamp >= 1 && c->T / sim->dx > c->nclamp + 0.999, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-plate_thickness %g must leave at least one free row above -clamp_rows %" PetscInt_FMT " >= 1 at -dx %g", (double)c->T, c->nclamp, (double)sim->dx);
   c->W = RoundToInt(c->W / sim->dx) * sim->dx; /* whole lattice columns in the period */
-  PetscCheck(c->W >= 3 * (2 * SPH_H_FACTOR + 0.5) * sim->dx, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-tank_width %g: the periodic grid needs at least 3 cells of 2 h + skin; choose a smaller -dx", (double)c->W);
+  PetscCheck(c->W >= 3 * (2 * sim->kernel.h_factor + 0.5) * sim->dx, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-tank_width %g: the periodic grid needs at least 3 cells of 2 h + skin; choose a smaller -dx", (double)c->W);
   sim->has_solid   = PETSC_TRUE;
   sim->v_ref       = PetscSqrtReal(2 * 9.81 * c->H);
   sim->periodic[0] = PETSC_TRUE;

@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
 # Taylor-Green vortices at Re = 100 (L = 1 m, U = 1 m/s, nu = 0.01 m^2/s), 50 x 50 particles, t = 1 s.
 # Bound: the kinetic energy E(t)/E(0) is within 5 % of the exact decay exp(-16 pi^2 nu t / L^2)
-# (= 0.206 at t = 1 s), checked at t = 0.25, 0.5, 0.75 and 1 s.
+# (= 0.206 at t = 1 s), checked at t = 0.25, 0.5, 0.75 and 1 s; and the L2 velocity error at t = 1 s
+# is at most 5 % (issue 24's target for WCSPH at L/100; both schemes reach it at L/50 with the case's
+# Wendland C2 kernel at h = 2 dx, where the cubic spline at 1.3 dx gave 60 % in WCSPH).
 #   tests/check_taylor_green.sh "MPIEXEC -n P" OUTDIR [extra sphfsi options, e.g. -fluid isph]
 set -e
 MPI=$1; OUT=$2; shift 2
@@ -27,5 +29,6 @@ t = rows[-1][0]
 assert abs(t - 1.0) < 1e-9, f"the run ended at t = {t}, not 1 s"
 print(f"taylor_green: E(1)/E(0) error {100*e['e_kin_rel_err_final']:.1f} % (bound 5 %), L2 velocity error {100*e['l2_vel_err_final']:.1f} %, {s['particles']} particles, {s['steps']} steps, {s['wall_s']:.2f} s")
 assert ok and e["e_kin_rel_err_final"] < 0.05, "kinetic-energy decay off the exact one by more than 5 %"
+assert e["l2_vel_err_final"] < 0.05, "L2 velocity error at t = 1 s above 5 %"
 assert s["mass_rel_drift"] == 0, "mass changed"
 PY

@@ -121,14 +121,16 @@ PetscErrorCode PPENumber(PPE ppe, Sim sim)
 typedef enum { NBR_SKIP, NBR_KNOWN, NBR_UNKNOWN } NbrRole;
 
 /* What neighbour b is in row a's equation: an unknown (column), a known pressure (free surface:
- * 0), or absent: a wall or solid sees only fluid (its row is the implicit form of the Adami
- * extrapolation), a wall or solid outside every fluid particle's reach, a periodic image of a. */
-static inline NbrRole Role(Particles P, const PetscReal *row, const PetscReal *fs, PetscInt a, PetscInt b)
+ * 0; the pinned row, ppe.h: 0), or absent: a wall or solid sees only fluid (its row is the implicit
+ * form of the Adami extrapolation), a wall or solid outside every fluid particle's reach, a
+ * periodic image of a. */
+static inline NbrRole Role(Particles P, const PetscReal *row, const PetscReal *fs, PetscInt pin, PetscInt a, PetscInt b)
 {
   if (KindIsBoundary(P->kind[a]) && !KindIsFluid(P->kind[b])) return NBR_SKIP;
   if (row[b] < 0) return NBR_SKIP;
   if (fs[b] > 0) return NBR_KNOWN;
   if (row[b] == row[a]) return NBR_SKIP;
+  if (row[b] == (PetscReal)pin) return NBR_KNOWN;
   return NBR_UNKNOWN;
 }
 
@@ -244,7 +246,7 @@ static PetscReal MovingSolidRow(PPE ppe, Sim sim, PetscInt a, PetscReal va, Pets
   for (PetscInt pass = 0; pass < 2; pass++)
     for (PetscInt k = C->nstart[a]; k < C->nstart[a + 1]; k++) {
       PetscInt  b = C->nbr[k];
-      NbrRole   role = Role(P, row, fs, a, b);
+      NbrRole   role = Role(P, row, fs, ppe->pin, a, b);
       PetscReal dx, dy, c, e;
       if (role == NBR_SKIP) continue;
       dx = x[2 * a] - x[2 * b]; dy = x[2 * a + 1] - x[2 * b + 1];
@@ -274,6 +276,7 @@ PetscErrorCode PPEAssemble(PPE ppe, Sim sim, const PetscReal *src)
 
   PetscFunctionBeginUser;
   PetscCall(PetscLogStagePush(sim->stage[STAGE_PPE_ASSEMBLY]));
+  ppe->pin = ppe->ndirichlet_global ? -1 : 0; /* no free surface: P = 0 at global row 0 (ppe.h) */
   PetscCall(Reset(ppe, sim));
   PetscCall(VecGetArrayWrite(ppe->b, &bb));
   for (PetscInt r = 0; r < ppe->nrow; r++) {
@@ -281,7 +284,7 @@ PetscErrorCode PPEAssemble(PPE ppe, Sim sim, const PetscReal *src)
     PetscReal ma, ra, pa, va, diag = 0, hyd = 0, lumped = 0, fa = sparse ? KernelF(&sim->kernel, ppe->pc_qmax * h[a], h[a]) : 0;
     PetscInt  ncp = 1;
     const PetscReal gx = sim->g[0], gy = sim->g[1];
-    PetscBool wall = KindIsBoundary(P->kind[a]), dir = IsDirichlet(fs, a);
+    PetscBool wall = KindIsBoundary(P->kind[a]), dir = (PetscBool)(IsDirichlet(fs, a) || ga == ppe->pin);
     FluidView(fv, P->kind[a], a, m, rho, NULL, &ma, &ra, &pa);
     va = ma / rho0;
     if (!ppe->symmetric && P->kind[a] == KIND_SOLID) {
@@ -294,7 +297,7 @@ PetscErrorCode PPEAssemble(PPE ppe, Sim sim, const PetscReal *src)
     }
     for (PetscInt k = C->nstart[a]; k < C->nstart[a + 1]; k++) {
       PetscInt  b = C->nbr[k];
-      NbrRole   role = Role(P, row, fs, a, b);
+      NbrRole   role = Role(P, row, fs, ppe->pin, a, b);
       PetscReal dx, dy, r2, c, mb, rb, pb;
       if (role == NBR_SKIP) continue;
       FluidView(fv, P->kind[b], b, m, rho, NULL, &mb, &rb, &pb);
@@ -327,10 +330,9 @@ PetscErrorCode PPEAssemble(PPE ppe, Sim sim, const PetscReal *src)
   PetscCall(VecRestoreArrayWrite(ppe->b, &bb));
   PetscCall(CreateMatrix(ppe, &ppe->csr, (PetscBool)!sparse, &ppe->A));
   if (sparse) PetscCall(CreateMatrix(ppe, &ppe->csrp, PETSC_TRUE, &ppe->Ap));
-  PetscCall(MatNullSpaceDestroy(&ppe->nullsp));
-  if (!ppe->ndirichlet_global) { /* no free surface: P is defined up to a constant */
-    PetscCall(MatNullSpaceCreate(ppe->comm, PETSC_TRUE, 0, NULL, &ppe->nullsp));
-    PetscCall(MatSetNullSpace(ppe->A, ppe->nullsp));
+  if (ppe->pin >= 0) { /* no free surface: P is defined up to a constant; a right-hand side with a
+                        * zero sum makes the pinned row's dropped equation hold as well */
+    if (!ppe->nullsp) PetscCall(MatNullSpaceCreate(ppe->comm, PETSC_TRUE, 0, NULL, &ppe->nullsp));
     PetscCall(MatNullSpaceRemove(ppe->nullsp, ppe->b));
   }
   PetscCall(PetscLogStagePop());
@@ -343,6 +345,7 @@ PetscErrorCode PPESolve(PPE ppe, Sim sim)
   PetscReal         *p = PField(P, FIELD_P), *fv = PField(P, FIELD_FVIEW);
   PetscScalar       *xx;
   PetscInt           its;
+  PetscReal          mean0 = 0;
   KSPConvergedReason reason;
   const FieldId      refresh[] = {FIELD_P, FIELD_FVIEW};
 
@@ -355,7 +358,27 @@ PetscErrorCode PPESolve(PPE ppe, Sim sim)
   }
   PetscCall(VecRestoreArrayWrite(ppe->x, &xx));
   PetscCall(KSPSetOperators(ppe->ksp, ppe->A, ppe->Ap ? ppe->Ap : ppe->A));
+  if (ppe->pin >= 0) { /* the last pressure less its value at the pinned row (P = 0 there); the mean to restore */
+    PetscReal    s[2] = {0, 0};
+    PetscInt     N;
+    const PetscScalar *xr;
+    PetscCall(VecGetArrayRead(ppe->x, &xr));
+    for (PetscInt r = 0; r < ppe->nrow; r++) s[0] += xr[r];
+    if (ppe->pin >= ppe->rstart && ppe->pin < ppe->rstart + ppe->nrow) s[1] = xr[ppe->pin - ppe->rstart];
+    PetscCall(VecRestoreArrayRead(ppe->x, &xr));
+    PetscCall(MPIU_Allreduce(MPI_IN_PLACE, s, 2, MPIU_REAL, MPIU_SUM, ppe->comm));
+    PetscCall(VecGetSize(ppe->x, &N));
+    mean0 = s[0] / N;
+    PetscCall(VecShift(ppe->x, -s[1]));
+  }
   PetscCall(KSPSolve(ppe->ksp, ppe->b, ppe->x));
+  if (ppe->pin >= 0) { /* the pressure keeps the mean of the last one, as a solve on the null space's complement */
+    PetscScalar s;
+    PetscInt    N;
+    PetscCall(VecSum(ppe->x, &s));
+    PetscCall(VecGetSize(ppe->x, &N));
+    PetscCall(VecShift(ppe->x, mean0 - s / N));
+  }
   PetscCall(KSPGetConvergedReason(ppe->ksp, &reason));
   PetscCall(KSPGetIterationNumber(ppe->ksp, &its));
   PetscCheck(reason >= 0, ppe->comm, PETSC_ERR_NOT_CONVERGED, "The pressure Poisson solve did not converge at step %" PetscInt_FMT " (t = %g): KSP reason %s after %" PetscInt_FMT " iterations. Try a smaller -dt/-cfl, a larger -ksp_max_it, or another -ksp_type/-pc_type", sim->step, (double)sim->t, KSPConvergedReasons[reason], its);

@@ -12,7 +12,13 @@
  * and grew each step until particles went through the wall).  Each row is multiplied by -V_a = -m_a/rho0,
  * which makes the matrix symmetric positive (semi)definite: CG applies.  Free-surface columns are
  * eliminated (their P is 0), which keeps the symmetry.  Without any Dirichlet row (periodic or
- * closed domains) the constant is a null space and is attached to the matrix. */
+ * closed domains) P is defined up to a constant: the right-hand side is made to sum to zero and
+ * global row 0 is pinned (P = 0 there, its column eliminated like a free-surface one), so that the
+ * matrix is definite; the solve starts from the last pressure less its value there, and the
+ * solution is shifted back to the last pressure's mean.  Not a null space attached to a singular
+ * matrix: BoomerAMG's coarsest level (a few rows) is then singular too, its Gaussian elimination
+ * divides by a round-off pivot, and the V-cycle amplifies the constant by ~1e22, so that CG's
+ * (r, B r) takes the sign of round-off once the residual is small (DIVERGED_INDEFINITE_PC). */
 #pragma once
 #include <sphfsi/sim.h>
 #include <sphfsi/csr.h>
@@ -29,6 +35,7 @@ struct _p_PPE {
   Vec          x, b;
   MatNullSpace nullsp;
   PetscInt     nrow, rstart, nrow_global, ndirichlet_global;
+  PetscInt     pin;                             /* global row pinned to P = 0 when there is no Dirichlet row (no free surface); -1: none */
   PetscInt    *rowpart, cap_rows;               /* per local row: owned particle */
   PetscReal    pc_qmax;                         /* Ap leaves out pairs with r / h_ab > pc_qmax (0: Ap = A) */
   PetscReal   *hyd;                             /* per local wall row: hydrostatic part of its P, L_a(rho0 g . r) / sum_b c_ab */

@@ -160,6 +160,7 @@ static PetscErrorCode DensityFreeSurfaceSource(Sim sim)
   const PetscReal *x = PField(P, FIELD_X), *m = PField(P, FIELD_M), *h = PField(P, FIELD_H), *vs = PField(P, FIELD_VSTAR), *fv = PField(P, FIELD_FVIEW);
   PetscReal       *rho = PField(P, FIELD_RHO), *fs = PField(P, FIELD_FS);
   const PetscReal  rho0 = sim->fl.rho0, dt = sim->dt, w = s->blend;
+  const PetscBool  confined = sim->confined;
   const FieldId    refresh[] = {FIELD_RHO, FIELD_FS};
   PetscInt         nfree = 0;
 
@@ -187,7 +188,9 @@ static PetscErrorCode DensityFreeSurfaceSource(Sim sim)
     }
     rho[a] = sw / s->lat_w;
     divr *= 2.0 / s->lat_divr;
-    fs[a] = (s->fs == ISPH_FS_DENSITY ? rho[a] < s->beta * rho0 : divr < s->divr_min) ? 1.0 : 0.0;
+    /* a confined flow (Taylor-Green, Poiseuille) has no free surface: a particle whose rho* dips
+     * below beta rho0 there is disorder, and a P = 0 row inside the fluid would be wrong */
+    fs[a] = !confined && (s->fs == ISPH_FS_DENSITY ? rho[a] < s->beta * rho0 : divr < s->divr_min) ? 1.0 : 0.0;
     nfree += fs[a] > 0;
     s->src[a] = (1 - w) * div / (rho[a] * dt) + w * (rho0 - rho[a]) / (rho0 * dt * dt);
   }

@@ -1,8 +1,8 @@
 #include <sphfsi/scene.h>
 #include <sphfsi/kernel.h>
 
-extern const SceneOps SceneHydrostatic, SceneDamBreak, SceneSluiceGate, SceneTaylorGreen, ScenePoiseuille, SceneOscillatingPlate, SceneSolidBlock, SceneElasticGate, SceneWaterOnPlate;
-static const SceneOps *const Scenes[] = {&SceneHydrostatic, &SceneDamBreak, &SceneSluiceGate, &SceneTaylorGreen, &ScenePoiseuille, &SceneOscillatingPlate, &SceneSolidBlock, &SceneElasticGate, &SceneWaterOnPlate};
+extern const SceneOps SceneHydrostatic, SceneDamBreak, SceneDamBreakLobovsky, SceneSluiceGate, SceneTaylorGreen, ScenePoiseuille, SceneOscillatingPlate, SceneSolidBlock, SceneElasticGate, SceneWaterOnPlate;
+static const SceneOps *const Scenes[] = {&SceneHydrostatic, &SceneDamBreak, &SceneDamBreakLobovsky, &SceneSluiceGate, &SceneTaylorGreen, &ScenePoiseuille, &SceneOscillatingPlate, &SceneSolidBlock, &SceneElasticGate, &SceneWaterOnPlate};
 #define NSCENES ((PetscInt)(sizeof(Scenes) / sizeof(Scenes[0])))
 
 PetscErrorCode SceneFind(const char *name, const SceneOps **ops)

@@ -66,6 +66,7 @@ if [ "${1:-}" != "--unit-only" ]; then
   run summary_json_null bash tests/check_summary_json.sh "$MPI" "$OUT/summary_json_null"
   run dam_break_wcsph_front bash tests/check_dam_break.sh "$MPI" "$OUT/dam_break_wcsph"
   run wall_clip bash tests/check_wall_clip.sh "$MPI" "$OUT/wall_clip"
+  run dam_break_lobovsky_wcsph bash tests/check_lobovsky.sh "$MPI" "$OUT/dam_break_lobovsky_wcsph"
   run poiseuille_wcsph bash tests/check_poiseuille.sh "$MPI" "$OUT/poiseuille_wcsph" -fluid wcsph
   # ISPH (issue 3): floor pressure within 2 % at dx = H/80 (first-order free-surface error: 2.15 % at H/40)
   P_BOUND=0.02 run hydrostatic_isph bash tests/check_hydrostatic.sh "$MPI" "$OUT/hydrostatic_isph" -fluid isph -dx 0.00125

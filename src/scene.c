@@ -80,6 +80,25 @@ PetscErrorCode SceneAddTank(Sim sim, PetscReal x0, PetscReal x1, PetscReal y0, P
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+void SceneTankDomain(Sim sim, PetscReal L, PetscReal top, PetscInt rows)
+{
+  sim->dom_lo[0] = -(rows + 0.5) * sim->dx;
+  sim->dom_hi[0] = L + (rows + 0.5) * sim->dx;
+  sim->dom_lo[1] = -(rows + 0.5) * sim->dx;
+  sim->dom_hi[1] = top;
+}
+
+PetscErrorCode SceneAddDamBreak(Sim sim, PetscReal w, PetscReal hgt, PetscReal L, PetscReal top, PetscInt rows)
+{
+  PetscReal dx = sim->dx;
+  PetscInt  nx = RoundToInt(w / dx), ny = RoundToInt(hgt / dx);
+  PetscFunctionBeginUser;
+  PetscCall(SceneAddLattice(sim, KIND_FLUID, 0.5 * dx, 0.5 * dx, nx, ny, dx, sim->fl.rho0));
+  PetscCall(SceneAddTank(sim, 0, L, 0, top - dx, dx, rows, PETSC_TRUE, PETSC_TRUE));
+  PetscCall(SceneHydrostaticDensity(sim, ny * dx));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 PetscErrorCode SceneZonesSetUp(Sim sim, PetscReal dc, PetscReal *W, PetscReal *fine, PetscReal *H)
 {
   PetscInt nc;

@@ -39,6 +39,11 @@ PetscErrorCode SceneAddLattice(Sim sim, ParticleKind kind, PetscReal x0, PetscRe
 /* Walls of `rows` rows (first row KIND_WALL, the rest KIND_DUMMY) around the rectangle
  * [x0, x1] x [y0, ...): floor below y0, side walls left of x0 and right of x1 up to y1. */
 PetscErrorCode SceneAddTank(Sim sim, PetscReal x0, PetscReal x1, PetscReal y0, PetscReal y1, PetscReal dx, PetscInt rows, PetscBool left, PetscBool right);
+/* Domain box of a tank [0, L] with `rows` rows of wall particles under and beside it, up to y = top. */
+void SceneTankDomain(Sim sim, PetscReal L, PetscReal top, PetscInt rows);
+/* A dam break: a water column [0, w] x [0, hgt] at hydrostatic density against the upstream wall of a
+ * tank [0, L] whose walls reach top - dx (the domain box's top is top). */
+PetscErrorCode SceneAddDamBreak(Sim sim, PetscReal w, PetscReal hgt, PetscReal L, PetscReal top, PetscInt rows);
 /* Fluid density of a hydrostatic column with free surface at y_surface (WCSPH EOS, Eq. 20). */
 PetscErrorCode SceneHydrostaticDensity(Sim sim, PetscReal y_surface);
 /* Mixed particle sizes (section 3.3): water [0, W] x [0, H] at the coarse spacing dc on [0, W - fine]

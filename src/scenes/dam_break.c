@@ -36,22 +36,15 @@ static PetscErrorCode Create(Sim sim)
   if (sim->t_end < 0) sim->t_end = 3.0 / PetscSqrtReal(2 * 9.81 / c->a); /* T = 3 */
   PetscCheck(sim->dx <= 0.5 * c->a, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dx %g is larger than half the column width %g: choose a smaller -dx", (double)sim->dx, (double)c->a);
   sim->v_ref     = PetscSqrtReal(2 * 9.81 * c->H);
-  sim->dom_lo[0] = -(c->rows + 0.5) * sim->dx;
-  sim->dom_hi[0] = c->L + (c->rows + 0.5) * sim->dx;
-  sim->dom_lo[1] = -(c->rows + 0.5) * sim->dx;
-  sim->dom_hi[1] = c->top;
+  SceneTankDomain(sim, c->L, c->top, c->rows);
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
 static PetscErrorCode Populate(Sim sim)
 {
   DamBreak *c = (DamBreak *)sim->scene_ctx;
-  PetscReal dx = sim->dx;
-  PetscInt  nx = RoundToInt(c->a / dx), ny = RoundToInt(c->H / dx);
   PetscFunctionBeginUser;
-  PetscCall(SceneAddLattice(sim, KIND_FLUID, 0.5 * dx, 0.5 * dx, nx, ny, dx, sim->fl.rho0));
-  PetscCall(SceneAddTank(sim, 0, c->L, 0, c->top - dx, dx, c->rows, PETSC_TRUE, PETSC_TRUE));
-  PetscCall(SceneHydrostaticDensity(sim, ny * dx));
+  PetscCall(SceneAddDamBreak(sim, c->a, c->H, c->L, c->top, c->rows));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

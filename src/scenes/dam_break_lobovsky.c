@@ -52,10 +52,7 @@ static PetscErrorCode Create(Sim sim)
   if (sim->t_end < 0) sim->t_end = 8.0 / PetscSqrtReal(9.81 / c->H); /* t sqrt(g/H) = 8 */
   PetscCheck(sim->dx <= c->H / 10, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dx %g leaves fewer than 10 particles over the column height %g: choose a smaller -dx", (double)sim->dx, (double)c->H);
   sim->v_ref     = PetscSqrtReal(2 * 9.81 * c->H);
-  sim->dom_lo[0] = -(c->rows + 0.5) * sim->dx;
-  sim->dom_hi[0] = c->Lt + (c->rows + 0.5) * sim->dx;
-  sim->dom_lo[1] = -(c->rows + 0.5) * sim->dx;
-  sim->dom_hi[1] = c->top;
+  SceneTankDomain(sim, c->Lt, c->top, c->rows);
   /* the kernel integrated along a line at distance s = S h: h W_line = int W(sqrt(S^2 + T^2), 1) dT */
   for (PetscInt k = 0; k <= NLINE; k++) {
     PetscReal S = 2.0 * k / NLINE, T = PetscSqrtReal(PetscMax(4.0 - S * S, 0.0)), s = 0;
@@ -72,12 +69,8 @@ static PetscErrorCode Create(Sim sim)
 static PetscErrorCode Populate(Sim sim)
 {
   Lobovsky *c = (Lobovsky *)sim->scene_ctx;
-  PetscReal dx = sim->dx;
-  PetscInt  nx = RoundToInt(c->L / dx), ny = RoundToInt(c->H / dx);
   PetscFunctionBeginUser;
-  PetscCall(SceneAddLattice(sim, KIND_FLUID, 0.5 * dx, 0.5 * dx, nx, ny, dx, sim->fl.rho0));
-  PetscCall(SceneAddTank(sim, 0, c->Lt, 0, c->top - dx, dx, c->rows, PETSC_TRUE, PETSC_TRUE));
-  PetscCall(SceneHydrostaticDensity(sim, ny * dx));
+  PetscCall(SceneAddDamBreak(sim, c->L, c->H, c->Lt, c->top, c->rows));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

@@ -28,10 +28,7 @@ static PetscErrorCode Create(Sim sim)
   if (sim->t_end < 0) sim->t_end = 1.0;
   PetscCheck(sim->dx <= 0.5 * PetscMin(c->W, c->H), sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dx %g is larger than half the water region (%g x %g m): choose a smaller -dx", (double)sim->dx, (double)c->W, (double)c->H);
   sim->v_ref     = PetscSqrtReal(2 * 9.81 * c->H);
-  sim->dom_lo[0] = -(c->rows + 0.5) * sim->dx;
-  sim->dom_hi[0] = c->W + (c->rows + 0.5) * sim->dx;
-  sim->dom_lo[1] = -(c->rows + 0.5) * sim->dx;
-  sim->dom_hi[1] = 1.5 * c->H;
+  SceneTankDomain(sim, c->W, 1.5 * c->H, c->rows);
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

@@ -30,6 +30,7 @@ PetscErrorCode ISPHSetUp(Sim sim)
   PetscCall(PetscOptionsReal("-isph_blend", "Weight of the density source in -isph_source blend", "", s->blend, &s->blend, NULL));
   PetscCall(PetscOptionsEList("-isph_gradient", "Pressure gradient of the corrector: eq14 (symmetric, Eq. 14), corrected (Bonet-Lok), hybrid (corrected on and next to the free surface)", "", ISPHGradients, 3, ISPHGradients[grad], &grad, NULL));
   PetscCall(PetscOptionsReal("-isph_alpha", "Artificial viscosity (Eq. 24, velocity scale c0) in the predictor; damps the free-surface noise of the projection", "", s->alpha, &s->alpha, NULL));
+  PetscCall(PetscOptionsBool("-isph_wall_contact", "A free-surface particle (P = 0, so no pressure stops it) that approaches a wall within dx of its first row loses its velocity towards the wall", "", s->wall_contact, &s->wall_contact, NULL));
   PetscCall(PetscOptionsReal("-isph_shift", "Particle shifting coefficient A (D = A h |v| dt, Skillen et al. 2013); 0 = off", "", s->shift, &s->shift, NULL));
   PetscOptionsEnd();
   s->fs = (ISPHFreeSurface)fs; s->source = (ISPHSource)src; s->gradient = (ISPHGradient)grad;
@@ -230,6 +231,33 @@ static inline void PressureGradient(Particles P, Cells C, PetscInt a, ISPHGradie
   } else { g[0] = gd[0]; g[1] = gd[1]; }
 }
 
+/* A free-surface particle has P = 0 in the pressure equation, so no pressure acts on it and a wall
+ * it flies at cannot push it back until it has passed the wall's first row (a splashing front at an
+ * impact).  Such a particle within dx of the first wall row, moving towards the wall, loses that
+ * velocity component (an inelastic contact).  The wall's normal is that of the wall particles'
+ * volume seen from the particle, n = -sum_w V_w grad_a W_aw / |.|; the distance is the smallest
+ * (x_a - x_w) . n over the first-row (KIND_WALL) neighbours.  Walls are at rest. */
+static inline void WallContact(Particles P, Cells C, PetscInt a, PetscReal rho0, PetscReal dxa, PetscReal v[2])
+{
+  const PetscReal *x = PField(P, FIELD_X), *m = PField(P, FIELD_M);
+  PetscReal        g[2] = {0, 0}, gn, n[2], dmin = PETSC_MAX_REAL, vn;
+  for (PetscInt k = C->nstart[a]; k < C->nstart[a + 1]; k++) {
+    PetscInt b = C->nbr[k];
+    if (!KindIsWall(P->kind[b])) continue;
+    g[0] += m[b] / rho0 * C->f[k] * (x[2 * a] - x[2 * b]);
+    g[1] += m[b] / rho0 * C->f[k] * (x[2 * a + 1] - x[2 * b + 1]);
+  }
+  gn = PetscSqrtReal(g[0] * g[0] + g[1] * g[1]);
+  if (gn == 0) return;
+  n[0] = -g[0] / gn; n[1] = -g[1] / gn;
+  for (PetscInt k = C->nstart[a]; k < C->nstart[a + 1]; k++) {
+    PetscInt b = C->nbr[k];
+    if (P->kind[b] == KIND_WALL) dmin = PetscMin(dmin, (x[2 * a] - x[2 * b]) * n[0] + (x[2 * a + 1] - x[2 * b + 1]) * n[1]);
+  }
+  vn = v[0] * n[0] + v[1] * n[1];
+  if (dmin < dxa && vn < 0) { v[0] -= vn * n[0]; v[1] -= vn * n[1]; }
+}
+
 /* Eqs. 49, 51: v = v* - dt grad P / rho; acc = (v - v_t) / dt. */
 static PetscErrorCode Corrector(Sim sim)
 {
@@ -247,6 +275,11 @@ static PetscErrorCode Corrector(Sim sim)
     PressureGradient(P, C, a, s->gradient, sim->fl.rho0, g);
     vx = vs[2 * a] - dt * g[0];
     vy = vs[2 * a + 1] - dt * g[1];
+    if (s->wall_contact && PField(P, FIELD_FS)[a] > 0) {
+      PetscReal vc[2] = {vx, vy};
+      WallContact(P, C, a, sim->fl.rho0, PField(P, FIELD_H)[a] / sim->kernel.h_factor, vc);
+      vx = vc[0]; vy = vc[1];
+    }
     acc[2 * a]     = (vx - v[2 * a]) / dt;
     acc[2 * a + 1] = (vy - v[2 * a + 1]) / dt;
     v[2 * a] = vx; v[2 * a + 1] = vy;

@@ -37,7 +37,7 @@ run test_rank_agreement_wcsph_shift $MPI "${BINDIR:-bin}"/test_rank_agreement -w
 # Another kernel and h / dx (-kernel, -h_factor: 4 wall rows for 2h = 4 dx) with shifting and the shifted
 # particles' velocity correction (-shift_correct): exact in WCSPH, to the solver tolerance in ISPH
 run test_rank_agreement_wendland $MPI "${BINDIR:-bin}"/test_rank_agreement -kernel wendland_c2 -h_factor 2 -wcsph_shift 1 -shift_correct
-run test_rank_agreement_wendland_isph $MPI "${BINDIR:-bin}"/test_rank_agreement -fluid isph -kernel wendland_c2 -h_factor 2 -isph_shift 5 -shift_correct -ksp_rtol 1e-10 -tol 1e-8
+run test_rank_agreement_wendland_isph $MPI "${BINDIR:-bin}"/test_rank_agreement -fluid isph -kernel wendland_c2 -h_factor 2 -isph_shift 5 -shift_correct -isph_wall_contact -ksp_rtol 1e-10 -tol 1e-8
 # Migration and ghosts by the sparse exchange (the default from 9 ranks on): the same answers, also
 # through the forced repartitions of test_decomp
 run test_rank_agreement_sparse $MPI "${BINDIR:-bin}"/test_rank_agreement -decomp_sparse_ranks 1

@@ -27,6 +27,10 @@
 #     the least the scene takes is 3) and 2.5 mm in the water away from it, K and G of the rubber / 5
 #     and x 5, to 0.4 s: completes, or stops with exit status 4 and a message; never NaN/Inf in any
 #     snapshot (0.05 s), probes.csv or last_good.h5.
+#  7. (issue 24) taylor_green_l200: the case file (ISPH, Wendland C2 at 2 dx) at L/200 to t = 2 s, with
+#     case 3's bounds; dam_break_isph_a100_rtol1e-4: case 2 at a/100 with -ksp_rtol 1e-4 (a splashing
+#     particle went through the far wall there); dam_break_lobovsky_isph: cases/dam_break_lobovsky.opts
+#     with ISPH at H/40 to t sqrt(g/H) = 8, case 2's bounds (it faulted at the impact).
 #  6. dt_too_large: the WCSPH dam break (cases/dam_break.opts) with -dt 100x the adaptive step of its
 #     first steps (measured by a 20-step run, dt_reference): exit 4, "status": "fault", a message
 #     and a finite last_good.h5.
@@ -44,7 +48,7 @@ MPI="${MPIEXEC:-mpiexec} ${MPIEXEC_FLAGS:-} -n $NP"
 BIN=${BINDIR:-bin}
 OUT=${HARD_OUT:-out/hard}
 TMO=${HARD_TIMEOUT:-2400}
-ALL="hydrostatic_wcsph hydrostatic_isph dam_break_wcsph dam_break_wcsph_shift dam_break_isph dam_break_isph_shift taylor_green_re1000 plate_vf005 gate_soft gate_stiff dt_too_large"
+ALL="hydrostatic_wcsph hydrostatic_isph dam_break_wcsph dam_break_wcsph_shift dam_break_isph dam_break_isph_shift taylor_green_re1000 plate_vf005 gate_soft gate_stiff dt_too_large taylor_green_l200 dam_break_isph_a100_rtol1e-4 dam_break_lobovsky_isph"
 CASES=${HARD_CASES:-$ALL}
 for c in $CASES; do [[ " $ALL " == *" $c "* ]] || { echo "HARD_CASES: unknown case $c (cases: $ALL)" >&2; exit 2; }; done
 [ -x "$BIN/sphfsi" ] || { echo "run make hard (needs $BIN/sphfsi)" >&2; exit 1; }
@@ -134,6 +138,20 @@ if has dt_too_large; then
     rm -rf "$OUT/dt_too_large"; echo "dt_reference gave no step (see $OUT/dt_reference/run.log)" >&2
   fi
   check dt_too_large
+fi
+
+# issue 24: harder fluid cases (bounds of cases 2 and 3, tools/hard_check.py)
+if has taylor_green_l200; then
+  run taylor_green_l200 -- -options_file cases/taylor_green.opts -dx 0.005 -t_end 2 -output_interval 0.5
+  check taylor_green_l200
+fi
+if has dam_break_isph_a100_rtol1e-4; then
+  run dam_break_isph_a100_rtol1e-4 -- $DB -dx $(python3 -c "print(f'{$A/100:.9g}')") -fluid isph -ksp_rtol 1e-4
+  check dam_break_isph_a100_rtol1e-4
+fi
+if has dam_break_lobovsky_isph; then
+  run dam_break_lobovsky_isph -- -options_file cases/dam_break_lobovsky.opts -fluid isph -output_interval 0.05
+  check dam_break_lobovsky_isph
 fi
 
 printf '{"ranks": %d, "commit": "%s", "date": "%s", "wall_s": %d, "reused": %s, "nproc": %s}\n' \

@@ -73,7 +73,7 @@ PL_DMIN = 0.75  # closest pair of solid particles >= 0.75 dx in every snapshot: 
 PL_LINK = 1.5  # the plate stays one piece: every particle is linked to the body through neighbours
 # closer than 1.5 dx (1 and 1.41 dx on the lattice; a crack opens gaps far beyond the elastic strain).
 PL_SWING = 0.9  # last swing / first swing >= 0.9 (the oscillating_plate test's bound): the tensile
-# instability takes the swing down (0.78 and 0.39 of the first with e = 0.1, README).
+# instability takes the swing down (0.78 and 0.39 of the first with e = 0.1, docs/validation.md).
 # energy drift: reported (the test suite's bound at V_f = 0.01 is 10 %; the artificial stress does
 # work it stores nowhere, and more at a 5x larger amplitude).
 

@@ -6,7 +6,7 @@ PetscErrorCode HaloCreate(MPI_Comm comm, Halo *h)
   PetscFunctionBeginUser;
   PetscCall(PetscNew(h));
   (*h)->comm = comm;
-  for (PetscInt w = 1; w <= 4; w++) {
+  for (PetscInt w = 1; w <= 25; w++) {
     PetscCallMPI(MPI_Type_contiguous((PetscMPIInt)w, MPIU_REAL, &(*h)->unit[w]));
     PetscCallMPI(MPI_Type_commit(&(*h)->unit[w]));
   }
@@ -19,7 +19,7 @@ PetscErrorCode HaloDestroy(Halo *h)
   if (!*h) PetscFunctionReturn(PETSC_SUCCESS);
   PetscCall(PetscSFDestroy(&(*h)->sf));
   PetscCall(PetscFree((*h)->shift));
-  for (PetscInt w = 1; w <= 4; w++) PetscCallMPI(MPI_Type_free(&(*h)->unit[w]));
+  for (PetscInt w = 1; w <= 25; w++) PetscCallMPI(MPI_Type_free(&(*h)->unit[w]));
   PetscCall(PetscFree(*h));
   PetscFunctionReturn(PETSC_SUCCESS);
 }

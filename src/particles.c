@@ -11,6 +11,7 @@ static const struct { const char *name; PetscInt width; } FieldInfo[FIELD_COUNT]
   [FIELD_NORMAL] = {"normal", 2},   [FIELD_ROW] = {"row", 1},
   [FIELD_KCORR] = {"kernel_correction", 4}, [FIELD_FVIEW] = {"fluid_view", 3},
   [FIELD_AMEAN] = {"mean_acc", 2},         [FIELD_XREB] = {"x_rebuild", 2},
+  [FIELD_DEFGRAD] = {"deformation_gradient", 4}, [FIELD_GRAD0] = {"reference_gradient", 25}, [FIELD_PK1B] = {"pk1_gradient", 10},
 };
 
 PetscErrorCode ParticlesCreate(MPI_Comm comm, Particles *P)

@@ -10,7 +10,7 @@ struct _p_Halo {
   PetscSF     sf;       /* roots: owned particles; leaves: ghost slots n .. n+ng */
   PetscInt   *shift;    /* per ghost: periodic image code (3*(sy+1) + (sx+1)); 4 = none */
   PetscInt    cap_shift;
-  MPI_Datatype unit[5]; /* contiguous blocks of 1..4 reals */
+  MPI_Datatype unit[26]; /* contiguous blocks of 1..25 reals (the widest field, FIELD_GRAD0) */
   PetscInt    nghost_sent;
   PetscReal   period[2]; /* domain lengths, for periodic shifts */
 };

@@ -33,6 +33,9 @@ typedef enum {
   FIELD_AMEAN, /* solid with ISPH: mean acceleration over the last fluid step (2; ppe.c) */
   FIELD_XREB,  /* scenes with solids: position at the last rebuild (2); solids move after it, and a
                   restart rebuilds the neighbour lists there to continue exactly (checkpoint.h) */
+  FIELD_DEFGRAD, /* total-Lagrangian solid: deformation gradient F (4, row-major, F_ij = dx_i / dX_j) */
+  FIELD_GRAD0,   /* total-Lagrangian solid: reference fit operator G (5 x 5, row-major; solid_total.c) */
+  FIELD_PK1B,    /* total-Lagrangian solid: derivative of the energy by the fit, dW/dA (2 x 5, row-major; P G01 to first order) */
   FIELD_COUNT
 } FieldId;
 

@@ -8,9 +8,23 @@
 
 typedef enum { SOLID_GRAD_STANDARD = 0, SOLID_GRAD_CORRECTED } SolidGradient;
 extern const char *const SolidGradients[];
+/* updated: the seed's hypo-elastic scheme (Jaumann rate, neighbours and gradients in the current
+ * configuration, artificial stress);  total: total-Lagrangian, a hyper-elastic (neo-Hookean)
+ * stress from the deformation gradient, gradients in the reference configuration corrected once,
+ * hourglass control (solid_total.c). */
+typedef enum { SOLID_UPDATED = 0, SOLID_TOTAL } SolidFormulation;
+extern const char *const SolidFormulations[];
 
 struct _p_Solid {
+  SolidFormulation formulation;
   SolidGradient gradient;
+  PetscReal     damping;   /* mass-proportional damping rate (1/s) for static solutions by dynamic relaxation; 0 = off */
+  PetscBool     quadrature; /* total, order 2: second-order quadrature of each particle's cell (solid_terms.h) */
+  PetscInt      order;     /* total: polynomial order the reference gradient reproduces (1 or 2) */
+  PetscReal     hourglass; /* total: hourglass-control coefficient alpha (Ganzenmueller 2015); 0 = off */
+  PetscReal    *f0;        /* total: (dW/dr)/r of each pair of nl in the reference configuration (0: not neighbours there) */
+  PetscInt      cap_ref;
+  PetscInt      npair_ref; /* total: number of reference-configuration pairs of the whole body, counted at the first SolidPrepare */
   Cells         nl;       /* neighbours of owned solids within 2 h + skin: valid while no solid moved skin / 2 */
   PetscReal     skin;     /* in units of dx */
   PetscReal    *xref;     /* positions of owned particles when nl was built */

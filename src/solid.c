@@ -15,7 +15,7 @@ PetscErrorCode SolidSetUp(Sim sim)
 {
   SolidMaterial *m = &sim->sl;
   Solid          s;
-  PetscInt       grad = SOLID_GRAD_CORRECTED, form = SOLID_UPDATED;
+  PetscInt       grad = SOLID_GRAD_CORRECTED, form = SOLID_TOTAL;
   PetscBool      fluid = sim->has_fluid;
 
   PetscFunctionBeginUser;
@@ -28,7 +28,7 @@ PetscErrorCode SolidSetUp(Sim sim)
   s->order     = 2;
   s->quadrature = PETSC_TRUE;
   PetscOptionsBegin(sim->comm, NULL, "Elastic solid: hypo-elastic updated-Lagrangian (Eqs. 20, 23-40) or total-Lagrangian", "Solid");
-  PetscCall(PetscOptionsEList("-solid_formulation", "updated: the paper's hypo-elastic scheme (Jaumann rate, artificial stress); total: total-Lagrangian neo-Hookean with the gradient corrected in the reference configuration and hourglass control", "", SolidFormulations, 2, SolidFormulations[form], &form, NULL));
+  PetscCall(PetscOptionsEList("-solid_formulation", "total (default): total-Lagrangian neo-Hookean with a second-order reference gradient (converges in bending); updated: the paper's hypo-elastic scheme (Jaumann rate, artificial stress)", "", SolidFormulations, 2, SolidFormulations[form], &form, NULL));
   s->formulation = (SolidFormulation)form;
   PetscCall(PetscOptionsReal("-solid_damping", "Mass-proportional damping rate zeta (1/s): acc -= zeta v, to reach a static solution by dynamic relaxation (about twice the lowest angular frequency damps it critically); 0 = off", "", s->damping, &s->damping, NULL));
   if (s->formulation == SOLID_TOTAL) PetscCall(PetscOptionsInt("-solid_order", "Total-Lagrangian: the reference gradient is exact for displacements of this polynomial order (1: kernel-gradient correction; 2: also exact for the bending field at a free surface or clamp)", "", s->order, &s->order, NULL));

@@ -44,6 +44,9 @@ check "not both"              -case oscillating_plate -plate_ny 8 -dx 0.002
 check "-plate_vf"             -case oscillating_plate -plate_vf 0.5
 check "-clamp_columns"        -case oscillating_plate -clamp_columns 1
 check "-block_motion"         -case solid_block -block_motion spin
+check "-solid_cfl"            -case oscillating_plate -solid_cfl 0.4
+check "-solid_order"          -case oscillating_plate -solid_order 3
+check "-solid_formulation"    -case oscillating_plate -solid_formulation eulerian
 # issue 8: restart, malformed values, conflicts, misspelt options
 timeout 60 $MPI bin/sphfsi -case hydrostatic -dx 0.01 -max_steps 2 -checkpoint_interval 1 -output_interval 1 -progress_every 0 -output_dir "$OUT/ckpt" > "$OUT/ckpt.log" 2>&1 || { echo "could not write the checkpoint the restart cases need"; exit 1; }
 check "Cannot open the restart file"   -case hydrostatic -dx 0.01 -restart "$OUT/no_such_checkpoint.h5"

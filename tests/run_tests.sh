@@ -51,21 +51,25 @@ run test_rank_agreement_fsi $MPI "${BINDIR:-bin}"/test_rank_agreement -case elas
 # FSI with ISPH (implicit interface rows in the PPE, GMRES): the solver tolerance (3e-11; 1.6e-7 while
 # the solids' ghosts kept a velocity half a kick old after the sub-steps, sim.c): bound 1e-8
 run test_rank_agreement_fsi_isph $MPI "${BINDIR:-bin}"/test_rank_agreement -case elastic_gate -fluid isph -dx 0.00125 -t_end 0.01 -ksp_rtol 1e-10 -tol 1e-8 -min_speed 0.01
-# The total-Lagrangian solid (-solid_formulation total): explicit and per rank like the updated one,
-# so exact alone and with the WCSPH fluid, the solver tolerance with ISPH
-run test_rank_agreement_solid_total $MPI "${BINDIR:-bin}"/test_rank_agreement -case oscillating_plate -plate_ny 6 -t_end 0.02 -solid_formulation total
-run test_rank_agreement_fsi_total $MPI "${BINDIR:-bin}"/test_rank_agreement -case elastic_gate -fluid wcsph -dx 0.00125 -t_end 0.003 -min_speed 0.05 -solid_formulation total
-run test_rank_agreement_fsi_isph_total $MPI "${BINDIR:-bin}"/test_rank_agreement -case elastic_gate -fluid isph -dx 0.00125 -t_end 0.01 -ksp_rtol 1e-10 -tol 1e-8 -min_speed 0.01 -solid_formulation total
+# The same with the paper's hypo-elastic solid (-solid_formulation updated; the tests above run the
+# total-Lagrangian default)
+run test_rank_agreement_solid_updated $MPI "${BINDIR:-bin}"/test_rank_agreement -case oscillating_plate -plate_ny 6 -t_end 0.02 -solid_formulation updated
+run test_rank_agreement_fsi_updated $MPI "${BINDIR:-bin}"/test_rank_agreement -case elastic_gate -fluid wcsph -dx 0.00125 -t_end 0.003 -min_speed 0.05 -solid_formulation updated
+run test_rank_agreement_fsi_isph_updated $MPI "${BINDIR:-bin}"/test_rank_agreement -case elastic_gate -fluid isph -dx 0.00125 -t_end 0.01 -ksp_rtol 1e-10 -tol 1e-8 -min_speed 0.01 -solid_formulation updated
 # Restart (issue 8): stopped halfway and restarted on the same ranks, on 1 and from 1 (test_restart
 # runs the WCSPH dam break above); same ranks exact; across ranks WCSPH and solid exact, ISPH to the
 # solver tolerance
 run test_restart_fsi $MPI "${BINDIR:-bin}"/test_restart -case elastic_gate -fluid wcsph -dx 0.00125 -t_end 0.0015
-run test_restart_fsi_isph $MPI "${BINDIR:-bin}"/test_restart -case elastic_gate -fluid isph -dx 0.00125 -t_end 0.002 -ksp_rtol 1e-10 -tol 1e-8
+# (ISPH + the total-Lagrangian solid across rank counts: the state agrees to ~6e-11 (rank agreement
+# above), but the solid's acceleration, compared too, answers a position difference dx with
+# ~c0^2 dx / h^2, and its one-sided surface fits are stiffer: 2.1e-8 in acc_y, at any -ksp_rtol
+# from 1e-10 to 1e-12, so not the solver; bound 1e-7.  Same ranks: exact.)
+run test_restart_fsi_isph $MPI "${BINDIR:-bin}"/test_restart -case elastic_gate -fluid isph -dx 0.00125 -t_end 0.002 -ksp_rtol 1e-10 -tol 1e-7
 run test_restart_isph $MPI "${BINDIR:-bin}"/test_restart -fluid isph -ksp_rtol 1e-10 -tol 1e-8
 run test_restart_wendland $MPI "${BINDIR:-bin}"/test_restart -kernel wendland_c2 -h_factor 2 -wcsph_shift 1 -shift_correct
 run test_restart_solid $MPI "${BINDIR:-bin}"/test_restart -case oscillating_plate -plate_ny 6 -t_end 0.01
-run test_restart_solid_total $MPI "${BINDIR:-bin}"/test_restart -case oscillating_plate -plate_ny 6 -t_end 0.01 -solid_formulation total
-run test_restart_fsi_total $MPI "${BINDIR:-bin}"/test_restart -case elastic_gate -fluid wcsph -dx 0.00125 -t_end 0.0015 -solid_formulation total
+run test_restart_solid_updated $MPI "${BINDIR:-bin}"/test_restart -case oscillating_plate -plate_ny 6 -t_end 0.01 -solid_formulation updated
+run test_restart_fsi_updated $MPI "${BINDIR:-bin}"/test_restart -case elastic_gate -fluid wcsph -dx 0.00125 -t_end 0.0015 -solid_formulation updated
 
 if [ "${1:-}" != "--unit-only" ]; then
   # Physics regression tests against analytic and experimental references
@@ -87,10 +91,12 @@ if [ "${1:-}" != "--unit-only" ]; then
   run sluice_gate_wcsph_zones bash tests/check_sluice_gate.sh "$MPI" "$OUT/sluice_gate_wcsph_zones" -dx 0.0025 -dx_coarse 0.005
   run solid_block bash tests/check_solid_block.sh "$MPI" "$OUT/solid_block"
   run oscillating_plate bash tests/check_oscillating_plate.sh "$MPI" "$OUT/oscillating_plate"
+  run oscillating_plate_updated bash tests/check_oscillating_plate.sh "$MPI" "$OUT/oscillating_plate_updated" -solid_formulation updated
   # the total-Lagrangian solid in bending against beam theory (issue: a solid that converges in bending)
   run cantilever_total bash tests/check_cantilever.sh "$MPI" "$OUT/cantilever_total"
   run elastic_gate_isph bash tests/check_elastic_gate.sh "$MPI" "$OUT/elastic_gate_isph" -fluid isph
   run elastic_gate_wcsph bash tests/check_elastic_gate.sh "$MPI" "$OUT/elastic_gate_wcsph" -fluid wcsph
+  run elastic_gate_isph_updated bash tests/check_elastic_gate.sh "$MPI" "$OUT/elastic_gate_isph_updated" -fluid isph -solid_formulation updated -solid_cfl 0.4
   run water_on_plate_wcsph bash tests/check_water_on_plate.sh "$MPI" "$OUT/water_on_plate_wcsph" -fluid wcsph
   L_BOUND=0.05 run water_on_plate_isph bash tests/check_water_on_plate.sh "$MPI" "$OUT/water_on_plate_isph" -fluid isph
   # Signals, -max_wall_time, faults, a rank failing at start (issue 8)

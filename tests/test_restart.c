@@ -85,6 +85,7 @@ static PetscErrorCode Collect(Sim *psim, Final *F)
 static PetscErrorCode Compare(const char *what, const Final *r, const Final *a, PetscReal tol, PetscReal ptol, PetscReal *out)
 {
   PetscReal err = 0, perr = 0;
+  PetscInt  worst = -1; /* the record column of the largest difference (0 = id, then the fields in order) */
   PetscFunctionBeginUser;
   PetscCheck(a->N == r->N && a->w == r->w && a->step == r->step && a->nrow == r->nrow, PETSC_COMM_SELF, PETSC_ERR_PLIB, "%s: %d particles, %d steps, %d probe rows; uninterrupted: %d, %d, %d", what, (int)a->N, (int)a->step, (int)a->nrow, (int)r->N, (int)r->step, (int)r->nrow);
   for (PetscInt c = 0; c < r->w; c++) {
@@ -93,7 +94,7 @@ static PetscErrorCode Compare(const char *what, const Final *r, const Final *a, 
       scale = PetscMax(scale, PetscAbsReal(r->rec[k * r->w + c]));
       d     = PetscMax(d, PetscAbsReal(a->rec[k * r->w + c] - r->rec[k * r->w + c]));
     }
-    err = PetscMax(err, scale > 0 ? d / scale : d);
+    if ((scale > 0 ? d / scale : d) > err) { err = scale > 0 ? d / scale : d; worst = c; }
   }
   for (PetscInt c = 0; c < r->ncol; c++) {
     PetscReal scale = 0, d = 0;
@@ -103,7 +104,7 @@ static PetscErrorCode Compare(const char *what, const Final *r, const Final *a, 
     }
     perr = PetscMax(perr, scale > 0 ? d / scale : d);
   }
-  PetscCall(PetscPrintf(PETSC_COMM_SELF, "  %-34s max relative difference: state %.3e (bound %.0e), probe rows %.3e (bound %.0e)\n", what, (double)err, (double)tol, (double)perr, (double)ptol));
+  PetscCall(PetscPrintf(PETSC_COMM_SELF, "  %-34s max relative difference: state %.3e (bound %.0e; record column %" PetscInt_FMT ": 0 id, then the fields in order), probe rows %.3e (bound %.0e)\n", what, (double)err, (double)tol, worst, (double)perr, (double)ptol));
   *out = err;
   PetscCheck(err <= tol && perr <= ptol, PETSC_COMM_SELF, PETSC_ERR_PLIB, "%s differs from the uninterrupted run by %g (probes %g) > %g", what, (double)err, (double)perr, (double)tol);
   PetscFunctionReturn(PETSC_SUCCESS);

@@ -2,11 +2,11 @@
 # Elastic gate against the experiment at several resolutions across the gate (not a test): both
 # fluids, both solid formulations, uniform dx = 5 mm / n.  Writes out/gate_convergence/table.md.
 #   tools/gate_convergence.sh [N ...]        (default 3 4 5 6; NP ranks, default 2; SPHFSI binary;
-#                                             FORMS="updated total", FLUIDS="isph wcsph")
+#                                             FORMS="updated total", FLUIDS="isph wcsph", GATE_OUT)
 cd "$(dirname "$0")/.."
 export OMPI_ALLOW_RUN_AS_ROOT=${OMPI_ALLOW_RUN_AS_ROOT:-1} OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=${OMPI_ALLOW_RUN_AS_ROOT_CONFIRM:-1}
 MPI="${MPIEXEC:-mpiexec} ${MPIEXEC_FLAGS:---oversubscribe} -n ${NP:-2}"
-OUT=out/gate_convergence; mkdir -p $OUT
+OUT=${GATE_OUT:-out/gate_convergence}; mkdir -p $OUT
 NS=${*:-3 4 5 6}
 {
   echo "| fluid | solid | across | dx (mm) | particles | steps | tip_dx RMS (mm) | tip_dy RMS (mm) | peak tip_dx (mm) | wall s |"

@@ -31,6 +31,11 @@
 #     case 3's bounds; dam_break_isph_a100_rtol1e-4: case 2 at a/100 with -ksp_rtol 1e-4 (a splashing
 #     particle went through the far wall there); dam_break_lobovsky_isph: cases/dam_break_lobovsky.opts
 #     with ISPH at H/40 to t sqrt(g/H) = 8, case 2's bounds (it faulted at the impact).
+#  8. (issue 25) cantilever_large: the total-Lagrangian solid (-solid_formulation total) as the elastic
+#     gate's plate (79 x 5 mm, rubber, 10 across) under a uniform load 25x the gate's water load
+#     (gravity 450 m/s^2), brought to rest by -solid_damping, to 0.4 s: at rest, the end turned past
+#     45 degrees, the end's sag within 5 % of the elastica (inextensible Euler-Bernoulli beam with the
+#     plane-strain modulus, solved in tools/hard_check.py), closest pair >= 0.75 dx, one piece.
 #  6. dt_too_large: the WCSPH dam break (cases/dam_break.opts) with -dt 100x the adaptive step of its
 #     first steps (measured by a 20-step run, dt_reference): exit 4, "status": "fault", a message
 #     and a finite last_good.h5.
@@ -48,7 +53,7 @@ MPI="${MPIEXEC:-mpiexec} ${MPIEXEC_FLAGS:-} -n $NP"
 BIN=${BINDIR:-bin}
 OUT=${HARD_OUT:-out/hard}
 TMO=${HARD_TIMEOUT:-2400}
-ALL="hydrostatic_wcsph hydrostatic_isph dam_break_wcsph dam_break_wcsph_shift dam_break_isph dam_break_isph_shift taylor_green_re1000 plate_vf005 gate_soft gate_stiff dt_too_large taylor_green_l200 dam_break_isph_a100_rtol1e-4 dam_break_lobovsky_isph"
+ALL="hydrostatic_wcsph hydrostatic_isph dam_break_wcsph dam_break_wcsph_shift dam_break_isph dam_break_isph_shift taylor_green_re1000 plate_vf005 gate_soft gate_stiff dt_too_large taylor_green_l200 dam_break_isph_a100_rtol1e-4 dam_break_lobovsky_isph cantilever_large"
 CASES=${HARD_CASES:-$ALL}
 for c in $CASES; do [[ " $ALL " == *" $c "* ]] || { echo "HARD_CASES: unknown case $c (cases: $ALL)" >&2; exit 2; }; done
 [ -x "$BIN/sphfsi" ] || { echo "run make hard (needs $BIN/sphfsi)" >&2; exit 1; }
@@ -119,6 +124,11 @@ fi
 if has plate_vf005; then
   run plate_vf005 -- -options_file cases/oscillating_plate.opts -plate_vf 0.05 -t_end 1.5 -output_interval 0.05
   check plate_vf005
+fi
+
+if has cantilever_large; then
+  run cantilever_large -- -options_file cases/oscillating_plate.opts -solid_formulation total -plate_length 0.079 -plate_thickness 0.005 -solid_rho 1100 -solid_K 2e7 -solid_G 4.27e6 -plate_vf 0 -gravity 0,-450 -solid_damping 185 -t_end 0.4 -plate_ny 10 -output_interval 0.05
+  check cantilever_large
 fi
 
 GATE="-options_file cases/elastic_gate.opts -dx 0.00125 -dx_coarse 0.0025 -t_end 0.4 -output_interval 0.05"

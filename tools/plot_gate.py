@@ -23,7 +23,7 @@ for ax, comp in zip(axes, ("dx", "dy")):
         rows = list(csv.DictReader(open(d + "/probes.csv")))
         s = json.load(open(d + "/summary.json")); e = s["errors"]
         rms = e.get(f"tip_{comp}_err_rms")
-        lab = f"{s['fluid']} + solid, dx {1000 * s['dx']:.3g} mm" + (f": RMS {1000 * rms:.1f} mm" if rms is not None else "")
+        lab = f"{s['fluid']} + {s.get('solid_formulation', 'updated')} solid, dx {1000 * s['dx']:.3g} mm" + (f": RMS {1000 * rms:.1f} mm" if rms is not None else "")
         ax.plot([float(r["t"]) for r in rows], [1000 * float(r[f"tip_{comp}"]) for r in rows], label=lab)
     for name, style, lab in ((f"antoci2007_exp_tip{comp}__chrono.csv", "ko", "experiment"),
                              (f"antoci2007_exp_tip{comp}__fsi_etvf.csv", "k^", "experiment (2nd digitisation)"),

@@ -22,8 +22,6 @@
 #include <sphfsi/kernel.h>
 #include <sphfsi/halo.h>
 
-static PetscBool Solid2(Particles P, PetscInt a, PetscInt b) { return (PetscBool)(KindIsSolid(P->kind[a]) && KindIsSolid(P->kind[b])); }
-
 /* Basis of the bond X (X, Y) from a particle of smoothing length h: p[0..4]. */
 static inline void Basis(PetscReal X, PetscReal Y, PetscReal h, PetscReal p[5])
 {
@@ -57,6 +55,60 @@ static PetscBool Inverse(PetscInt n, const PetscReal M[25], PetscReal G[25])
   return PETSC_TRUE;
 }
 
+/* -solid_clamp face: a clamp is a boundary, not material.  Each clamp particle next to the body
+ * (its nearest solid particle within 1.5 dx in the reference configuration) stands in the fits
+ * for the point midway to that particle, on the face where the displacement is zero; deeper clamp
+ * particles take no part, and clamps store no energy.  Fitted across the face as material, the
+ * displacement (zero in the clamp, quadratic in the plate) has a jump in its second derivative
+ * there, which made the root too compliant at first order.  Done once per particle: a moved X0
+ * (x != X0; a clamp never moves) marks it, and a checkpoint keeps it. */
+static PetscBool ClampFace(Particles P, PetscInt b) { return (PetscBool)(P->kind[b] == KIND_CLAMP && (PField(P, FIELD_X)[2 * b] != PField(P, FIELD_X0)[2 * b] || PField(P, FIELD_X)[2 * b + 1] != PField(P, FIELD_X0)[2 * b + 1])); }
+
+static PetscErrorCode ClampFaces(Sim sim)
+{
+  Cells            C = sim->solid->nl;
+  Particles        P = sim->P;
+  PetscReal       *X = PField(P, FIELD_X0);
+  const PetscReal *h = PField(P, FIELD_H);
+  const FieldId    x0[] = {FIELD_X0};
+  PetscFunctionBeginUser;
+  for (PetscInt a = 0; a < P->n; a++) {
+    PetscReal lim = 1.5 * h[a] / sim->kernel.h_factor, best = lim * lim, mid[2];
+    PetscInt  nearest = -1;
+    if (P->kind[a] != KIND_CLAMP || ClampFace(P, a)) continue;
+    for (PetscInt k = C->nstart[a]; k < C->nstart[a + 1]; k++) {
+      PetscInt  b = C->nbr[k];
+      PetscReal dx, dy;
+      if (P->kind[b] != KIND_SOLID) continue;
+      dx = X[2 * b] - X[2 * a]; dy = X[2 * b + 1] - X[2 * a + 1];
+      if (dx * dx + dy * dy < best * (1 - 1e-9)) { best = dx * dx + dy * dy; nearest = b; }
+    }
+    if (nearest < 0) continue;
+    mid[0] = 0.5 * (X[2 * a] + X[2 * nearest]); mid[1] = 0.5 * (X[2 * a + 1] + X[2 * nearest + 1]);
+    X[2 * a] = mid[0]; X[2 * a + 1] = mid[1];
+  }
+  PetscCall(HaloRefresh(sim->halo, P, 1, x0));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* A clamp face point c pairs with solid a while the clamp particle itself is within the support
+ * of a: the neighbour search, which runs at the particles' positions, then always holds the pair. */
+static PetscBool FaceInSupport(Sim sim, PetscInt a, PetscInt c)
+{
+  const PetscReal *x = PField(sim->P, FIELD_X), *X = PField(sim->P, FIELD_X0), *h = PField(sim->P, FIELD_H);
+  PetscReal        dx = x[2 * c] - X[2 * a], dy = x[2 * c + 1] - X[2 * a + 1], r = 2 * PairH(h[a], h[c]);
+  return (PetscBool)(dx * dx + dy * dy < r * r);
+}
+
+/* Whether b enters the fit of a: solids both; with clamp faces, a clamp only as a face point and
+ * never as the centre of a fit. */
+static PetscBool InFit(Solid s, Particles P, PetscInt a, PetscInt b)
+{
+  if (!KindIsSolid(P->kind[a]) || !KindIsSolid(P->kind[b])) return PETSC_FALSE;
+  if (!s->clamp_face) return PETSC_TRUE;
+  return (PetscBool)(P->kind[a] == KIND_SOLID && (P->kind[b] == KIND_SOLID || ClampFace(P, b)));
+}
+
 PetscErrorCode SolidTotalPrepare(Sim sim)
 {
   Solid            s = sim->solid;
@@ -67,6 +119,7 @@ PetscErrorCode SolidTotalPrepare(Sim sim)
   PetscInt         npair = 0, npairs = C->nstart[C->npart], nb = s->order == 2 ? 5 : 2;
 
   PetscFunctionBeginUser;
+  if (s->clamp_face) PetscCall(ClampFaces(sim));
   if (npairs > s->cap_ref) {
     PetscCall(PetscFree(s->f0));
     s->cap_ref = C->cap_nbr;
@@ -75,11 +128,23 @@ PetscErrorCode SolidTotalPrepare(Sim sim)
   for (PetscInt a = 0; a < P->n; a++) {
     PetscReal M[25] = {0}, M2[25] = {0};
     if (!KindIsSolid(P->kind[a])) continue;
+    for (PetscInt k = C->nstart[a]; k < C->nstart[a + 1]; k++) s->f0[k] = 0;
+    if (s->clamp_face && P->kind[a] == KIND_CLAMP) { /* no fit, no energy; a face point keeps its pairs with the solids that fit it, for the support's reaction */
+      PetscCall(PetscArrayzero(G + 25 * a, 25));
+      if (!ClampFace(P, a)) continue;
+      for (PetscInt k = C->nstart[a]; k < C->nstart[a + 1]; k++) {
+        PetscInt  b = C->nbr[k];
+        PetscReal dx = X[2 * b] - X[2 * a], dy = X[2 * b + 1] - X[2 * a + 1];
+        if (P->kind[b] != KIND_SOLID || !FaceInSupport(sim, b, a)) continue;
+        s->f0[k] = KernelF(&sim->kernel, PetscSqrtReal(dx * dx + dy * dy), PairH(h[a], h[b]));
+        if (s->f0[k] != 0) npair++;
+      }
+      continue;
+    }
     for (PetscInt k = C->nstart[a]; k < C->nstart[a + 1]; k++) {
       PetscInt  b = C->nbr[k];
       PetscReal dx, dy, w, p[5];
-      s->f0[k] = 0;
-      if (!Solid2(P, a, b)) continue;
+      if (!InFit(s, P, a, b) || (P->kind[b] == KIND_CLAMP && !FaceInSupport(sim, a, b))) continue;
       dx = X[2 * b] - X[2 * a]; dy = X[2 * b + 1] - X[2 * a + 1];
       s->f0[k] = KernelF(&sim->kernel, PetscSqrtReal(dx * dx + dy * dy), PairH(h[a], h[b]));
       if (s->f0[k] == 0) continue;
@@ -115,8 +180,9 @@ static void Fit(Sim sim, PetscInt a, PetscReal A[10])
     PetscReal w, pb[5], ux, uy;
     if (s->f0[k] == 0) continue; /* not a reference neighbour (or not a solid) */
     w = -m[b] * ir0 * s->f0[k];
+    const PetscReal *xb = P->kind[b] == KIND_CLAMP && s->clamp_face ? X + 2 * b : x + 2 * b; /* a clamp face point does not move */
     Basis(X[2 * b] - X[2 * a], X[2 * b + 1] - X[2 * a + 1], h[a], pb);
-    ux = w * (x[2 * b] - x[2 * a]); uy = w * (x[2 * b + 1] - x[2 * a + 1]);
+    ux = w * (xb[0] - x[2 * a]); uy = w * (xb[1] - x[2 * a + 1]);
     for (PetscInt i = 0; i < 5; i++) { A[i] += ux * pb[i]; A[5 + i] += uy * pb[i]; }
   }
 }
@@ -172,6 +238,11 @@ static PetscErrorCode DeformationAndStress(Sim sim)
   for (PetscInt a = 0; a < P->n; a++) {
     PetscReal A[10], dxa = h[a] / sim->kernel.h_factor, W;
     if (!KindIsSolid(P->kind[a])) continue;
+    if (s->clamp_face && P->kind[a] == KIND_CLAMP) { /* a boundary: no strain, no energy */
+      F[4 * a] = F[4 * a + 3] = 1; F[4 * a + 1] = F[4 * a + 2] = 0;
+      PetscCall(PetscArrayzero(Q + 10 * a, 10));
+      continue;
+    }
     Fit(sim, a, A);
     if (!ParticleEnergy(sm, G + 25 * a, A, h[a], s->quadrature ? dxa * dxa / 24 : 0, F + 4 * a, Q + 10 * a, &W)) /* inverted: the run guard stops on the NaN and names the particle */
       for (PetscInt q = 0; q < 10; q++) Q[10 * a + q] = NAN;
@@ -223,7 +294,7 @@ static PetscErrorCode Momentum(Sim sim)
           ax += c * (Qa[q] * pa[q] - Qb[q] * pb[q]);
           ay += c * (Qa[5 + q] * pa[q] - Qb[5 + q] * pb[q]);
         }
-        if (s->hourglass > 0) {
+        if (s->hourglass > 0 && !(s->clamp_face && P->kind[b] == KIND_CLAMP)) {
           const PetscReal xab[2] = {-dx, -dy};
           HourglassAcc(s->hourglass * sm->G * m[b] * ir0 * -s->f0[k] * ir0, F + 4 * a, F + 4 * b, Xab, xab, hg);
         }
@@ -259,7 +330,7 @@ PetscReal SolidTotalStrainEnergy(Sim sim)
   PetscReal        e = 0;
   for (PetscInt a = 0; a < P->n; a++) {
     PetscReal A[10], Fa[4], dxa = h[a] / sim->kernel.h_factor, ea;
-    if (!KindIsSolid(P->kind[a])) continue;
+    if (!KindIsSolid(P->kind[a]) || (s->clamp_face && P->kind[a] == KIND_CLAMP)) continue;
     Fit(sim, a, A);
     if (!ParticleEnergy(&sim->sl, G + 25 * a, A, h[a], s->quadrature ? dxa * dxa / 24 : 0, Fa, NULL, &ea)) ea = NAN;
     if (s->hourglass > 0)

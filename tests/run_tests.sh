@@ -60,11 +60,12 @@ run test_rank_agreement_fsi_isph_updated $MPI "${BINDIR:-bin}"/test_rank_agreeme
 # runs the WCSPH dam break above); same ranks exact; across ranks WCSPH and solid exact, ISPH to the
 # solver tolerance
 run test_restart_fsi $MPI "${BINDIR:-bin}"/test_restart -case elastic_gate -fluid wcsph -dx 0.00125 -t_end 0.0015
-# (ISPH + the total-Lagrangian solid across rank counts: the state agrees to ~6e-11 (rank agreement
-# above), but the solid's acceleration, compared too, answers a position difference dx with
-# ~c0^2 dx / h^2, and its one-sided surface fits are stiffer: 2.1e-8 in acc_y, at any -ksp_rtol
-# from 1e-10 to 1e-12, so not the solver; bound 1e-7.  Same ranks: exact.)
-run test_restart_fsi_isph $MPI "${BINDIR:-bin}"/test_restart -case elastic_gate -fluid isph -dx 0.00125 -t_end 0.002 -ksp_rtol 1e-10 -tol 1e-7
+# (ISPH + the total-Lagrangian solid across rank counts: the state agrees to ~5e-11 (rank agreement
+# above, bound 1e-8), but the solid's acceleration, compared too, answers a position difference dx
+# with ~c0^2 dx / h^2, and its one-sided surface fits and clamp faces (dx/2 from the first row) are
+# stiffer: up to 4e-8 in acc_y optimised and 1.0e-7 in the sanitizer build, the same at -ksp_rtol
+# 1e-10 to 1e-12, so not the solver; bound 1e-6.  Same ranks: exact.)
+run test_restart_fsi_isph $MPI "${BINDIR:-bin}"/test_restart -case elastic_gate -fluid isph -dx 0.00125 -t_end 0.002 -ksp_rtol 1e-10 -tol 1e-6
 run test_restart_isph $MPI "${BINDIR:-bin}"/test_restart -fluid isph -ksp_rtol 1e-10 -tol 1e-8
 run test_restart_wendland $MPI "${BINDIR:-bin}"/test_restart -kernel wendland_c2 -h_factor 2 -wcsph_shift 1 -shift_correct
 run test_restart_solid $MPI "${BINDIR:-bin}"/test_restart -case oscillating_plate -plate_ny 6 -t_end 0.01

@@ -119,7 +119,8 @@ PetscErrorCode SolidTotalPrepare(Sim sim)
   PetscInt         npair = 0, npairs = C->nstart[C->npart], nb = s->order == 2 ? 5 : 2;
 
   PetscFunctionBeginUser;
-  if (s->clamp_face) PetscCall(ClampFaces(sim));
+  if (s->clamp_face && !s->faces_placed) PetscCall(ClampFaces(sim)); /* the reference never changes: once per run (a restart finds them in X0) */
+  s->faces_placed = PETSC_TRUE;
   if (npairs > s->cap_ref) {
     PetscCall(PetscFree(s->f0));
     s->cap_ref = C->cap_nbr;

@@ -20,6 +20,7 @@ struct _p_Solid {
   SolidGradient gradient;
   PetscReal     damping;   /* mass-proportional damping rate (1/s) for static solutions by dynamic relaxation; 0 = off */
   PetscBool     clamp_face; /* total: a clamp is a boundary face in the fits, not material (solid_total.c) */
+  PetscBool     faces_placed; /* the clamp's face points are in X0 (done at the first SolidPrepare) */
   PetscBool     quadrature; /* total, order 2: second-order quadrature of each particle's cell (solid_terms.h) */
   PetscInt      order;     /* total: polynomial order the reference gradient reproduces (1 or 2) */
   PetscReal     hourglass; /* total: hourglass-control coefficient alpha (Ganzenmueller 2015); 0 = off */

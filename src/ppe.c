@@ -30,6 +30,7 @@ PetscErrorCode PPESetFromOptions(PPE ppe, PetscBool symmetric)
   ppe->mat_hypre = PETSC_TRUE;
   PetscOptionsBegin(ppe->comm, NULL, "Pressure Poisson equation", "PPE");
   PetscCall(PetscOptionsReal("-ppe_pc_qmax", "Build the preconditioner from the PPE without the pairs beyond r = q h (their weight goes to the diagonal); 0: from the PPE itself", "", ppe->pc_qmax, &ppe->pc_qmax, NULL));
+  PetscCall(PetscOptionsBool("-ppe_wall_clip", "Clip a wall's pressure above the water line (its hydrostatic extrapolation is negative there) at min(0, its fluid's mean pressure); solids are always clipped", "", ppe->wall_clip, &ppe->wall_clip, NULL));
   PetscCall(PetscOptionsBool("-ppe_mat_hypre", "With a hypre preconditioner: build the matrix it reads (the PPE, or the sparser one of -ppe_pc_qmax) in hypre's ParCSR format, sharing our arrays, instead of a PETSc AIJ matrix that hypre copies at every set-up", "", ppe->mat_hypre, &ppe->mat_hypre, NULL));
   PetscOptionsEnd();
   PetscCheck(ppe->pc_qmax >= 0, ppe->comm, PETSC_ERR_ARG_OUTOFRANGE, "-ppe_pc_qmax %g must be >= 0 (0: the preconditioner sees the whole matrix)", (double)ppe->pc_qmax);
@@ -53,6 +54,7 @@ PetscErrorCode PPEView(PPE ppe, PetscViewer v)
   PetscCall(PetscViewerASCIIPrintf(v, "Pressure Poisson equation (Eq. 22, 48):\n"));
   if (ppe->pc_qmax > 0) PetscCall(PetscViewerASCIIPrintf(v, "  preconditioner built without the fluid pairs beyond r = %g h (lumped into the diagonal)\n", (double)ppe->pc_qmax));
   if (ppe->mat_hypre) PetscCall(PetscViewerASCIIPrintf(v, "  the preconditioner's matrix built in hypre's format (-ppe_mat_hypre)\n"));
+  PetscCall(PetscViewerASCIIPrintf(v, "  walls' pressure above the water line %s (-ppe_wall_clip)\n", ppe->wall_clip ? "clipped" : "extrapolated, not clipped"));
   PetscCall(PetscViewerASCIIPushTab(v));
   PetscCall(KSPView(ppe->ksp, v));
   PetscCall(PetscViewerASCIIPopTab(v));
@@ -399,7 +401,7 @@ PetscErrorCode PPESolve(PPE ppe, Sim sim)
     PetscReal pw = PetscMax(xx[r], PetscMin(xx[r] - ppe->hyd[r], 0.0));
     if (P->kind[a] == KIND_SOLID && !ppe->symmetric) fv[3 * a] = xx[r];
     else if (KindIsSolid(P->kind[a])) fv[3 * a] = pw;
-    else p[a] = KindIsWall(P->kind[a]) ? pw : xx[r];
+    else p[a] = KindIsWall(P->kind[a]) && ppe->wall_clip ? pw : xx[r];
   }
   PetscCall(VecRestoreArrayRead(ppe->x, (const PetscScalar **)&xx));
   PetscCall(PetscLogStagePop());

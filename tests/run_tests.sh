@@ -82,6 +82,7 @@ if [ "${1:-}" != "--unit-only" ]; then
   run poiseuille_wcsph bash tests/check_poiseuille.sh "$MPI" "$OUT/poiseuille_wcsph" -fluid wcsph
   # ISPH (issue 3): floor pressure within 2 % at dx = H/80 (first-order free-surface error: 2.15 % at H/40)
   P_BOUND=0.02 run hydrostatic_isph bash tests/check_hydrostatic.sh "$MPI" "$OUT/hydrostatic_isph" -fluid isph -dx 0.00125
+  run still_tank_isph bash tests/check_still_tank.sh "$MPI" "$OUT/still_tank_isph" -fluid isph
   run dam_break_isph_front bash tests/check_dam_break.sh "$MPI" "$OUT/dam_break_isph" -fluid isph
   run dam_break_isph_gmres_gamg bash tests/check_dam_break.sh "$MPI" "$OUT/dam_break_isph_gamg" -fluid isph -ksp_type gmres -pc_type gamg
   run poiseuille_isph bash tests/check_poiseuille.sh "$MPI" "$OUT/poiseuille_isph" -fluid isph

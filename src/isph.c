@@ -25,6 +25,7 @@ PetscErrorCode ISPHSetUp(Sim sim)
   s->alpha    = 0.1;
   s->source   = ISPH_SOURCE_BLEND;
   s->gradient = ISPH_GRAD_CORRECTED;
+  s->solid_eq14 = PETSC_TRUE;
   fs = s->fs; src = s->source; grad = s->gradient;
   PetscOptionsBegin(sim->comm, NULL, "ISPH fluid (section 2.8)", "ISPH");
   PetscCall(PetscOptionsEList("-isph_free_surface", "Free-surface criterion: density (rho* < beta rho0, section 2.5) or divr (divergence of position)", "", ISPHFreeSurfaces, 2, ISPHFreeSurfaces[fs], &fs, NULL));
@@ -33,6 +34,7 @@ PetscErrorCode ISPHSetUp(Sim sim)
   PetscCall(PetscOptionsEList("-isph_source", "PPE source: divergence (Eq. 13, 48), density ((rho0 - rho*)/(rho0 dt^2)) or blend", "", ISPHSources, 3, ISPHSources[src], &src, NULL));
   PetscCall(PetscOptionsReal("-isph_blend", "Weight of the density source in -isph_source blend", "", s->blend, &s->blend, NULL));
   PetscCall(PetscOptionsEList("-isph_gradient", "Pressure gradient of the corrector: eq14 (symmetric, Eq. 14), corrected (Bonet-Lok), hybrid (corrected on and next to the free surface)", "", ISPHGradients, 3, ISPHGradients[grad], &grad, NULL));
+  PetscCall(PetscOptionsBool("-isph_solid_eq14", "Fluid particles next to a solid body (and not at the free surface) take Eq. 14, whose pair forces are those the body receives: the momentum exchange is exact", "", s->solid_eq14, &s->solid_eq14, NULL));
   PetscCall(PetscOptionsReal("-isph_alpha", "Artificial viscosity (Eq. 24, velocity scale c0) in the predictor; damps the free-surface noise of the projection", "", s->alpha, &s->alpha, NULL));
   PetscCall(PetscOptionsBool("-isph_wall_contact", "A free-surface particle (P = 0, so no pressure stops it) that approaches a wall within dx of its first row loses its velocity towards the wall", "", s->wall_contact, &s->wall_contact, NULL));
   PetscCall(PetscOptionsReal("-isph_shift", "Particle shifting coefficient A (D = A h |v| dt, Skillen et al. 2013); 0 = off", "", s->shift, &s->shift, NULL));
@@ -75,7 +77,7 @@ PetscErrorCode ISPHView(Sim sim, PetscViewer v)
 {
   ISPH s = sim->isph;
   PetscFunctionBeginUser;
-  PetscCall(PetscViewerASCIIPrintf(v, "ISPH: free surface by %s (%s %g), PPE source %s (density weight %g), gradient %s, AV alpha %g, shifting A = %g, XSPH %g\n", ISPHFreeSurfaces[s->fs], s->fs == ISPH_FS_DENSITY ? "beta" : "div r <", (double)(s->fs == ISPH_FS_DENSITY ? s->beta : s->divr_min), ISPHSources[s->source], (double)s->blend, ISPHGradients[s->gradient], (double)s->alpha, (double)s->shift, (double)sim->fl.xsph));
+  PetscCall(PetscViewerASCIIPrintf(v, "ISPH: free surface by %s (%s %g), PPE source %s (density weight %g), gradient %s%s, AV alpha %g, shifting A = %g, XSPH %g\n", ISPHFreeSurfaces[s->fs], s->fs == ISPH_FS_DENSITY ? "beta" : "div r <", (double)(s->fs == ISPH_FS_DENSITY ? s->beta : s->divr_min), ISPHSources[s->source], (double)s->blend, ISPHGradients[s->gradient], s->solid_eq14 && s->gradient != ISPH_GRAD_EQ14 ? " (Eq. 14 next to solids)" : "", (double)s->alpha, (double)s->shift, (double)sim->fl.xsph));
   PetscCall(PPEView(s->ppe, v));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -214,11 +216,11 @@ static PetscErrorCode DensityFreeSurfaceSource(Sim sim)
  * on a truncated support: the free surface, where Eq. 14 sees half the gradient and lets surface
  * particles fall at g/2.  The corrected form divides by rho0: rho* is truncated there too.  One
  * pass gathers both forms and whether a free-surface particle is in reach (hybrid). */
-static inline void PressureGradient(Particles P, Cells C, PetscInt a, ISPHGradient mode, PetscReal rho0, PetscReal g[2])
+static inline void PressureGradient(Particles P, Cells C, PetscInt a, ISPHGradient mode, PetscBool solid_eq14, PetscReal rho0, PetscReal g[2])
 {
   const PetscReal *x = PField(P, FIELD_X), *m = PField(P, FIELD_M), *rho = PField(P, FIELD_RHO), *p = PField(P, FIELD_P), *fs = PField(P, FIELD_FS), *fv = PField(P, FIELD_FVIEW);
   PetscReal        gs[2] = {0, 0}, gd[2] = {0, 0}, M[3] = {0, 0, 0}, pa = p[a] / (rho[a] * rho[a]), det;
-  PetscBool        near = (PetscBool)(fs[a] > 0), corrected;
+  PetscBool        near = (PetscBool)(fs[a] > 0), corrected, body = PETSC_FALSE;
   for (PetscInt k = C->nstart[a]; k < C->nstart[a + 1]; k++) {
     PetscInt  b = C->nbr[k];
     PetscReal dx = x[2 * a] - x[2 * b], dy = x[2 * a + 1] - x[2 * b + 1], F = C->f[k], mb, rb, pb, cs, vb;
@@ -228,8 +230,10 @@ static inline void PressureGradient(Particles P, Cells C, PetscInt a, ISPHGradie
     gd[0] += vb * (pb - p[a]) / rho0 * dx; gd[1] += vb * (pb - p[a]) / rho0 * dy;
     M[0] -= vb * dx * dx; M[1] -= vb * dx * dy; M[2] -= vb * dy * dy; /* (x_b - x_a) (x) V_b grad_a W */
     if (fs[b] > 0 && KindIsFluid(P->kind[b])) near = PETSC_TRUE;
+    if (KindIsSolid(P->kind[b])) body = PETSC_TRUE;
   }
   corrected = (PetscBool)(mode == ISPH_GRAD_CORRECTED || (mode == ISPH_GRAD_HYBRID && near));
+  if (solid_eq14 && body && !near) corrected = PETSC_FALSE; /* the pair forces the body receives (FluidLoad) */
   det       = M[0] * M[2] - M[1] * M[1];
   if (!corrected) { g[0] = gs[0]; g[1] = gs[1]; }
   else if (det > 1e-6 * (M[0] * M[0] + M[2] * M[2])) { /* L = M^-1 (M is symmetric) */
@@ -279,7 +283,7 @@ static PetscErrorCode Corrector(Sim sim)
   for (PetscInt a = 0; a < P->n; a++) {
     PetscReal g[2], vx, vy;
     if (!KindIsFluid(P->kind[a])) continue;
-    PressureGradient(P, C, a, s->gradient, sim->fl.rho0, g);
+    PressureGradient(P, C, a, s->gradient, s->solid_eq14, sim->fl.rho0, g);
     vx = vs[2 * a] - dt * g[0];
     vy = vs[2 * a + 1] - dt * g[1];
     if (s->wall_contact && PField(P, FIELD_FS)[a] > 0) {

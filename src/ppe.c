@@ -27,9 +27,11 @@ PetscErrorCode PPESetFromOptions(PPE ppe, PetscBool symmetric)
 #endif
   PetscCall(KSPSetTolerances(ppe->ksp, PPE_RTOL_DEFAULT, 1e-50, PETSC_DEFAULT, 200));
   PetscCall(KSPSetInitialGuessNonzero(ppe->ksp, PETSC_TRUE)); /* last step's pressure */
-  ppe->mat_hypre = PETSC_TRUE;
+  ppe->mat_hypre     = PETSC_TRUE;
+  ppe->wall_approach = PETSC_TRUE;
   PetscOptionsBegin(ppe->comm, NULL, "Pressure Poisson equation", "PPE");
   PetscCall(PetscOptionsReal("-ppe_pc_qmax", "Build the preconditioner from the PPE without the pairs beyond r = q h (their weight goes to the diagonal); 0: from the PPE itself", "", ppe->pc_qmax, &ppe->pc_qmax, NULL));
+  PetscCall(PetscOptionsBool("-ppe_wall_approach", "Fixed walls stop the fluid that approaches them: their pressure rows take the projection's Neumann condition dP/dn = rho (v* - v*_wall) . n / dt for approaching fluid neighbours (not only rho g . n)", "", ppe->wall_approach, &ppe->wall_approach, NULL));
   PetscCall(PetscOptionsBool("-ppe_wall_clip", "Clip a wall's pressure above the water line (its hydrostatic extrapolation is negative there) at min(0, its fluid's mean pressure); solids are always clipped", "", ppe->wall_clip, &ppe->wall_clip, NULL));
   PetscCall(PetscOptionsBool("-ppe_mat_hypre", "With a hypre preconditioner: build the matrix it reads (the PPE, or the sparser one of -ppe_pc_qmax) in hypre's ParCSR format, sharing our arrays, instead of a PETSc AIJ matrix that hypre copies at every set-up", "", ppe->mat_hypre, &ppe->mat_hypre, NULL));
   PetscOptionsEnd();
@@ -54,6 +56,7 @@ PetscErrorCode PPEView(PPE ppe, PetscViewer v)
   PetscCall(PetscViewerASCIIPrintf(v, "Pressure Poisson equation (Eq. 22, 48):\n"));
   if (ppe->pc_qmax > 0) PetscCall(PetscViewerASCIIPrintf(v, "  preconditioner built without the fluid pairs beyond r = %g h (lumped into the diagonal)\n", (double)ppe->pc_qmax));
   if (ppe->mat_hypre) PetscCall(PetscViewerASCIIPrintf(v, "  the preconditioner's matrix built in hypre's format (-ppe_mat_hypre)\n"));
+  PetscCall(PetscViewerASCIIPrintf(v, "  walls' rows: %s (-ppe_wall_approach)\n", ppe->wall_approach ? "rho0 (g + approach speed / dt) . n" : "rho0 g . n"));
   PetscCall(PetscViewerASCIIPrintf(v, "  walls' pressure above the water line %s (-ppe_wall_clip)\n", ppe->wall_clip ? "clipped" : "extrapolated, not clipped"));
   PetscCall(PetscViewerASCIIPushTab(v));
   PetscCall(KSPView(ppe->ksp, v));
@@ -266,6 +269,34 @@ static PetscReal MovingSolidRow(PPE ppe, Sim sim, PetscInt a, PetscReal va, Pets
   return -va * (rho0 * ((sim->g[0] - am[2 * a]) * R[0] + (sim->g[1] - am[2 * a + 1]) * R[1]) - rhs_last);
 }
 
+/* The unit normal of wall (or solid) particle a into the fluid: towards the kernel-weighted centre
+ * of its fluid neighbours (a flat wall's normal; a corner's bisector). */
+static void WallNormal(Particles P, Cells C, PetscInt a, PetscReal n[2])
+{
+  const PetscReal *x = PField(P, FIELD_X);
+  PetscReal        nn;
+  n[0] = n[1] = 0;
+  for (PetscInt k = C->nstart[a]; k < C->nstart[a + 1]; k++) {
+    PetscInt b = C->nbr[k];
+    if (!KindIsFluid(P->kind[b])) continue;
+    n[0] += C->w[k] * (x[2 * b] - x[2 * a]);
+    n[1] += C->w[k] * (x[2 * b + 1] - x[2 * a + 1]);
+  }
+  nn = PetscSqrtReal(n[0] * n[0] + n[1] * n[1]);
+  if (nn > 0) { n[0] /= nn; n[1] /= nn; }
+}
+
+/* The wall's share of the projection's Neumann condition dP/dn = rho (v* - v*_wall) . n / dt for a
+ * fluid neighbour f approaching wall particle w (times dt / rho0): its approach speed along the
+ * wall's normal n times its distance from the wall along n, (x_f - x_w) = (dx, dy) reversed.  Walls
+ * at rest take v* = dt g like the fluid, so the difference is the fluid's own velocity.  One-sided:
+ * fluid moving away from a wall is not pulled back. */
+static inline PetscReal WallApproach(const PetscReal vf[2], const PetscReal vw[2], const PetscReal n[2], PetscReal dx, PetscReal dy)
+{
+  PetscReal un = -((vf[0] - vw[0]) * n[0] + (vf[1] - vw[1]) * n[1]), dn = -(dx * n[0] + dy * n[1]);
+  return PetscMax(un, 0) * PetscMax(dn, 0);
+}
+
 PetscErrorCode PPEAssemble(PPE ppe, Sim sim, const PetscReal *src)
 {
   Particles        P = sim->P;
@@ -274,6 +305,7 @@ PetscErrorCode PPEAssemble(PPE ppe, Sim sim, const PetscReal *src)
   const PetscReal *rho = PField(P, FIELD_RHO), *m = PField(P, FIELD_M), *h = PField(P, FIELD_H), *fv = PField(P, FIELD_FVIEW);
   const PetscReal  rho0 = sim->fl.rho0;
   const PetscBool  sparse = (PetscBool)(ppe->pc_qmax > 0);
+  const PetscReal *vs = PField(P, FIELD_VSTAR);
   PetscScalar     *bb;
 
   PetscFunctionBeginUser;
@@ -287,8 +319,11 @@ PetscErrorCode PPEAssemble(PPE ppe, Sim sim, const PetscReal *src)
     PetscInt  ncp = 1;
     const PetscReal gx = sim->g[0], gy = sim->g[1];
     PetscBool wall = KindIsBoundary(P->kind[a]), dir = (PetscBool)(IsDirichlet(fs, a) || ga == ppe->pin);
+    PetscReal nw[2] = {0, 0};
     FluidView(fv, P->kind[a], a, m, rho, NULL, &ma, &ra, &pa);
     va = ma / rho0;
+    PetscBool approach = (PetscBool)(ppe->wall_approach && KindIsWall(P->kind[a])); /* fixed walls; a solid's rows keep rho0 g . n */
+    if (approach) WallNormal(P, C, a, nw);
     if (!ppe->symmetric && P->kind[a] == KIND_SOLID) {
       ppe->cols[0] = ga;
       ppe->hyd[r]  = 0;
@@ -307,6 +342,7 @@ PetscErrorCode PPEAssemble(PPE ppe, Sim sim, const PetscReal *src)
       c  = PPECoefficient(mb, ra, rb, C->f[k], r2, PairH(h[a], h[b]));
       diag += c;
       if (wall) hyd += c * rho0 * (gx * dx + gy * dy); /* L_a(rho0 g . r) */
+      if (approach) hyd += c * rho0 * WallApproach(vs + 2 * b, vs + 2 * a, nw, dx, dy) / sim->dt;
       if (dir || role == NBR_KNOWN) continue; /* free surface: P = 0 */
       ppe->cols[nc] = (PetscInt)row[b]; ppe->vals[nc++] = va * c;
       if (!sparse) continue;

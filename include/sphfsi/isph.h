@@ -21,6 +21,7 @@ struct _p_ISPH {
   PetscReal       blend;    /* weight of the density-invariant source in the blend */
   PetscReal       alpha;    /* artificial viscosity in the predictor */
   PetscReal       shift;    /* Fickian shifting coefficient A (Skillen et al. 2013); 0 = off */
+  PetscBool       solid_eq14;   /* Eq. 14 for fluid next to a solid, whatever the gradient (isph.c) */
   PetscBool       wall_contact; /* free-surface particles stopped kinematically at walls (isph.c, WallContact) */
   PetscReal       lat_w, lat_divr; /* sum of m W and div r of a full square lattice: normalisation */
   PetscReal      *src;

@@ -2,7 +2,7 @@
  * Rows: owned fluid particles and owned wall/dummy particles that have a fluid neighbour.
  *   fluid row a:        L_a(P) = src_a                     (src from isph.c: Eq. 13 or density)
  *   free-surface row a: P_a = 0                            (Dirichlet, section 2.5)
- *   wall row a:         L_a(P) = L_a(rho0 g . r)           (Neumann dP/dn = rho0 g . n, walls at rest)
+ *   wall row a:         L_a(P) = L_a(rho0 g . r) + approach (Neumann dP/dn = rho0 (g + v_n / dt) . n, ppe.c)
  * with L_a(P) = sum_b c_ab (P_a - P_b) (Eq. 22); a solid particle next to fluid has a wall row too
  * (its pressure goes to its fluid view, boundary.h); a wall row sums over fluid neighbours only (the
  * implicit form of the Adami extrapolation) and its solved pressure is clipped at min(0, the
@@ -40,6 +40,7 @@ struct _p_PPE {
   PetscReal    pc_qmax;                         /* Ap leaves out pairs with r / h_ab > pc_qmax (0: Ap = A) */
   PetscReal   *hyd;                             /* per local wall row: hydrostatic part of its P, L_a(rho0 g . r) / sum_b c_ab */
   PetscBool    symmetric;                       /* no implicit solid rows (ppe.c): CG applies */
+  PetscBool    wall_approach;                   /* wall rows also stop approaching fluid (ppe.c, WallApproach) */
   PetscBool    wall_clip;                       /* clip the walls' pressure above the water line (PPESolve); the caller sets the default */
   PetscBool    mat_hypre;                       /* the matrix the preconditioner reads built in hypre's format (csr.h): -ppe_mat_hypre with a hypre PC that can share our arrays */
   PetscInt    *cols, *colsp, cap_cols;

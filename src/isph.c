@@ -145,7 +145,7 @@ static PetscErrorCode Predictor(Sim sim)
         const PetscReal *vb = KindIsBoundary(P->kind[b]) ? vw + 2 * b : v + 2 * b;
         PetscReal       mb, rb, pb, c, av;
         FluidView(fv, P->kind[b], b, m, rho, NULL, &mb, &rb, &pb);
-        c  = LaminarViscosity(mb, mu, rho[a], rb, C->f[k] * r2, r2, hab);
+        c  = LaminarViscosity(mb, mu, rho[a], rb, C->f[k] * r2, r2, hab, sim->fl.eta, sim->fl.lap_kappa);
         av = alpha > 0 ? mb * ArtificialViscosity(alpha, sim->fl.c0, hab, 0.5 * (rho[a] + rb), (v[2 * a] - v[2 * b]) * dx + (v[2 * a + 1] - v[2 * b + 1]) * dy, r2) * C->f[k] : 0;
         ax += c * (v[2 * a] - vb[0]) - av * dx;
         ay += c * (v[2 * a + 1] - vb[1]) - av * dy;

@@ -255,7 +255,7 @@ static PetscReal MovingSolidRow(PPE ppe, Sim sim, PetscInt a, PetscReal va, Pets
       PetscReal dx, dy, c, e;
       if (role == NBR_SKIP) continue;
       dx = x[2 * a] - x[2 * b]; dy = x[2 * a + 1] - x[2 * b + 1];
-      c  = PPECoefficient(m[b], ra, rho[b], C->f[k], dx * dx + dy * dy, PairH(h[a], h[b]));
+      c  = PPECoefficient(m[b], ra, rho[b], C->f[k], dx * dx + dy * dy, PairH(h[a], h[b]), sim->fl.eta, sim->fl.lap_kappa);
       if (!pass) { R[0] += c * dx; R[1] += c * dy; continue; }
       e = rho0 * kappa * m[b] * C->f[k] * (R[0] * dx + R[1] * dy); /* -rho0 R . A(P) = sum_f e (P_f / rho_f^2 + P_s / rho_s^2) */
       diag += c; ediag += e;
@@ -339,7 +339,7 @@ PetscErrorCode PPEAssemble(PPE ppe, Sim sim, const PetscReal *src)
       if (role == NBR_SKIP) continue;
       FluidView(fv, P->kind[b], b, m, rho, NULL, &mb, &rb, &pb);
       dx = x[2 * a] - x[2 * b]; dy = x[2 * a + 1] - x[2 * b + 1]; r2 = dx * dx + dy * dy;
-      c  = PPECoefficient(mb, ra, rb, C->f[k], r2, PairH(h[a], h[b]));
+      c  = PPECoefficient(mb, ra, rb, C->f[k], r2, PairH(h[a], h[b]), sim->fl.eta, sim->fl.lap_kappa);
       diag += c;
       if (wall) hyd += c * rho0 * (gx * dx + gy * dy); /* L_a(rho0 g . r) */
       if (approach) hyd += c * rho0 * WallApproach(vs + 2 * b, vs + 2 * a, nw, dx, dy) / sim->dt;

@@ -134,7 +134,7 @@ static PetscErrorCode Momentum(Sim sim)
       PetscReal dvx = vxa - v[2 * b], dvy = vya - v[2 * b + 1], pterm, visc;
       FluidView(fv, P->kind[b], b, m, rho, p, &mb, &rb, &pb);
       pterm = pa + pb / (rb * rb) + ArtificialViscosity(fl->alpha, fl->c0, hab, 0.5 * (ra + rb), dvx * dx + dvy * dy, r2);
-      visc  = LaminarViscosity(mb, fl->mu, ra, rb, F * r2, r2, hab);
+      visc  = LaminarViscosity(mb, fl->mu, ra, rb, F * r2, r2, hab, fl->eta, fl->lap_kappa);
       if (nrm && KindIsSolid(P->kind[b])) {
         PetscReal f = FSIRepulsion(dvx * nrm[2 * b] + dvy * nrm[2 * b + 1], PetscSqrtReal(r2) / (2 * hab), sim->dt);
         ax += f * nrm[2 * b]; ay += f * nrm[2 * b + 1];

@@ -10,19 +10,22 @@ static inline PetscReal ArtificialViscosity(PetscReal alpha, PetscReal c, PetscR
   return -alpha * c * (h * vr / (r2 + 0.01 * h * h)) / rho_bar;
 }
 
-/* Eq. 16: laminar viscosity, the coefficient of (v_a - v_b); rgw = r_ab . grad_a W_ab, eta = 0.1 h */
-static inline PetscReal LaminarViscosity(PetscReal mb, PetscReal mu, PetscReal rhoa, PetscReal rhob, PetscReal rgw, PetscReal r2, PetscReal h)
+/* Eq. 16: laminar viscosity, the coefficient of (v_a - v_b); rgw = r_ab . grad_a W_ab; the
+ * regularisation eta h (-eta; the paper 0.1) keeps r -> 0 finite; kappa normalises the operator to
+ * be exact on the lattice (kernel.h, KernelLaplacianLatticeSum) */
+static inline PetscReal LaminarViscosity(PetscReal mb, PetscReal mu, PetscReal rhoa, PetscReal rhob, PetscReal rgw, PetscReal r2, PetscReal h, PetscReal eta, PetscReal kappa)
 {
   PetscReal rs = rhoa + rhob;
-  return 4.0 * mb * (2.0 * mu) * rgw / (rs * rs * (r2 + 0.01 * h * h));
+  return kappa * 4.0 * mb * (2.0 * mu) * rgw / (rs * rs * (r2 + eta * eta * h * h));
 }
 
 /* Eq. 22: coefficient c_ab of the Laplacian  div(grad P / rho)_a = sum_b c_ab (P_a - P_b);
- * F = (dW/dr)/r so r_ab . grad_a W_ab = F r2; eta = 0.1 h.  c_ab <= 0 and m_a c_ab is symmetric. */
-static inline PetscReal PPECoefficient(PetscReal mb, PetscReal rhoa, PetscReal rhob, PetscReal F, PetscReal r2, PetscReal h)
+ * F = (dW/dr)/r so r_ab . grad_a W_ab = F r2; eta and kappa as in Eq. 16.  c_ab <= 0 and
+ * m_a c_ab is symmetric. */
+static inline PetscReal PPECoefficient(PetscReal mb, PetscReal rhoa, PetscReal rhob, PetscReal F, PetscReal r2, PetscReal h, PetscReal eta, PetscReal kappa)
 {
   PetscReal rs = rhoa + rhob;
-  return 8.0 * mb * F * r2 / (rs * rs * (r2 + 0.01 * h * h));
+  return kappa * 8.0 * mb * F * r2 / (rs * rs * (r2 + eta * eta * h * h));
 }
 
 /* Eq. 44: XSPH weight of neighbour b, m_b W_ab / rho_ab with rho_ab the mean density */

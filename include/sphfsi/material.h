@@ -6,6 +6,8 @@ typedef struct {
   PetscReal rho0;     /* reference density */
   PetscReal c0;       /* artificial sound speed, Eq. 20 (WCSPH) */
   PetscReal mu;       /* dynamic viscosity, Eq. 16 */
+  PetscReal eta;      /* regularisation of Eqs. 16 and 22 over h (-eta) */
+  PetscReal lap_kappa; /* normalisation of Eqs. 16 and 22: exact on the lattice (-lap_normalise) */
   PetscReal alpha;    /* artificial viscosity, Eq. 24 (WCSPH) */
   PetscReal delta;    /* density diffusion (delta-SPH), 0 = off */
   PetscReal xsph;     /* XSPH epsilon, Eq. 44, 0 = off */

@@ -18,7 +18,7 @@ static inline void FluidLoad(Sim sim, PetscInt a, PetscInt b, PetscReal F, Petsc
   PetscReal        pa = fv[3 * a], ra = fv[3 * a + 1], ma = fv[3 * a + 2], rb = rho[b];
   PetscReal        dvx = v[2 * b] - v[2 * a], dvy = v[2 * b + 1] - v[2 * a + 1];
   PetscReal        pterm = p[b] / (rb * rb) + pa / (ra * ra) + ArtificialViscosity(alpha, sim->fl.c0, hab, 0.5 * (ra + rb), dvx * dx + dvy * dy, r2);
-  PetscReal        visc = LaminarViscosity(ma, sim->fl.mu, rb, ra, F * r2, r2, hab), s = m[b] / m[a];
+  PetscReal        visc = LaminarViscosity(ma, sim->fl.mu, rb, ra, F * r2, r2, hab, sim->fl.eta, sim->fl.lap_kappa), s = m[b] / m[a];
   PetscReal        fb[2]; /* the fluid's pair acceleration */
   fb[0] = visc * (v[2 * b] - vw[2 * a]) - ma * pterm * F * dx;
   fb[1] = visc * (v[2 * b + 1] - vw[2 * a + 1]) - ma * pterm * F * dy;

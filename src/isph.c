@@ -52,7 +52,7 @@ PetscErrorCode ISPHSetUp(Sim sim)
   PetscCall(PPECreate(sim->comm, &s->ppe));
   /* A wall above the water line extrapolates a negative pressure; Eq. 14 (P_a + P_b) would pull
    * fluid onto it, the corrected gradient sees it as the linear continuation it is (ppe.h) */
-  s->ppe->wall_clip = (PetscBool)(s->gradient != ISPH_GRAD_CORRECTED);
+  s->ppe->wall_clip = PETSC_TRUE;
   PetscCall(PPESetFromOptions(s->ppe, (PetscBool)!(sim->solid && sim->solid->implicit)));
   PetscCall(ParticlesEnableField(sim->P, FIELD_ACC, PETSC_FALSE));
   PetscCall(ParticlesEnableField(sim->P, FIELD_VWALL, PETSC_FALSE));
@@ -227,8 +227,10 @@ static inline void PressureGradient(Particles P, Cells C, PetscInt a, ISPHGradie
     FluidView(fv, P->kind[b], b, m, rho, p, &mb, &rb, &pb);
     cs = mb * (pb / (rb * rb) + pa) * F; vb = mb / rho0 * F;
     gs[0] += cs * dx; gs[1] += cs * dy;
-    gd[0] += vb * (pb - p[a]) / rho0 * dx; gd[1] += vb * (pb - p[a]) / rho0 * dy;
-    M[0] -= vb * dx * dx; M[1] -= vb * dx * dy; M[2] -= vb * dy * dy; /* (x_b - x_a) (x) V_b grad_a W */
+    if (!(KindIsWall(P->kind[b]) && fs[b] > 0)) { /* a dry wall (its pressure clipped, ppe.c) would tilt the plane fit */
+      gd[0] += vb * (pb - p[a]) / rho0 * dx; gd[1] += vb * (pb - p[a]) / rho0 * dy;
+      M[0] -= vb * dx * dx; M[1] -= vb * dx * dy; M[2] -= vb * dy * dy; /* (x_b - x_a) (x) V_b grad_a W */
+    }
     if (fs[b] > 0 && KindIsFluid(P->kind[b])) near = PETSC_TRUE;
     if (KindIsSolid(P->kind[b])) body = PETSC_TRUE;
   }

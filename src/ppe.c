@@ -380,12 +380,12 @@ PetscErrorCode PPEAssemble(PPE ppe, Sim sim, const PetscReal *src)
 PetscErrorCode PPESolve(PPE ppe, Sim sim)
 {
   Particles          P = sim->P;
-  PetscReal         *p = PField(P, FIELD_P), *fv = PField(P, FIELD_FVIEW);
+  PetscReal         *p = PField(P, FIELD_P), *fv = PField(P, FIELD_FVIEW), *fs = PField(P, FIELD_FS);
   PetscScalar       *xx;
   PetscInt           its;
   PetscReal          mean0 = 0;
   KSPConvergedReason reason;
-  const FieldId      refresh[] = {FIELD_P, FIELD_FVIEW};
+  const FieldId      refresh[] = {FIELD_P, FIELD_FS, FIELD_FVIEW};
 
   PetscFunctionBeginUser;
   PetscCall(PetscLogStagePush(sim->stage[STAGE_PPE_SOLVE]));
@@ -437,12 +437,15 @@ PetscErrorCode PPESolve(PPE ppe, Sim sim)
     PetscReal pw = PetscMax(xx[r], PetscMin(xx[r] - ppe->hyd[r], 0.0));
     if (P->kind[a] == KIND_SOLID && !ppe->symmetric) fv[3 * a] = xx[r];
     else if (KindIsSolid(P->kind[a])) fv[3 * a] = pw;
-    else p[a] = KindIsWall(P->kind[a]) && ppe->wall_clip ? pw : xx[r];
+    else if (KindIsWall(P->kind[a]) && ppe->wall_clip) {
+      p[a]  = pw;
+      fs[a] = pw != xx[r] ? 1.0 : 0.0; /* a dry wall: the corrected gradient leaves it out (isph.c) */
+    } else p[a] = xx[r];
   }
   PetscCall(VecRestoreArrayRead(ppe->x, (const PetscScalar **)&xx));
   PetscCall(PetscLogStagePop());
   PetscCall(PetscLogStagePush(sim->stage[STAGE_HALO]));
-  PetscCall(HaloRefresh(sim->halo, P, fv ? 2 : 1, refresh));
+  PetscCall(HaloRefresh(sim->halo, P, fv ? 3 : 2, refresh));
   PetscCall(PetscLogStagePop());
   PetscFunctionReturn(PETSC_SUCCESS);
 }

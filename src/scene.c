@@ -52,11 +52,26 @@ static PetscErrorCode AddOne(Sim sim, ParticleKind kind, PetscReal x, PetscReal 
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* A number in [-1, 1) from a particle id and a salt (splitmix64): the same on any number of ranks. */
+static PetscReal IdUniform(PetscInt id, unsigned salt)
+{
+  uint64_t z = (uint64_t)id * 2u + salt + 0x9E3779B97F4A7C15ull;
+  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+  z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+  z ^= z >> 31;
+  return 2.0 * (PetscReal)(z >> 11) / 9007199254740992.0 - 1.0;
+}
+
+/* Fluid lattices take -start_jitter: each particle displaced by up to that fraction of dx in x and y. */
 PetscErrorCode SceneAddLattice(Sim sim, ParticleKind kind, PetscReal x0, PetscReal y0, PetscInt nx, PetscInt ny, PetscReal dx, PetscReal rho0)
 {
+  const PetscReal jit = kind == KIND_FLUID ? sim->start_jitter * dx : 0;
   PetscFunctionBeginUser;
   for (PetscInt j = 0; j < ny; j++)
-    for (PetscInt i = 0; i < nx; i++) PetscCall(AddOne(sim, kind, x0 + i * dx, y0 + j * dx, dx, rho0));
+    for (PetscInt i = 0; i < nx; i++) {
+      PetscInt id = sim->next_id; /* the id AddOne hands out */
+      PetscCall(AddOne(sim, kind, x0 + i * dx + jit * IdUniform(id, 0), y0 + j * dx + jit * IdUniform(id, 1), dx, rho0));
+    }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

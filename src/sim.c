@@ -138,6 +138,7 @@ static PetscErrorCode FluidOptions(Sim sim)
   PetscCall(PetscOptionsReal("-alpha", "Artificial viscosity coefficient, Eq. 24", "", sim->fl.alpha, &sim->fl.alpha, NULL));
   PetscCall(PetscOptionsReal("-delta", "Density diffusion coefficient (delta-SPH); 0 = off", "", sim->fl.delta, &sim->fl.delta, NULL));
   PetscCall(PetscOptionsReal("-xsph", "XSPH epsilon, Eq. 44; 0 = off", "", sim->fl.xsph, &sim->fl.xsph, NULL));
+  PetscCall(PetscOptionsReal("-start_jitter", "Displace each particle of the fluid's start lattice at random by up to this fraction of dx in x and y (by its id: the same on any number of ranks); a perfect lattice gives way all at once where the flow squeezes it (Taylor-Green's stagnation points); 0 = the lattice", "", sim->start_jitter, &sim->start_jitter, NULL));
   PetscCall(PetscOptionsBool("-shift_correct", "With particle shifting (-wcsph_shift, -isph_shift): correct a shifted particle's velocity to its new place, v += dr . grad v", "", sim->fl.shift_correct, &sim->fl.shift_correct, NULL));
   PetscOptionsEnd();
   PetscCheck(sim->fl.rho0 > 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-rho0 %g must be > 0", (double)sim->fl.rho0);
@@ -147,6 +148,7 @@ static PetscErrorCode FluidOptions(Sim sim)
   PetscCheck(sim->fl.c0 > 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-c0 %g must be > 0", (double)sim->fl.c0);
   PetscCheck(sim->fl.alpha >= 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-alpha %g must be >= 0", (double)sim->fl.alpha);
   PetscCheck(sim->fl.delta >= 0 && sim->fl.delta <= 1, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-delta %g must be in [0, 1]", (double)sim->fl.delta);
+  PetscCheck(sim->start_jitter >= 0 && sim->start_jitter <= 0.25, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-start_jitter %g must be in [0, 0.25] (a fraction of dx)", (double)sim->start_jitter);
   PetscCheck(sim->fl.xsph >= 0 && sim->fl.xsph <= 1, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-xsph %g must be in [0, 1]", (double)sim->fl.xsph);
   PetscFunctionReturn(PETSC_SUCCESS);
 }

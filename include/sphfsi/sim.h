@@ -50,6 +50,7 @@ struct _p_Sim {
   PetscBool     periodic[2];
   PetscBool     outflow;    /* fluid leaving the domain box is removed (open boundary) */
   PetscBool     confined;   /* the fluid has no free surface (Taylor-Green, Poiseuille) */
+  PetscReal     start_jitter; /* -start_jitter: random displacement of the fluid's start lattice (dx) */
   /* time */
   PetscReal t, t_end, dt, dt_fixed, cfl;
   PetscInt  step, max_steps;

@@ -47,12 +47,9 @@ PetscErrorCode ISPHSetUp(Sim sim)
   PetscCheck(s->shift >= 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-isph_shift %g must be >= 0", (double)s->shift);
   if (s->source == ISPH_SOURCE_DIVERGENCE) s->blend = 0;
   if (s->source == ISPH_SOURCE_DENSITY) s->blend = 1;
-  s->lat_w    = KernelLatticeSum(&sim->kernel, PETSC_FALSE);
-  s->lat_divr = KernelLatticeSum(&sim->kernel, PETSC_TRUE);
+  s->lat_w    = KernelLatticeSum(&sim->kernel, LATTICE_W, 0);
+  s->lat_divr = KernelLatticeSum(&sim->kernel, LATTICE_DIVR, 0);
   PetscCall(PPECreate(sim->comm, &s->ppe));
-  /* A wall above the water line extrapolates a negative pressure; Eq. 14 (P_a + P_b) would pull
-   * fluid onto it, the corrected gradient sees it as the linear continuation it is (ppe.h) */
-  s->ppe->wall_clip = PETSC_TRUE;
   PetscCall(PPESetFromOptions(s->ppe, (PetscBool)!(sim->solid && sim->solid->implicit)));
   PetscCall(ParticlesEnableField(sim->P, FIELD_ACC, PETSC_FALSE));
   PetscCall(ParticlesEnableField(sim->P, FIELD_VWALL, PETSC_FALSE));

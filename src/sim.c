@@ -144,7 +144,7 @@ static PetscErrorCode FluidOptions(Sim sim)
   PetscCheck(sim->fl.rho0 > 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-rho0 %g must be > 0", (double)sim->fl.rho0);
   PetscCheck(sim->fl.mu >= 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-mu %g must be >= 0", (double)sim->fl.mu);
   PetscCheck(sim->fl.eta > 0 && sim->fl.eta <= 1, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-eta %g must be in (0, 1] (eta / h; the paper 0.1)", (double)sim->fl.eta);
-  sim->fl.lap_kappa = norm ? 2.0 / KernelLaplacianLatticeSum(&sim->kernel, sim->fl.eta) : 1.0;
+  sim->fl.lap_kappa = norm ? 2.0 / KernelLatticeSum(&sim->kernel, LATTICE_LAPLACIAN, sim->fl.eta) : 1.0;
   PetscCheck(sim->fl.c0 > 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-c0 %g must be > 0", (double)sim->fl.c0);
   PetscCheck(sim->fl.alpha >= 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-alpha %g must be >= 0", (double)sim->fl.alpha);
   PetscCheck(sim->fl.delta >= 0 && sim->fl.delta <= 1, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-delta %g must be in [0, 1]", (double)sim->fl.delta);

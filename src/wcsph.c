@@ -14,7 +14,7 @@ PetscErrorCode WCSPHSetUp(Sim sim)
   PetscCall(PetscOptionsBool("-wcsph_wall_clip", "Clip the wall pressure (Adami extrapolation) at 0: fluid in tension next to a wall is not held on it", "", fl->wall_clip, &fl->wall_clip, NULL));
   PetscOptionsEnd();
   PetscCheck(fl->shift >= 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-wcsph_shift %g must be >= 0", (double)fl->shift);
-  fl->lat_divr = KernelLatticeSum(&sim->kernel, PETSC_TRUE);
+  fl->lat_divr = KernelLatticeSum(&sim->kernel, LATTICE_DIVR, 0);
   PetscCall(ParticlesEnableField(sim->P, FIELD_ACC, PETSC_FALSE));
   PetscCall(ParticlesEnableField(sim->P, FIELD_DRHO, PETSC_FALSE));
   PetscCall(ParticlesEnableField(sim->P, FIELD_VWALL, PETSC_FALSE)); /* ghosts: refreshed by BoundaryWallState */

@@ -39,7 +39,7 @@ static PetscErrorCode CheckKernel(const SPHKernel *K)
    * lattice quadrature error of a kernel at h >= 1.3 dx (Wendland C2 there: 1 %, 2.6 %), where a
    * missing ring of neighbours would take 10 % or more */
   {
-    PetscReal lw = KernelLatticeSum(K, PETSC_FALSE), ld = KernelLatticeSum(K, PETSC_TRUE);
+    PetscReal lw = KernelLatticeSum(K, LATTICE_W, 0), ld = KernelLatticeSum(K, LATTICE_DIVR, 0);
     PetscCall(PetscPrintf(PETSC_COMM_WORLD, "kernel %s at h = %g dx: lattice sum of W %.5f, div r %.5f\n", KernelTypes[K->type], (double)K->h_factor, (double)lw, (double)ld));
     PetscCheck(PetscAbsReal(lw - 1) < 0.03 && PetscAbsReal(ld - 2) < 0.06, PETSC_COMM_SELF, PETSC_ERR_PLIB, "Lattice sums %g, %g far from 1, 2", (double)lw, (double)ld);
   }

@@ -68,33 +68,27 @@ static inline PetscReal KernelDW(const SPHKernel *K, PetscReal r, PetscReal h) {
 
 static inline PetscReal PairH(PetscReal ha, PetscReal hb) { return ha == hb ? ha : PetscSqrtReal(ha * hb); }
 
-/* Sums over a full square lattice of spacing 1 (h = h_factor): sum W (divr false) or -sum F r^2
- * (divr true), the interior values of the summation density (Eq. 17, per rho0) and of div r
- * (2 in the continuum), used to normalise both. */
-static inline PetscReal KernelLatticeSum(const SPHKernel *K, PetscBool divr)
+/* Sums over one particle's neighbours on a full square lattice of spacing 1 (h = h_factor), the
+ * interior values that normalise the operators built on them:
+ *   LATTICE_W:         sum W, the summation density (Eq. 17) per rho0;
+ *   LATTICE_DIVR:      -sum F r^2, div r (2 in the continuum);
+ *   LATTICE_LAPLACIAN: -sum F r^4 / (r^2 + eta^2 h^2): the Laplacian of Eqs. 16 and 22 applied to
+ *     |x|^2 is 2 / rho times this against the exact 2 d / rho, so d over it normalises them (the
+ *     cubic spline at 1.3 dx: +1.05 % with eta = 0, -0.02 % with the paper's eta = 0.1 h;
+ *     Wendland C2 at 2 dx: -0.08 % and -1.5 %).  eta is read only for this sum. */
+typedef enum { LATTICE_W, LATTICE_DIVR, LATTICE_LAPLACIAN } LatticeSum;
+static inline PetscReal KernelLatticeSum(const SPHKernel *K, LatticeSum which, PetscReal eta)
 {
   PetscReal s = 0, h = K->h_factor;
   PetscInt  n = (PetscInt)PetscCeilReal(2.0 * h);
   for (PetscInt j = -n; j <= n; j++)
     for (PetscInt i = -n; i <= n; i++) {
-      PetscReal r = PetscSqrtReal((PetscReal)(i * i + j * j));
-      s += divr ? -KernelF(K, r, h) * r * r : KernelW(K, r, h);
-    }
-  return s;
-}
-
-/* -sum_b F_ab r^4 / (r^2 + eta^2 h^2) over the full 2D lattice (dx = 1): the Laplacian of Eqs. 16 and
- * 22 applied to |x|^2 there is 2 / rho times this, against the exact 2 d / rho = 4 / rho; its ratio to
- * d normalises those operators (the cubic spline at 1.3 dx: +1.05 % with eta = 0, -0.02 % with the
- * paper's eta = 0.1 h; Wendland C2 at 2 dx: -0.08 % and -1.5 %). */
-static inline PetscReal KernelLaplacianLatticeSum(const SPHKernel *K, PetscReal eta)
-{
-  PetscReal s = 0, h = K->h_factor;
-  PetscInt  n = (PetscInt)PetscCeilReal(2.0 * h);
-  for (PetscInt j = -n; j <= n; j++)
-    for (PetscInt i = -n; i <= n; i++) {
-      PetscReal r2 = (PetscReal)(i * i + j * j);
-      if (r2 > 0) s -= KernelF(K, PetscSqrtReal(r2), h) * r2 * r2 / (r2 + eta * eta * h * h);
+      PetscReal r2 = (PetscReal)(i * i + j * j), r = PetscSqrtReal(r2);
+      switch (which) {
+      case LATTICE_W: s += KernelW(K, r, h); break;
+      case LATTICE_DIVR: s += -KernelF(K, r, h) * r * r; break;
+      case LATTICE_LAPLACIAN: if (r2 > 0) s -= KernelF(K, r, h) * r2 * r2 / (r2 + eta * eta * h * h); break;
+      }
     }
   return s;
 }

@@ -63,12 +63,23 @@ MPIEXEC ?= mpiexec
 MPIEXEC_FLAGS ?= $(shell $(MPIEXEC) --version 2>/dev/null | grep -q "Open MPI" && echo --oversubscribe)
 export MPIEXEC MPIEXEC_FLAGS
 
-.PHONY: all deps run check check-unit bench hard study clean tests
+.PHONY: all deps run check check-unit bench hard study clean tests FORCE
 all: $(BIN) $(TEST_BIN)
 
 $(BUILD)/%.o: %.c $(wildcard include/sphfsi/*.h)
 	@mkdir -p $(dir $@)
 	$(CC) $(CFLAGS) -c $< -o $@
+
+# The version (file VERSION) and the commit, for -version and summary.json: rewritten only when they change.
+SPHFSI_VERSION := $(shell cat VERSION 2>/dev/null || echo unknown)
+SPHFSI_COMMIT  := $(shell git rev-parse --short HEAD 2>/dev/null || echo unknown)$(shell git rev-parse HEAD >/dev/null 2>&1 && ! git diff --quiet HEAD -- src include 2>/dev/null && echo +modified)
+$(BUILD)/sphfsi_build.h: FORCE
+	@mkdir -p $(BUILD)
+	@printf '#define SPHFSI_VERSION "%s"\n#define SPHFSI_COMMIT "%s"\n' '$(SPHFSI_VERSION)' '$(SPHFSI_COMMIT)' > $@.tmp
+	@if cmp -s $@.tmp $@; then rm -f $@.tmp; else mv $@.tmp $@; fi
+$(BUILD)/src/version.o: $(BUILD)/sphfsi_build.h
+$(BUILD)/src/version.o: CFLAGS += -I$(BUILD)
+FORCE:
 
 $(BUILD)/libsphfsi.a: $(LIB_OBJ)
 	@rm -f $@; ar rcs $@ $^

@@ -316,7 +316,7 @@ static PetscErrorCode CheckHeader(Sim sim, PetscViewer v, PetscInt *ranks, Petsc
 static PetscBool RunControl(const char *name)
 {
   const char *exact[]  = {"-restart", "-t_end", "-max_steps", "-max_wall_time", "-checkpoint_interval", "-output_dir", "-output_interval", "-probe_interval", "-progress_every", "-dt", "-cfl", "-dt_min", "-unused_options", "-refdata_dir", "-help"};
-  const char *prefix[] = {"-log", "-info", "-malloc", "-options_", "-ksp_monitor", "-ksp_view", "-ksp_converged"};
+  const char *prefix[] = {"-log", "-info", "-malloc", "-options_", "-ppe_ksp_monitor", "-ppe_ksp_view", "-ppe_ksp_converged"};
   for (size_t k = 0; k < sizeof(exact) / sizeof(exact[0]); k++)
     if (!strcmp(name, exact[k])) return PETSC_TRUE;
   for (size_t k = 0; k < sizeof(prefix) / sizeof(prefix[0]); k++)

@@ -1,3 +1,4 @@
+#include <sphfsi/version.h>
 #include <sphfsi/io.h>
 #include <sphfsi/scene.h>
 #include <sphfsi/wcsph.h>
@@ -325,7 +326,8 @@ PetscErrorCode IOSummary(Sim sim)
   }
   PetscCall(RootCheck(sim, err, "summary.json"));
   if (!sim->rank) {
-    fprintf(f, "{\n  \"case\": \"%s\",\n  \"fluid\": \"%s\",\n  \"ranks\": %d,\n", sim->scene->name, sim->has_fluid ? FluidSchemes[sim->fluid] : "none", sim->size);
+    fprintf(f, "{\n  \"version\": \"%s\",\n  \"commit\": \"%s\",\n", SphfsiVersion(), SphfsiCommit());
+    fprintf(f, "  \"case\": \"%s\",\n  \"fluid\": \"%s\",\n  \"ranks\": %d,\n", sim->scene->name, sim->has_fluid ? FluidSchemes[sim->fluid] : "none", sim->size);
     JsonString(f, "status", !sim->guard->state ? "completed" : sim->guard->state == GUARD_STOP ? "stopped" : "fault");
     if (sim->guard->state) JsonString(f, "message", sim->guard->msg);
     if (sim->restart[0]) JsonString(f, "restarted_from", sim->restart);

@@ -9,6 +9,7 @@ PetscErrorCode PPECreate(MPI_Comm comm, PPE *ppe)
   PetscCall(PetscNew(ppe));
   (*ppe)->comm = comm;
   PetscCall(KSPCreate(comm, &(*ppe)->ksp));
+  PetscCall(KSPSetOptionsPrefix((*ppe)->ksp, "ppe_")); /* -ppe_ksp_rtol, -ppe_pc_type, ...: the other scheme never sees them */
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -38,7 +39,7 @@ PetscErrorCode PPESetFromOptions(PPE ppe, PetscBool symmetric)
   PetscOptionsEnd();
   PetscCheck(ppe->pc_qmax >= 0, ppe->comm, PETSC_ERR_ARG_OUTOFRANGE, "-ppe_pc_qmax %g must be >= 0 (0: the preconditioner sees the whole matrix)", (double)ppe->pc_qmax);
   PetscCall(KSPSetFromOptions(ppe->ksp));
-  { /* a direct solve (-ksp_type preonly -pc_type lu) takes no initial guess */
+  { /* a direct solve (-ppe_ksp_type preonly -ppe_pc_type lu) takes no initial guess */
     PetscBool preonly;
     PetscCall(PetscObjectTypeCompare((PetscObject)ppe->ksp, KSPPREONLY, &preonly));
     if (preonly) PetscCall(KSPSetInitialGuessNonzero(ppe->ksp, PETSC_FALSE));
@@ -420,7 +421,7 @@ PetscErrorCode PPESolve(PPE ppe, Sim sim)
   }
   PetscCall(KSPGetConvergedReason(ppe->ksp, &reason));
   PetscCall(KSPGetIterationNumber(ppe->ksp, &its));
-  PetscCheck(reason >= 0, ppe->comm, PETSC_ERR_NOT_CONVERGED, "The pressure Poisson solve did not converge at step %" PetscInt_FMT " (t = %g): KSP reason %s after %" PetscInt_FMT " iterations. Try a smaller -dt/-cfl, a larger -ksp_max_it, or another -ksp_type/-pc_type", sim->step, (double)sim->t, KSPConvergedReasons[reason], its);
+  PetscCheck(reason >= 0, ppe->comm, PETSC_ERR_NOT_CONVERGED, "The pressure Poisson solve did not converge at step %" PetscInt_FMT " (t = %g): KSP reason %s after %" PetscInt_FMT " iterations. Try a smaller -dt/-cfl, a larger -ppe_ksp_max_it, or another -ppe_ksp_type/-ppe_pc_type", sim->step, (double)sim->t, KSPConvergedReasons[reason], its);
   ppe->nsolve++;
   ppe->its_last = its;
   ppe->its_sum += its;
@@ -456,6 +457,6 @@ PetscErrorCode PPEFaultHint(PPE ppe)
   PetscReal rtol;
   PetscFunctionBeginUser;
   PetscCall(KSPGetTolerances(ppe->ksp, &rtol, NULL, NULL, NULL));
-  if (rtol > PPE_RTOL_DEFAULT) PetscCall(PetscPrintf(ppe->comm, "sphfsi: the pressure equation was solved to -ksp_rtol %g, looser than the default %g; in splashing flows a looser solve has let particles through walls and jet tips fly off (docs/convergence.md, walls at a/100): try the default first\n", (double)rtol, (double)PPE_RTOL_DEFAULT));
+  if (rtol > PPE_RTOL_DEFAULT) PetscCall(PetscPrintf(ppe->comm, "sphfsi: the pressure equation was solved to -ppe_ksp_rtol %g, looser than the default %g; in splashing flows a looser solve has let particles through walls and jet tips fly off (docs/convergence.md, walls at a/100): try the default first\n", (double)rtol, (double)PPE_RTOL_DEFAULT));
   PetscFunctionReturn(PETSC_SUCCESS);
 }

@@ -233,6 +233,10 @@ PetscErrorCode SimSetUp(Sim sim)
   PetscFunctionBeginUser;
   PetscCall(sim->scene->create(sim));
   PetscCheck(sim->dx > 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dx %g must be > 0", (double)sim->dx);
+  { /* a -dx so fine that the lattice counts overflow would leave an empty scene: say so first */
+    const PetscReal lattice = (sim->dom_hi[0] - sim->dom_lo[0]) / sim->dx * ((sim->dom_hi[1] - sim->dom_lo[1]) / sim->dx);
+    PetscCheck(lattice < 1e12, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dx %g would make more than 1e12 particles in the %g x %g m domain: choose a larger -dx", (double)sim->dx, (double)(sim->dom_hi[0] - sim->dom_lo[0]), (double)(sim->dom_hi[1] - sim->dom_lo[1]));
+  }
   PetscCheck(sim->t_end > 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-t_end %g must be > 0", (double)sim->t_end);
   PetscCheck(sim->has_fluid || sim->has_solid, sim->comm, PETSC_ERR_PLIB, "Scene %s has neither fluid nor solid", sim->scene->name);
   PetscOptionsBegin(sim->comm, NULL, "Body force", "Sim");
@@ -265,7 +269,7 @@ PetscErrorCode SimSetUp(Sim sim)
     PetscInt nfluid = 0;
     for (PetscInt a = 0; a < sim->P->n; a++) nfluid += KindIsFluid(sim->P->kind[a]);
     PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &nfluid, 1, MPIU_INT, MPI_SUM, sim->comm));
-    PetscCheck(nfluid > 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "The geometry leaves no fluid particle at -dx %g: choose a smaller -dx or a larger water region", (double)sim->dx);
+    PetscCheck(nfluid > 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "The geometry leaves no fluid particle at -dx %g: the water region is thinner than one -dx; choose a smaller -dx or a larger water region", (double)sim->dx);
   }
   /* solids keep their neighbour lists over sub-steps: cells wide enough for the skin */
   PetscCall(GridSetUp(&sim->grid, sim->dom_lo, sim->dom_hi, 2.0 * sim->h_max + (sim->solid ? sim->solid->skin * sim->dx : 0), sim->periodic));

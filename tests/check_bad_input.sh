@@ -1,16 +1,25 @@
 #!/usr/bin/env bash
-# Each bad input ends the run before the first step with a message naming the problem and a
-# non-zero status (no crash: no signal, no PETSc traceback of a segmentation fault).
+# Each bad input ends the run before the first step with status 2 and one line
+# "sphfsi: error: ..." naming the problem (no PETSc banner, no MPI_ABORT, no crash).
 MPI=$1; OUT=$2
 mkdir -p "$OUT"
 bad=0; n=0
-check() { # expected message fragment, arguments...
+check() { # expected message fragment, arguments...: status 2 and the one line "sphfsi: error: ..."
+  local want=$1; shift
+  n=$((n + 1))
+  timeout 60 $MPI bin/sphfsi -output_dir "$OUT/run" -t_end 0.001 -progress_every 0 "$@" > "$OUT/case$n.log" 2>&1
+  local rc=$?
+  if [ $rc -ne 2 ] || [ "$(grep -c '^sphfsi: error: ' "$OUT/case$n.log")" -ne 1 ] || grep -q "PETSC ERROR\|MPI_ABORT\|Segmentation\|signal" "$OUT/case$n.log" || ! grep '^sphfsi: error: ' "$OUT/case$n.log" | grep -qi -- "$want"; then
+    echo "bad input $n ($*): status $rc, expected status 2 and one line 'sphfsi: error: ...' with '$want'"; bad=$((bad + 1))
+  fi
+}
+fails() { # a run that fails (not bad input): non-zero status and the message, no crash
   local want=$1; shift
   n=$((n + 1))
   timeout 60 $MPI bin/sphfsi -output_dir "$OUT/run" -t_end 0.001 -progress_every 0 "$@" > "$OUT/case$n.log" 2>&1
   local rc=$?
   if [ $rc -eq 0 ] || [ $rc -ge 124 ] || grep -q "Segmentation\|signal" "$OUT/case$n.log" || ! grep -qi -- "$want" "$OUT/case$n.log"; then
-    echo "bad input $n ($*): status $rc, expected a message with '$want'"; bad=$((bad + 1))
+    echo "failing run $n ($*): status $rc, expected a message with '$want'"; bad=$((bad + 1))
   fi
 }
 check "No scene given"        -dx 0.01
@@ -33,8 +42,8 @@ check "-h_factor"             -case dam_break -h_factor 0.5
 check "-kernel"               -case dam_break -kernel gauss
 check "-isph_beta"            -case dam_break -fluid isph -isph_beta 1.5
 check "-isph_source"          -case dam_break -fluid isph -isph_source magic
-check "DIVERGED_ITS"          -case hydrostatic -fluid isph -dx 0.01 -ksp_max_it 1 -ksp_error_if_not_converged
-check "DIVERGED_ITS"          -case hydrostatic -fluid isph -dx 0.01 -ksp_max_it 1
+fails "DIVERGED_ITS"          -case hydrostatic -fluid isph -dx 0.01 -ppe_ksp_max_it 1 -ppe_ksp_error_if_not_converged
+fails "DIVERGED_ITS"          -case hydrostatic -fluid isph -dx 0.01 -ppe_ksp_max_it 1
 check "-solid_K"              -case oscillating_plate -solid_K -1
 check "-floor_downstream"     -case elastic_gate -dx 0.00125 -floor_downstream -0.1
 check "-solid_G"              -case oscillating_plate -solid_G -5

@@ -6,7 +6,7 @@
 #  - -max_wall_time: the same by itself, stopping within the limit;
 #  - faults exit 4 with what, where and when, and a finite, restartable last good state:
 #    a -dt far too large (particle leaves the domain), the pressure solve not converging (ISPH,
-#    DIVERGED_ITS; with a -ksp_rtol looser than the default, a hint says so), the time step below
+#    DIVERGED_ITS; with a -ppe_ksp_rtol looser than the default, a hint says so), the time step below
 #    -dt_min; last_good.xmf (and particles.xmf after a restart) name datasets of the files with
 #    their shapes;
 #  - a rank that fails at start (it cannot see the output directory, as on nodes without a shared
@@ -80,10 +80,10 @@ fault() { # name, expected message (regex), options...
 }
 fault dt_large "in step [0-9]* (from t = .*left the domain .*e.g. id [0-9]* (fluid) at (" -case hydrostatic -dx 0.01 -dt 0.01
 timeout 120 $MPI bin/sphfsi -progress_every 0 -case hydrostatic -dx 0.01 -dt 0.0002 -t_end 0.05 -output_dir "$OUT/dt_large_restart" -restart "$OUT/dt_large/last_good.h5" > "$OUT/dt_large_restart.log" 2>&1 || fail "restart from last_good.h5 with a smaller -dt: status $?"
-fault ksp "DIVERGED_ITS" -case hydrostatic -fluid isph -dx 0.01 -ksp_max_it 1
-! grep -q "looser than the default" "$OUT/ksp.log" || fail "ksp: the hint on a loose -ksp_rtol at the default tolerance"
-fault ksp_loose "DIVERGED_ITS" -case hydrostatic -fluid isph -dx 0.01 -ksp_max_it 1 -ksp_rtol 1e-4
-grep -q "solved to -ksp_rtol 0.0001, looser than the default 1e-08" "$OUT/ksp_loose.log" || fail "ksp_loose: no hint on the loose -ksp_rtol"
+fault ksp "DIVERGED_ITS" -case hydrostatic -fluid isph -dx 0.01 -ppe_ksp_max_it 1
+! grep -q "looser than the default" "$OUT/ksp.log" || fail "ksp: the hint on a loose -ppe_ksp_rtol at the default tolerance"
+fault ksp_loose "DIVERGED_ITS" -case hydrostatic -fluid isph -dx 0.01 -ppe_ksp_max_it 1 -ppe_ksp_rtol 1e-4
+grep -q "solved to -ppe_ksp_rtol 0.0001, looser than the default 1e-08" "$OUT/ksp_loose.log" || fail "ksp_loose: no hint on the loose -ppe_ksp_rtol"
 fault dt_floor "time step .* fell below its floor 1. s (-dt_min) at step 0, t = 0.*particle id [0-9]*" -case dam_break -dx 0.008 -dt_min 1
 
 # a rank that fails at start: rank 1 runs elsewhere and cannot see the relative output directory
@@ -94,4 +94,4 @@ timeout 60 $mpirun -n 1 -wdir "$here" "$here/bin/sphfsi" $args : -n 1 -wdir "$he
 [ $rc -ne 0 ] && [ $rc -lt 124 ] || fail "a rank failing at start: status $rc (124 = hung until the timeout)"
 grep -q "Rank 1 cannot see the output directory" "$OUT/start.log" || fail "a rank failing at start: no message"
 
-echo "reliability: SIGTERM ($tsig) and -max_wall_time stop with status 3 and a checkpoint, restarts equal the uninterrupted run (probes.csv), a changed -alpha is reported; faults (dt too large, DIVERGED_ITS, dt floor) status 4 with a finite last good state and its XDMF, a hint when -ksp_rtol was looser than the default; a rank failing at start stops all"
+echo "reliability: SIGTERM ($tsig) and -max_wall_time stop with status 3 and a checkpoint, restarts equal the uninterrupted run (probes.csv), a changed -alpha is reported; faults (dt too large, DIVERGED_ITS, dt floor) status 4 with a finite last good state and its XDMF, a hint when -ppe_ksp_rtol was looser than the default; a rank failing at start stops all"

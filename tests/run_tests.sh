@@ -37,25 +37,25 @@ run test_rank_agreement_wcsph_shift $MPI "${BINDIR:-bin}"/test_rank_agreement -w
 # Another kernel and h / dx (-kernel, -h_factor: 4 wall rows for 2h = 4 dx) with shifting and the shifted
 # particles' velocity correction (-shift_correct): exact in WCSPH, to the solver tolerance in ISPH
 run test_rank_agreement_wendland $MPI "${BINDIR:-bin}"/test_rank_agreement -kernel wendland_c2 -h_factor 2 -wcsph_shift 1 -shift_correct
-run test_rank_agreement_wendland_isph $MPI "${BINDIR:-bin}"/test_rank_agreement -fluid isph -kernel wendland_c2 -h_factor 2 -isph_shift 5 -shift_correct -isph_wall_contact -ksp_rtol 1e-10 -tol 1e-8
+run test_rank_agreement_wendland_isph $MPI "${BINDIR:-bin}"/test_rank_agreement -fluid isph -kernel wendland_c2 -h_factor 2 -isph_shift 5 -shift_correct -isph_wall_contact -ppe_ksp_rtol 1e-10 -tol 1e-8
 # Migration and ghosts by the sparse exchange (the default from 9 ranks on): the same answers, also
 # through the forced repartitions of test_decomp
 run test_rank_agreement_sparse $MPI "${BINDIR:-bin}"/test_rank_agreement -decomp_sparse_ranks 1
 run test_decomp_sparse $MPI "${BINDIR:-bin}"/test_decomp -decomp_sparse_ranks 1
 # ISPH: 1 and 2 ranks agree to the solver tolerance (tight rtol; the bound is 100x that)
-run test_rank_agreement_isph $MPI "${BINDIR:-bin}"/test_rank_agreement -fluid isph -ksp_rtol 1e-10 -tol 1e-8
+run test_rank_agreement_isph $MPI "${BINDIR:-bin}"/test_rank_agreement -fluid isph -ppe_ksp_rtol 1e-10 -tol 1e-8
 # Solid (oscillating plate, ~1000 steps): explicit and per rank, so 1 and 2 ranks agree exactly
 run test_rank_agreement_solid $MPI "${BINDIR:-bin}"/test_rank_agreement -case oscillating_plate -plate_ny 6 -t_end 0.02
 # FSI (elastic gate, WCSPH fluid + solid sub-steps, 123 steps): explicit, so exact agreement
 run test_rank_agreement_fsi $MPI "${BINDIR:-bin}"/test_rank_agreement -case elastic_gate -fluid wcsph -dx 0.00125 -t_end 0.003 -min_speed 0.05
 # FSI with ISPH (implicit interface rows in the PPE, GMRES): the solver tolerance (3e-11; 1.6e-7 while
 # the solids' ghosts kept a velocity half a kick old after the sub-steps, sim.c): bound 1e-8
-run test_rank_agreement_fsi_isph $MPI "${BINDIR:-bin}"/test_rank_agreement -case elastic_gate -fluid isph -dx 0.00125 -t_end 0.01 -ksp_rtol 1e-10 -tol 1e-8 -min_speed 0.01
+run test_rank_agreement_fsi_isph $MPI "${BINDIR:-bin}"/test_rank_agreement -case elastic_gate -fluid isph -dx 0.00125 -t_end 0.01 -ppe_ksp_rtol 1e-10 -tol 1e-8 -min_speed 0.01
 # The same with the paper's hypo-elastic solid (-solid_formulation updated; the tests above run the
 # total-Lagrangian default)
 run test_rank_agreement_solid_updated $MPI "${BINDIR:-bin}"/test_rank_agreement -case oscillating_plate -plate_ny 6 -t_end 0.02 -solid_formulation updated
 run test_rank_agreement_fsi_updated $MPI "${BINDIR:-bin}"/test_rank_agreement -case elastic_gate -fluid wcsph -dx 0.00125 -t_end 0.003 -min_speed 0.05 -solid_formulation updated
-run test_rank_agreement_fsi_isph_updated $MPI "${BINDIR:-bin}"/test_rank_agreement -case elastic_gate -fluid isph -dx 0.00125 -t_end 0.01 -ksp_rtol 1e-10 -tol 1e-8 -min_speed 0.01 -solid_formulation updated
+run test_rank_agreement_fsi_isph_updated $MPI "${BINDIR:-bin}"/test_rank_agreement -case elastic_gate -fluid isph -dx 0.00125 -t_end 0.01 -ppe_ksp_rtol 1e-10 -tol 1e-8 -min_speed 0.01 -solid_formulation updated
 # Restart (issue 8): stopped halfway and restarted on the same ranks, on 1 and from 1 (test_restart
 # runs the WCSPH dam break above); same ranks exact; across ranks WCSPH and solid exact, ISPH to the
 # solver tolerance
@@ -63,10 +63,10 @@ run test_restart_fsi $MPI "${BINDIR:-bin}"/test_restart -case elastic_gate -flui
 # (ISPH + the total-Lagrangian solid across rank counts: the state agrees to ~5e-11 (rank agreement
 # above, bound 1e-8), but the solid's acceleration, compared too, answers a position difference dx
 # with ~c0^2 dx / h^2, and its one-sided surface fits and clamp faces (dx/2 from the first row) are
-# stiffer: up to 4e-8 in acc_y optimised and 1.0e-7 in the sanitizer build, the same at -ksp_rtol
+# stiffer: up to 4e-8 in acc_y optimised and 1.0e-7 in the sanitizer build, the same at -ppe_ksp_rtol
 # 1e-10 to 1e-12, so not the solver; bound 1e-6.  Same ranks: exact.)
-run test_restart_fsi_isph $MPI "${BINDIR:-bin}"/test_restart -case elastic_gate -fluid isph -dx 0.00125 -t_end 0.002 -ksp_rtol 1e-10 -tol 1e-6
-run test_restart_isph $MPI "${BINDIR:-bin}"/test_restart -fluid isph -ksp_rtol 1e-10 -tol 1e-8
+run test_restart_fsi_isph $MPI "${BINDIR:-bin}"/test_restart -case elastic_gate -fluid isph -dx 0.00125 -t_end 0.002 -ppe_ksp_rtol 1e-10 -tol 1e-6
+run test_restart_isph $MPI "${BINDIR:-bin}"/test_restart -fluid isph -ppe_ksp_rtol 1e-10 -tol 1e-8
 run test_restart_wendland $MPI "${BINDIR:-bin}"/test_restart -kernel wendland_c2 -h_factor 2 -wcsph_shift 1 -shift_correct
 run test_restart_solid $MPI "${BINDIR:-bin}"/test_restart -case oscillating_plate -plate_ny 6 -t_end 0.01
 run test_restart_solid_updated $MPI "${BINDIR:-bin}"/test_restart -case oscillating_plate -plate_ny 6 -t_end 0.01 -solid_formulation updated
@@ -84,7 +84,7 @@ if [ "${1:-}" != "--unit-only" ]; then
   P_BOUND=0.02 run hydrostatic_isph bash tests/check_hydrostatic.sh "$MPI" "$OUT/hydrostatic_isph" -fluid isph -dx 0.00125
   run still_tank_isph bash tests/check_still_tank.sh "$MPI" "$OUT/still_tank_isph" -fluid isph
   run dam_break_isph_front bash tests/check_dam_break.sh "$MPI" "$OUT/dam_break_isph" -fluid isph
-  run dam_break_isph_gmres_gamg bash tests/check_dam_break.sh "$MPI" "$OUT/dam_break_isph_gamg" -fluid isph -ksp_type gmres -pc_type gamg
+  run dam_break_isph_gmres_gamg bash tests/check_dam_break.sh "$MPI" "$OUT/dam_break_isph_gamg" -fluid isph -ppe_ksp_type gmres -ppe_pc_type gamg
   run poiseuille_isph bash tests/check_poiseuille.sh "$MPI" "$OUT/poiseuille_isph" -fluid isph
   run taylor_green_isph bash tests/check_taylor_green.sh "$MPI" "$OUT/taylor_green_isph" -dx 0.01
   run taylor_green_wcsph bash tests/check_taylor_green.sh "$MPI" "$OUT/taylor_green_wcsph" -fluid wcsph
@@ -103,8 +103,10 @@ if [ "${1:-}" != "--unit-only" ]; then
   L_BOUND=0.05 run water_on_plate_isph bash tests/check_water_on_plate.sh "$MPI" "$OUT/water_on_plate_isph" -fluid isph
   # Signals, -max_wall_time, faults, a rank failing at start (issue 8)
   run reliability bash tests/check_reliability.sh "$MPI" "$OUT/reliability"
-  # Bad input: clear message, non-zero status, no crash
+  # Bad input: one line "sphfsi: error: ...", status 2, no crash
   run bad_input bash tests/check_bad_input.sh "$MPI" "$OUT/bad_input"
+  # A user's path: quiet case files, options_used repeats a run, -version, the -ppe_ prefix
+  run user_path bash tests/check_user_path.sh "$MPI" "$OUT/user_path"
 fi
 
 [ ${#failed[@]} -gt 0 ] && echo "failed: ${failed[*]}"

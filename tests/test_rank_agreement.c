@@ -2,7 +2,7 @@
  * (by id). Neighbour sums run in an order independent of the decomposition, so with WCSPH the
  * agreement is expected to be exact; the test allows round-off (-tol, default 1e-12 relative).
  * With -fluid isph the pressure comes from an iterative solve whose parallel preconditioner differs
- * between 1 and 2 ranks, so the runs agree to the solver tolerance: run with -ksp_rtol 1e-10 and
+ * between 1 and 2 ranks, so the runs agree to the solver tolerance: run with -ppe_ksp_rtol 1e-10 and
  * -tol 1e-6.  Another scene with -case NAME and its options.  Run on 2 ranks. */
 #include <sphfsi/sim.h>
 #include <sphfsi/scene.h>

@@ -7,13 +7,13 @@
 # preconditioner set-up time per step and the time of one preconditioner application (V-cycle),
 # from the PCSetUp/PCApply events of the "PPE solve" stage.
 # Also repeats every resolution with a zero initial guess (the production runs start CG from the
-# last pressure, which hides part of the cost) and some with -ksp_type gmres -pc_type gamg.
+# last pressure, which hides part of the cost) and some with -ppe_ksp_type gmres -ppe_pc_type gamg.
 # Writes out/bench/ppe/ppe.md (and one directory + log per run).
 #
 # Environment: MPIEXEC, MPIEXEC_FLAGS (as tools/bench.sh), BENCH_NP (ranks, 1),
 #   BENCH_PPE_DIVS (a/dx values, "64 128 256 512"), BENCH_PPE_STEPS (steps per run, 50),
 #   BENCH_PPE_GAMG (a/dx values of the gmres+gamg runs, "64 256"; empty = skip),
-#   BENCH_PPE_ZERO_GUESS (1: repeat every resolution with -ksp_initial_guess_nonzero false, i.e.
+#   BENCH_PPE_ZERO_GUESS (1: repeat every resolution with -ppe_ksp_initial_guess_nonzero false, i.e.
 #   a zero initial guess instead of the last pressure; empty = skip),
 #   BENCH_TIMEOUT (seconds per run, 900), BENCH_ARGS (extra sphfsi options for every run).
 cd "$(dirname "$0")/.."
@@ -60,7 +60,7 @@ pct = lambda k: f"{stages[k][1]:.1f}" if k in stages else "-"
 t = None
 with open(f"{d}/probes.csv") as f:
     for row in csv.reader(f): t = row[0]
-opt = dict(re.findall(r"-(ksp_type|pc_type|ksp_initial_guess_nonzero)\s+(\S+)", extra))
+opt = dict(re.findall(r"-ppe_(ksp_type|pc_type|ksp_initial_guess_nonzero)\s+(\S+)", extra))
 solver = f"{opt.get('ksp_type', 'cg')}+{opt.get('pc_type', 'boomeramg')}"
 solver += ", zero guess" if opt.get("ksp_initial_guess_nonzero") in ("false", "0", "no") else ""
 steps = s["steps"]
@@ -80,6 +80,6 @@ PY
   echo "| solver | particles | dx (m) | steps | t reached (s) | PPE its/step mean (max) | PPE assembly % | PPE solve % | Neighbours % | Halo+migrate % | Physics % | Output % | set-up % | PPE solve ms/step | PC setup ms/step | PC apply ms | wall s/step |"
   echo "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"
   for div in $DIVS; do run isph_a$div $div; done
-  if [ -n "$COLD" ]; then for div in $DIVS; do run isph_a${div}_zeroguess $div -ksp_initial_guess_nonzero false; done; fi
-  for div in $GAMG; do run isph_a${div}_gamg $div -ksp_type gmres -pc_type gamg; done
+  if [ -n "$COLD" ]; then for div in $DIVS; do run isph_a${div}_zeroguess $div -ppe_ksp_initial_guess_nonzero false; done; fi
+  for div in $GAMG; do run isph_a${div}_gamg $div -ppe_ksp_type gmres -ppe_pc_type gamg; done
 } | tee $OUT/ppe.md

@@ -28,7 +28,7 @@
 #     and x 5, to 0.4 s: completes, or stops with exit status 4 and a message; never NaN/Inf in any
 #     snapshot (0.05 s), probes.csv or last_good.h5.
 #  7. (issue 24) taylor_green_l200: the case file (ISPH, Wendland C2 at 2 dx) at L/200 to t = 2 s, with
-#     case 3's bounds; dam_break_isph_a100_rtol1e-4: case 2 at a/100 with -ksp_rtol 1e-4 (a splashing
+#     case 3's bounds; dam_break_isph_a100_rtol1e-4: case 2 at a/100 with -ppe_ksp_rtol 1e-4 (a splashing
 #     particle went through the far wall there); dam_break_lobovsky_isph: cases/dam_break_lobovsky.opts
 #     with ISPH at H/40 to t sqrt(g/H) = 8, case 2's bounds (it faulted at the impact).
 #  8. (issue 25) cantilever_large: the total-Lagrangian solid (-solid_formulation total) as the elastic
@@ -156,7 +156,7 @@ if has taylor_green_l200; then
   check taylor_green_l200
 fi
 if has dam_break_isph_a100_rtol1e-4; then
-  run dam_break_isph_a100_rtol1e-4 -- $DB -dx $(python3 -c "print(f'{$A/100:.9g}')") -fluid isph -ksp_rtol 1e-4
+  run dam_break_isph_a100_rtol1e-4 -- $DB -dx $(python3 -c "print(f'{$A/100:.9g}')") -fluid isph -ppe_ksp_rtol 1e-4
   check dam_break_isph_a100_rtol1e-4
 fi
 if has dam_break_lobovsky_isph; then

@@ -125,7 +125,7 @@ CASES = [  # case, runs (first = the one judged), scheme label
     ("dt_too_large", ["dt_too_large", "dt_reference"], "WCSPH, -dt 100x CFL"),
     # issue 24 (fluid convergence): three harder fluid cases with the bounds of cases 2 and 3
     ("taylor_green_l200", ["taylor_green_l200"], "ISPH, L/200, Re 100, to t = 2"),
-    ("dam_break_isph_a100_rtol1e-4", ["dam_break_isph_a100_rtol1e-4"], "ISPH, a/100, -ksp_rtol 1e-4"),
+    ("dam_break_isph_a100_rtol1e-4", ["dam_break_isph_a100_rtol1e-4"], "ISPH, a/100, -ppe_ksp_rtol 1e-4"),
     ("dam_break_lobovsky_isph", ["dam_break_lobovsky_isph"], "ISPH, Lobovsky H/40"),
     ("cantilever_large", ["cantilever_large"], "solid (total-Lagrangian), 10 across"),
 ]

@@ -9,6 +9,7 @@
 #pragma once
 #include <sphfsi/checkpoint.h>
 
+#define SIM_EXIT_BAD_INPUT 2 /* bad input found while setting up: one line on stderr (main.c) */
 #define SIM_EXIT_STOPPED 3 /* stopped by a signal or -max_wall_time; checkpoint written */
 #define SIM_EXIT_FAULT   4 /* numerical fault; last good state written */
 #define GUARD_KEEP_EVERY 10 /* steps between copies of the last good state (a copy of every field: a fraction of a step) */

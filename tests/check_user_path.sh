@@ -1,0 +1,25 @@
+#!/usr/bin/env bash
+# A user's path (issue 27): a shipped case file runs without a warning (each scheme's solver
+# options under its own prefix), OUTDIR/options_used repeats the run bit for bit, -version names
+# the version and the libraries, and an unprefixed PETSc solver option is bad input (status 2)
+# with a hint to the -ppe_ prefix.
+MPI=$1; OUT=$2
+mkdir -p "$OUT"
+bad=0
+fail() { echo "user_path: $*"; bad=1; }
+BIN="${BINDIR:-bin}"/sphfsi
+timeout 120 $MPI $BIN -options_file cases/dam_break.opts -t_end 0.01 -progress_every 0 -output_dir "$OUT/wcsph" > "$OUT/wcsph.log" 2>&1 || fail "the WCSPH dam break: status $?"
+grep -qi "warning" "$OUT/wcsph.log" && fail "the WCSPH dam break case file warns: $(grep -i warning "$OUT/wcsph.log" | head -1)"
+timeout 120 $MPI $BIN -options_file cases/dam_break.opts -fluid isph -t_end 0.01 -progress_every 0 -output_dir "$OUT/isph" > "$OUT/isph.log" 2>&1 || fail "the ISPH dam break: status $?"
+grep -qi "warning" "$OUT/isph.log" && fail "the ISPH dam break case file warns: $(grep -i warning "$OUT/isph.log" | head -1)"
+[ -s "$OUT/isph/options_used" ] || fail "no options_used in the output directory"
+timeout 120 $MPI $BIN -options_file "$OUT/isph/options_used" -output_dir "$OUT/isph_again" > "$OUT/isph_again.log" 2>&1 || fail "-options_file options_used: status $?"
+cmp -s "$OUT/isph/probes.csv" "$OUT/isph_again/probes.csv" || fail "the run repeated from options_used differs (probes.csv)"
+grep -q '"version": "' "$OUT/isph/summary.json" && grep -q '"commit": "' "$OUT/isph/summary.json" || fail "summary.json has no version and commit"
+$BIN -version > "$OUT/version.log" 2>&1 || fail "-version: status $?"
+grep -q "^sphfsi [0-9]" "$OUT/version.log" && grep -q "^Petsc" "$OUT/version.log" && grep -q "^METIS" "$OUT/version.log" || fail "-version does not name sphfsi, PETSc and METIS: $(head -3 "$OUT/version.log")"
+timeout 60 $MPI $BIN -options_file cases/dam_break.opts -fluid isph -t_end 0.001 -ksp_rtol 1e-4 -output_dir "$OUT/unprefixed" > "$OUT/unprefixed.log" 2>&1
+rc=$?
+[ $rc -eq 2 ] && grep -q "^sphfsi: error: .*-ksp_rtol 1e-4.*prefix -ppe_" "$OUT/unprefixed.log" || fail "unprefixed -ksp_rtol: status $rc, $(grep 'error' "$OUT/unprefixed.log" | head -1)"
+[ $bad -eq 0 ] && echo "user_path: the case file runs quietly in both schemes, options_used repeats the ISPH run bit for bit, -version, -ksp_rtol rejected with the -ppe_ hint"
+exit $bad

@@ -2,7 +2,8 @@
 #include <sphfsi/kernel.h>
 
 extern const SceneOps SceneHydrostatic, SceneDamBreak, SceneDamBreakLobovsky, SceneSluiceGate, SceneTaylorGreen, ScenePoiseuille, SceneOscillatingPlate, SceneSolidBlock, SceneElasticGate, SceneWaterOnPlate;
-static const SceneOps *const Scenes[] = {&SceneHydrostatic, &SceneDamBreak, &SceneDamBreakLobovsky, &SceneSluiceGate, &SceneTaylorGreen, &ScenePoiseuille, &SceneOscillatingPlate, &SceneSolidBlock, &SceneElasticGate, &SceneWaterOnPlate};
+extern SceneOps       SceneBoxes; /* its probes come from the options */
+static const SceneOps *const Scenes[] = {&SceneHydrostatic, &SceneDamBreak, &SceneDamBreakLobovsky, &SceneSluiceGate, &SceneTaylorGreen, &ScenePoiseuille, &SceneOscillatingPlate, &SceneSolidBlock, &SceneElasticGate, &SceneWaterOnPlate, &SceneBoxes};
 #define NSCENES ((PetscInt)(sizeof(Scenes) / sizeof(Scenes[0])))
 
 PetscErrorCode SceneFind(const char *name, const SceneOps **ops)

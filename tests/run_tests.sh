@@ -107,6 +107,8 @@ if [ "${1:-}" != "--unit-only" ]; then
   run bad_input bash tests/check_bad_input.sh "$MPI" "$OUT/bad_input"
   # A user's path: quiet case files, options_used repeats a run, -version, the -ppe_ prefix
   run user_path bash tests/check_user_path.sh "$MPI" "$OUT/user_path"
+  # A case without C: the built-in dam break and tank written as data (-case boxes) run bit for bit alike
+  run boxes bash tests/check_boxes.sh "$MPI" "$OUT/boxes"
 fi
 
 [ ${#failed[@]} -gt 0 ] && echo "failed: ${failed[*]}"

@@ -76,6 +76,18 @@ PetscErrorCode SceneAddLattice(Sim sim, ParticleKind kind, PetscReal x0, PetscRe
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+PetscErrorCode SceneAddWallBox(Sim sim, const PetscReal b[4], PetscReal dx, const PetscBool faces[4])
+{
+  PetscInt first = sim->P->n;
+  PetscFunctionBeginUser;
+  PetscCall(SceneAddLattice(sim, KIND_WALL, b[0] + 0.5 * dx, b[1] + 0.5 * dx, RoundToInt((b[2] - b[0]) / dx), RoundToInt((b[3] - b[1]) / dx), dx, sim->fl.rho0));
+  for (PetscInt a = first; a < sim->P->n; a++) { /* this rank's share of the lattice */
+    const PetscReal *x = PField(sim->P, FIELD_X) + 2 * a;
+    if (!((faces[0] && x[0] < b[0] + dx) || (faces[1] && x[1] < b[1] + dx) || (faces[2] && x[0] > b[2] - dx) || (faces[3] && x[1] > b[3] - dx))) sim->P->kind[a] = KIND_DUMMY;
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 PetscErrorCode SceneAddTank(Sim sim, PetscReal x0, PetscReal x1, PetscReal y0, PetscReal y1, PetscReal dx, PetscInt rows, PetscBool left, PetscBool right)
 {
   PetscInt  nx = RoundToInt((x1 - x0) / dx), ny = RoundToInt((y1 - y0) / dx);

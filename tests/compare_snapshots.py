@@ -1,6 +1,7 @@
 #!/usr/bin/env python3
 """Compare the last snapshots of two runs particle by particle (matched by id): the same particles,
-and x, v, p, rho equal within TOL (absolute; 0 = bit for bit).  Usage: compare_snapshots.py DIR_A DIR_B [TOL]"""
+and x, v, p, rho equal within TOL relative to each field's largest magnitude (0 = bit for bit).
+Usage: compare_snapshots.py DIR_A DIR_B [TOL]"""
 import glob
 import sys
 
@@ -16,6 +17,6 @@ with h5py.File(fa[-1]) as A, h5py.File(fb[-1]) as B:
     ia, ib = np.argsort(A["id"][:].ravel()), np.argsort(B["id"][:].ravel())
     if not np.array_equal(A["id"][:].ravel()[ia], B["id"][:].ravel()[ib]) or not np.array_equal(A["kind"][:].ravel()[ia], B["kind"][:].ravel()[ib]):
         sys.exit("the runs have different particles (ids or kinds)")
-    worst = {k: float(np.max(np.abs(A[k][:][ia] - B[k][:][ib]))) for k in ("x", "v", "p", "rho")}
-print(f"{len(ia)} particles, largest differences: " + ", ".join(f"{k} {d:.3g}" for k, d in worst.items()))
+    worst = {k: float(np.max(np.abs(A[k][:][ia] - B[k][:][ib])) / max(float(np.max(np.abs(A[k][:]))), 1e-300)) for k in ("x", "v", "p", "rho")}
+print(f"{len(ia)} particles, largest differences relative to each field's largest value: " + ", ".join(f"{k} {d:.3g}" for k, d in worst.items()))
 sys.exit(0 if all(d <= tol for d in worst.values()) else 1)

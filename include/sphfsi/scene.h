@@ -39,6 +39,10 @@ PetscErrorCode SceneAddLattice(Sim sim, ParticleKind kind, PetscReal x0, PetscRe
 /* Walls of `rows` rows (first row KIND_WALL, the rest KIND_DUMMY) around the rectangle
  * [x0, x1] x [y0, ...): floor below y0, side walls left of x0 and right of x1 up to y1. */
 PetscErrorCode SceneAddTank(Sim sim, PetscReal x0, PetscReal x1, PetscReal y0, PetscReal y1, PetscReal dx, PetscInt rows, PetscBool left, PetscBool right);
+/* An obstacle of wall particles filling the box b = x0,y0,x1,y1 on a lattice of spacing dx: the
+ * particles within dx of the faces that meet water (faces: left, bottom, right, top) are walls, the
+ * others dummies. */
+PetscErrorCode SceneAddWallBox(Sim sim, const PetscReal b[4], PetscReal dx, const PetscBool faces[4]);
 /* Domain box of a tank [0, L] with `rows` rows of wall particles under and beside it, up to y = top. */
 void SceneTankDomain(Sim sim, PetscReal L, PetscReal top, PetscInt rows);
 /* A dam break: a water column [0, w] x [0, hgt] at hydrostatic density against the upstream wall of a

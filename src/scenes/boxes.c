@@ -1,77 +1,157 @@
-/* A case without C: the geometry is data in the options file (-case boxes).  Water in boxes, a tank
- * (floor and side walls of -wall_rows rows), obstacles as boxes of wall particles, and probes: level
- * gauges, pressure gauges, the front and the largest speed.  Primitives, in the order their particles
- * are made (the same helpers as the built-in scenes, so that a file that describes a built-in scene
- * reproduces it bit for bit):
- *   -fluid_box_K x0,y0,x1,y1   K = 1..8: water at rest (hydrostatic density below the box's top)
- *   -tank x0,x1,y0,y1          floor at y0 from x0 to x1, side walls from y0 up to y1
- *   -tank_sides both|left|right|none
- *   -wall_box_K x0,y0,x1,y1    K = 1..8: a solid obstacle of wall particles (its outer row faces the
- *                              water, the inner rows are dummies)
- *   -domain x0,y0,x1,y1        the computational box (particles leaving it are a fault); default:
- *                              the tank and its walls, open to twice the walls' height
- *   -gauge_level_K x           K = 1..4: water level at x (highest water particle within 1.5 dx, + dx/2)
- *   -gauge_pressure_K x,y      K = 1..4: pressure at a point (Shepard sum, carried hydrostatically)
- * Probes also give front_x (the water's right-most extent) and v_max.  No reference: summary.json's
- * errors are empty. */
+/* A case without C (-case boxes): the geometry is data in the options file.  Primitives, made in
+ * this order with the helpers of the built-in scenes (so that a file that describes a built-in scene
+ * gives the same particles with the same ids, and the same run):
+ *   -fluid_box_K x0,y0,x1,y1[,s]       K = 1..8: water at rest on a lattice of spacing s (default
+ *                                      -dx), hydrostatic below the lattice's top
+ *   -tank_K x0,x1,y0,y1[,s[,rows]]     K = 1..4: floor at y0 from x0 to x1, side walls up to y1
+ *   -tank_K_sides both|left|right|none   -wall_rows N: the rows of a tank that gives none
+ *   -solid_box_K, -clamp_box_K         K = 1..8: elastic solid (-solid_rho, -solid_K, -solid_G) and
+ *                                      its rigid clamp, at -dx; a solid must touch a clamp
+ *   -wall_box_K x0,y0,x1,y1            K = 1..8: an obstacle of wall particles at -dx; its rows
+ *   -wall_box_K_faces left,right,...   within dx of the faces given (default all) are walls, the
+ *                                      others dummies
+ *   -outflow                           water leaving the domain is removed
+ *   -domain x0,y0,x1,y1                the computational box (default: the tanks with their walls,
+ *                                      open to twice the walls' height)
+ *   -gauge_level_K x, -gauge_pressure_K x,y, -gauge_solid_K x0,y0,x1,y1    K = 1..4: probes
+ * Probes: front_x, v_max, then level_K, pressure_K, solid_dx_K / solid_dy_K (the mean displacement
+ * of the solid particles whose reference position is in the box).  No reference: summary.json's
+ * errors are empty.  docs/options.md lists the options with their checks. */
 #include <sphfsi/scene.h>
 
-#define BOXES_MAX 8
-#define GAUGES_MAX 4
+#define NBOX 8
+#define NTANK 4
+#define NGAUGE 4
 
 typedef struct {
-  PetscInt  nfluid, nwall, nlevel, npress, rows;
-  PetscReal fluid[BOXES_MAX][4], wall[BOXES_MAX][4], tank[4], level[GAUGES_MAX], press[GAUGES_MAX][2];
-  PetscBool has_tank, left, right;
-  char      names[2 + 2 * GAUGES_MAX][32];
+  PetscReal b[4], s; /* box; lattice spacing (tanks: walls' spacing) */
+  PetscInt  rows;    /* tanks: wall rows */
+  PetscBool left, right, face[4];
+} Box;
+
+typedef struct {
+  Box       fluid[NBOX], tank[NTANK], solid[NBOX], clamp[NBOX], wall[NBOX];
+  PetscInt  nfluid, ntank, nsolid, nclamp, nwall, nlevel, npress, nsgauge;
+  PetscReal level[NGAUGE], press[NGAUGE][2], sgauge[NGAUGE][4];
+  char      names[SCENE_MAX_PROBES][32];
 } Boxes;
 
 extern SceneOps SceneBoxes; /* not const: Create fills in its probe names */
 
-/* A box x0,y0,x1,y1 read by PetscOptionsRealArray (n numbers): 4 of them, and x1 > x0, y1 > y0. */
-static PetscErrorCode CheckBox(Sim sim, const char *name, const PetscReal b[4], PetscInt n)
+/* n numbers read into b: 4 (or up to nmax) and a box with x1 > x0, y1 > y0 (x0,y0,x1,y1 order). */
+static PetscErrorCode CheckBox(Sim sim, const char *name, const PetscReal b[4], PetscInt n, PetscInt nmax)
 {
   PetscFunctionBeginUser;
-  PetscCheck(n == 4, sim->comm, PETSC_ERR_USER_INPUT, "%s takes 4 numbers x0,y0,x1,y1, not %d", name, (int)n);
+  PetscCheck(n >= 4 && n <= nmax, sim->comm, PETSC_ERR_USER_INPUT, "%s takes %s numbers, not %d", name, nmax == 4 ? "4" : nmax == 5 ? "4 or 5" : "4 to 6", (int)n);
   PetscCheck(b[2] > b[0] && b[3] > b[1], sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "%s %g,%g,%g,%g: x1 must exceed x0 and y1 y0", name, (double)b[0], (double)b[1], (double)b[2], (double)b[3]);
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
 static PetscBool Overlap(const PetscReal a[4], const PetscReal b[4]) { return (PetscBool)(a[0] < b[2] && b[0] < a[2] && a[1] < b[3] && b[1] < a[3]); }
+static PetscBool Touch(const PetscReal a[4], const PetscReal b[4], PetscReal eps) { return (PetscBool)(a[0] <= b[2] + eps && b[0] <= a[2] + eps && a[1] <= b[3] + eps && b[1] <= a[3] + eps); }
+
+/* The rectangles a tank's particles fill: floor (with the corners) and side walls. */
+static PetscInt TankWalls(const Box *t, PetscReal r[3][4])
+{
+  const PetscReal d = t->rows * t->s;
+  PetscInt        n = 0;
+  r[n][0] = t->b[0] - (t->left ? d : 0); r[n][1] = t->b[1] - d; r[n][2] = t->b[2] + (t->right ? d : 0); r[n][3] = t->b[1]; n++;
+  if (t->left) { r[n][0] = t->b[0] - d; r[n][1] = t->b[1]; r[n][2] = t->b[0]; r[n][3] = t->b[3]; n++; }
+  if (t->right) { r[n][0] = t->b[2]; r[n][1] = t->b[1]; r[n][2] = t->b[2] + d; r[n][3] = t->b[3]; n++; }
+  return n;
+}
+
+/* Boxes K = 1..NBOX of one kind (-PREFIX_K); with spacing: a 5th number, the lattice's spacing. */
+static PetscErrorCode ReadBoxes(Sim sim, PetscOptionItems *PetscOptionsObject, const char *prefix, const char *text, Box *list, PetscInt *count, PetscBool spacing)
+{
+  char name[40];
+  PetscFunctionBeginUser;
+  for (PetscInt k = 1; k <= NBOX; k++) {
+    PetscReal v[5];
+    PetscInt  n = spacing ? 5 : 4;
+    PetscBool set;
+    Box      *B;
+    PetscCall(PetscSNPrintf(name, sizeof(name), "-%s_%d", prefix, (int)k));
+    PetscCall(PetscOptionsRealArray(name, text, "", v, &n, &set));
+    if (!set) continue;
+    PetscCall(CheckBox(sim, name, v, n, spacing ? 5 : 4));
+    B = &list[(*count)++];
+    for (PetscInt i = 0; i < 4; i++) B->b[i] = v[i];
+    B->s = n == 5 ? v[4] : sim->dx;
+    PetscCheck(B->s > 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "%s: the spacing %g must be > 0", name, (double)B->s);
+    for (PetscInt i = 0; i < 4; i++) B->face[i] = PETSC_TRUE;
+    if (!strcmp(prefix, "wall_box")) { /* which faces carry the wall row */
+      char faces[64] = "";
+      PetscCall(PetscSNPrintf(name, sizeof(name), "-wall_box_%d_faces", (int)k));
+      PetscCall(PetscOptionsString(name, "Faces of the obstacle that meet water: left,right,bottom,top (their outer row is wall, the rest dummies)", "", faces, faces, sizeof(faces), &set));
+      if (set) {
+        const char *fn[4] = {"left", "bottom", "right", "top"};
+        for (PetscInt i = 0; i < 4; i++) B->face[i] = (PetscBool)(strstr(faces, fn[i]) != NULL);
+      }
+    }
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* The next probe column's name: "base" or "base_k" (k > 0); at most SCENE_MAX_PROBES are kept. */
+static PetscErrorCode ProbeName(Boxes *c, PetscInt *n, const char *base, PetscInt k)
+{
+  PetscFunctionBeginUser;
+  if (*n < SCENE_MAX_PROBES) {
+    if (k) PetscCall(PetscSNPrintf(c->names[*n], sizeof(c->names[0]), "%s_%d", base, (int)k));
+    else PetscCall(PetscStrncpy(c->names[*n], base, sizeof(c->names[0])));
+    SceneBoxes.probe_names[*n] = c->names[*n];
+  }
+  (*n)++;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
 
 static PetscErrorCode Create(Sim sim)
 {
   Boxes      *c;
-  const char *sides[] = {"both", "left", "right", "none", "BoxesSides", "", NULL};
-  PetscInt    side = 0, n;
-  PetscReal   dom[4] = {0, 0, 0, 0}, top = -PETSC_MAX_REAL, floor = PETSC_MAX_REAL;
+  const char *sides[] = {"both", "left", "right", "none", "TankSides", "", NULL};
+  PetscReal   dom[4] = {0, 0, 0, 0}, top = -PETSC_MAX_REAL, low = PETSC_MAX_REAL;
+  PetscInt    n, rows;
   PetscBool   set, dom_set;
-  char        name[32];
+  char        name[40];
   PetscFunctionBeginUser;
   PetscCall(PetscNew(&c));
   sim->scene_ctx = c;
-  c->rows        = KernelSupportRows(&sim->kernel);
-  PetscOptionsBegin(sim->comm, NULL, "Scene boxes: water, tank and obstacles as boxes given in the options", "");
-  for (PetscInt k = 1; k <= BOXES_MAX; k++) {
-    PetscCall(PetscSNPrintf(name, sizeof(name), "-fluid_box_%d", (int)k));
-    n = 4;
-    PetscCall(PetscOptionsRealArray(name, "Water at rest in the box x0,y0,x1,y1 (m)", "", c->fluid[c->nfluid], &n, &set));
-    if (set) PetscCall(CheckBox(sim, name, c->fluid[c->nfluid++], n));
-    PetscCall(PetscSNPrintf(name, sizeof(name), "-wall_box_%d", (int)k));
-    n = 4;
-    PetscCall(PetscOptionsRealArray(name, "An obstacle of wall particles filling the box x0,y0,x1,y1 (m)", "", c->wall[c->nwall], &n, &set));
-    if (set) PetscCall(CheckBox(sim, name, c->wall[c->nwall++], n));
+  PetscOptionsBegin(sim->comm, NULL, "Scene boxes: water, tanks, obstacles and solids as boxes given in the options", "");
+  PetscCheck(sim->dx > 0, sim->comm, PETSC_ERR_USER_INPUT, "Scene boxes needs -dx (the particle spacing, m)");
+  PetscCall(ReadBoxes(sim, PetscOptionsObject, "fluid_box", "Water at rest x0,y0,x1,y1[,spacing] (m)", c->fluid, &c->nfluid, PETSC_TRUE));
+  rows = KernelSupportRows(&sim->kernel);
+  PetscCall(PetscOptionsInt("-wall_rows", "Rows of wall + dummy particles of a tank that does not give its own", "", rows, &rows, NULL));
+  PetscCheck(rows >= 1, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-wall_rows %" PetscInt_FMT " must be >= 1", rows);
+  for (PetscInt k = 1; k <= NTANK; k++) {
+    PetscReal v[6];
+    PetscInt  side = 0;
+    Box      *T;
+    n = 6;
+    PetscCall(PetscSNPrintf(name, sizeof(name), "-tank_%d", (int)k));
+    PetscCall(PetscOptionsRealArray(name, "Tank x0,x1,y0,y1[,spacing[,rows]]: floor at y0 from x0 to x1, side walls up to y1 (m)", "", v, &n, &set));
+    if (!set) continue;
+    T = &c->tank[c->ntank++];
+    PetscCheck(n >= 4 && n <= 6, sim->comm, PETSC_ERR_USER_INPUT, "%s takes x0,x1,y0,y1[,spacing[,rows]], not %d numbers", name, (int)n);
+    T->b[0] = v[0]; T->b[1] = v[2]; T->b[2] = v[1]; T->b[3] = v[3];
+    PetscCall(CheckBox(sim, name, T->b, 4, 4));
+    T->s    = n >= 5 ? v[4] : sim->dx;
+    T->rows = n >= 6 ? (PetscInt)v[5] : rows;
+    PetscCheck(T->s > 0 && T->rows >= 1 && (n < 6 || v[5] == (PetscReal)T->rows), sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "%s: the spacing must be > 0 and the rows a whole number >= 1", name);
+    PetscCall(PetscSNPrintf(name, sizeof(name), "-tank_%d_sides", (int)k));
+    PetscCall(PetscOptionsEList(name, "Side walls of the tank", "", sides, 4, sides[0], &side, NULL));
+    T->left  = (PetscBool)(side == 0 || side == 1);
+    T->right = (PetscBool)(side == 0 || side == 2);
   }
+  PetscCall(ReadBoxes(sim, PetscOptionsObject, "solid_box", "Elastic solid x0,y0,x1,y1 (m), at -dx", c->solid, &c->nsolid, PETSC_FALSE));
+  PetscCall(ReadBoxes(sim, PetscOptionsObject, "clamp_box", "Rigid clamp of a solid x0,y0,x1,y1 (m), at -dx", c->clamp, &c->nclamp, PETSC_FALSE));
+  PetscCall(ReadBoxes(sim, PetscOptionsObject, "wall_box", "Obstacle of wall particles x0,y0,x1,y1 (m), at -dx", c->wall, &c->nwall, PETSC_FALSE));
+  PetscCall(PetscOptionsBool("-outflow", "Water that leaves the domain is removed (an open boundary)", "", sim->outflow, &sim->outflow, NULL));
   n = 4;
-  PetscCall(PetscOptionsRealArray("-tank", "Tank x0,x1,y0,y1: floor at y0 from x0 to x1, side walls up to y1 (m)", "", c->tank, &n, &c->has_tank));
-  PetscCheck(!c->has_tank || (n == 4 && c->tank[1] > c->tank[0] && c->tank[3] > c->tank[2]), sim->comm, PETSC_ERR_USER_INPUT, "-tank takes x0,x1,y0,y1 with x1 > x0 and y1 > y0");
-  PetscCall(PetscOptionsEList("-tank_sides", "Side walls of the tank", "", sides, 4, sides[0], &side, NULL));
-  PetscCall(PetscOptionsInt("-wall_rows", "Rows of wall + dummy particles of the tank", "", c->rows, &c->rows, NULL));
-  n = 4;
-  PetscCall(PetscOptionsRealArray("-domain", "Computational box x0,y0,x1,y1 (m); default: the tank with its walls, open to twice its height", "", dom, &n, &dom_set));
-  PetscCheck(!dom_set || (n == 4 && dom[2] > dom[0] && dom[3] > dom[1]), sim->comm, PETSC_ERR_USER_INPUT, "-domain takes x0,y0,x1,y1 with x1 > x0 and y1 > y0");
-  for (PetscInt k = 1; k <= GAUGES_MAX; k++) {
-    PetscInt two = 2;
+  PetscCall(PetscOptionsRealArray("-domain", "Computational box x0,y0,x1,y1 (m); default: the tanks with their walls, open to twice their height", "", dom, &n, &dom_set));
+  if (dom_set) PetscCall(CheckBox(sim, "-domain", dom, n, 4));
+  for (PetscInt k = 1; k <= NGAUGE; k++) {
+    PetscInt two = 2, four = 4;
     PetscCall(PetscSNPrintf(name, sizeof(name), "-gauge_level_%d", (int)k));
     PetscCall(PetscOptionsReal(name, "Water level gauge at this x (m)", "", 0, &c->level[c->nlevel], &set));
     c->nlevel += set;
@@ -79,90 +159,106 @@ static PetscErrorCode Create(Sim sim)
     PetscCall(PetscOptionsRealArray(name, "Pressure gauge at x,y (m)", "", c->press[c->npress], &two, &set));
     PetscCheck(!set || two == 2, sim->comm, PETSC_ERR_USER_INPUT, "%s takes 2 numbers x,y", name);
     c->npress += set;
+    PetscCall(PetscSNPrintf(name, sizeof(name), "-gauge_solid_%d", (int)k));
+    PetscCall(PetscOptionsRealArray(name, "Mean displacement of the solid particles whose reference position is in x0,y0,x1,y1 (m)", "", c->sgauge[c->nsgauge], &four, &set));
+    if (set) PetscCall(CheckBox(sim, name, c->sgauge[c->nsgauge++], four, 4));
   }
   PetscOptionsEnd();
-  c->left  = (PetscBool)(side == 0 || side == 1);
-  c->right = (PetscBool)(side == 0 || side == 2);
-  PetscCheck(c->nfluid > 0, sim->comm, PETSC_ERR_USER_INPUT, "Scene boxes has no water: give -fluid_box_1 x0,y0,x1,y1");
-  PetscCheck(c->rows >= 1, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-wall_rows %" PetscInt_FMT " must be >= 1", c->rows);
-  PetscCheck(sim->dx > 0, sim->comm, PETSC_ERR_USER_INPUT, "Scene boxes needs -dx (the particle spacing, m)");
+  PetscCheck(c->nfluid > 0 || c->nsolid > 0, sim->comm, PETSC_ERR_USER_INPUT, "Scene boxes has no water and no solid: give -fluid_box_1 x0,y0,x1,y1");
   if (sim->t_end < 0) sim->t_end = 1.0;
+  sim->has_fluid = (PetscBool)(c->nfluid > 0);
+  sim->has_solid = (PetscBool)(c->nsolid > 0);
+  for (PetscInt i = 0; i < c->nsolid; i++) {
+    PetscBool held = PETSC_FALSE;
+    for (PetscInt j = 0; j < c->nclamp; j++) held = (PetscBool)(held || Touch(c->solid[i].b, c->clamp[j].b, 1e-9 * sim->dx));
+    PetscCheck(held, sim->comm, PETSC_ERR_ARG_INCOMP, "-solid_box_%d touches no -clamp_box: a free solid is not supported; clamp it (a -clamp_box_K sharing an edge with it)", (int)i + 1);
+  }
   for (PetscInt i = 0; i < c->nfluid; i++) {
-    const PetscReal *b = c->fluid[i];
-    PetscCheck(b[2] - b[0] >= sim->dx && b[3] - b[1] >= sim->dx, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-fluid_box_%d is thinner than -dx %g: choose a smaller -dx", (int)i + 1, (double)sim->dx);
-    for (PetscInt j = 0; j < c->nwall; j++) PetscCheck(!Overlap(b, c->wall[j]), sim->comm, PETSC_ERR_ARG_INCOMP, "-fluid_box_%d overlaps -wall_box_%d: water and wall cannot share space", (int)i + 1, (int)j + 1);
-    for (PetscInt j = 0; j < i; j++) PetscCheck(!Overlap(b, c->fluid[j]), sim->comm, PETSC_ERR_ARG_INCOMP, "-fluid_box_%d overlaps -fluid_box_%d", (int)i + 1, (int)j + 1);
-    if (c->has_tank) PetscCheck(b[0] >= c->tank[0] - 1e-12 && b[2] <= c->tank[1] + 1e-12 && b[1] >= c->tank[2] - 1e-12, sim->comm, PETSC_ERR_ARG_INCOMP, "-fluid_box_%d %g,%g,%g,%g is not inside the -tank %g,%g,%g,%g (water would sit in its walls)", (int)i + 1, (double)b[0], (double)b[1], (double)b[2], (double)b[3], (double)c->tank[0], (double)c->tank[1], (double)c->tank[2], (double)c->tank[3]);
-    top   = PetscMax(top, b[3]);
-    floor = PetscMin(floor, b[1]);
+    const Box *F = &c->fluid[i];
+    PetscCheck(F->b[2] - F->b[0] >= F->s && F->b[3] - F->b[1] >= F->s, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-fluid_box_%d is thinner than its spacing %g: choose a smaller spacing", (int)i + 1, (double)F->s);
+    for (PetscInt j = 0; j < i; j++) PetscCheck(!Overlap(F->b, c->fluid[j].b), sim->comm, PETSC_ERR_ARG_INCOMP, "-fluid_box_%d overlaps -fluid_box_%d", (int)i + 1, (int)j + 1);
+    for (PetscInt j = 0; j < c->nwall; j++) PetscCheck(!Overlap(F->b, c->wall[j].b), sim->comm, PETSC_ERR_ARG_INCOMP, "-fluid_box_%d overlaps -wall_box_%d: water and wall cannot share space", (int)i + 1, (int)j + 1);
+    for (PetscInt j = 0; j < c->nsolid; j++) PetscCheck(!Overlap(F->b, c->solid[j].b), sim->comm, PETSC_ERR_ARG_INCOMP, "-fluid_box_%d overlaps -solid_box_%d", (int)i + 1, (int)j + 1);
+    for (PetscInt j = 0; j < c->nclamp; j++) PetscCheck(!Overlap(F->b, c->clamp[j].b), sim->comm, PETSC_ERR_ARG_INCOMP, "-fluid_box_%d overlaps -clamp_box_%d", (int)i + 1, (int)j + 1);
+    for (PetscInt j = 0; j < c->ntank; j++) {
+      PetscReal r[3][4];
+      PetscInt  nr = TankWalls(&c->tank[j], r);
+      for (PetscInt q = 0; q < nr; q++) PetscCheck(!Overlap(F->b, r[q]), sim->comm, PETSC_ERR_ARG_INCOMP, "-fluid_box_%d overlaps the walls of -tank_%d: water and wall cannot share space", (int)i + 1, (int)j + 1);
+    }
+    top = PetscMax(top, F->b[3]);
+    low = PetscMin(low, F->b[1]);
   }
   if (dom_set) {
     sim->dom_lo[0] = dom[0]; sim->dom_lo[1] = dom[1];
     sim->dom_hi[0] = dom[2]; sim->dom_hi[1] = dom[3];
   } else {
-    PetscCheck(c->has_tank, sim->comm, PETSC_ERR_USER_INPUT, "Scene boxes without -tank needs -domain x0,y0,x1,y1");
-    sim->dom_lo[0] = c->tank[0] - (c->rows + 0.5) * sim->dx;
-    sim->dom_hi[0] = c->tank[1] + (c->rows + 0.5) * sim->dx;
-    sim->dom_lo[1] = c->tank[2] - (c->rows + 0.5) * sim->dx;
-    sim->dom_hi[1] = c->tank[2] + 2 * (c->tank[3] - c->tank[2]);
+    PetscCheck(c->ntank > 0, sim->comm, PETSC_ERR_USER_INPUT, "Scene boxes without a -tank_1 needs -domain x0,y0,x1,y1");
+    sim->dom_lo[0] = sim->dom_lo[1] = PETSC_MAX_REAL;
+    sim->dom_hi[0] = sim->dom_hi[1] = -PETSC_MAX_REAL;
+    for (PetscInt j = 0; j < c->ntank; j++) {
+      const Box *T = &c->tank[j];
+      const PetscReal d = (T->rows + 0.5) * T->s;
+      sim->dom_lo[0] = PetscMin(sim->dom_lo[0], T->b[0] - d);
+      sim->dom_hi[0] = PetscMax(sim->dom_hi[0], T->b[2] + d);
+      sim->dom_lo[1] = PetscMin(sim->dom_lo[1], T->b[1] - d);
+      sim->dom_hi[1] = PetscMax(sim->dom_hi[1], T->b[1] + 2 * (T->b[3] - T->b[1]));
+    }
   }
   for (PetscInt i = 0; i < c->nfluid; i++) {
-    const PetscReal *b = c->fluid[i];
-    PetscCheck(b[0] >= sim->dom_lo[0] && b[2] <= sim->dom_hi[0] && b[1] >= sim->dom_lo[1] && b[3] <= sim->dom_hi[1], sim->comm, PETSC_ERR_ARG_INCOMP, "-fluid_box_%d reaches outside the -domain", (int)i + 1);
+    const PetscReal *b = c->fluid[i].b;
+    PetscCheck(b[0] >= sim->dom_lo[0] && b[2] <= sim->dom_hi[0] && b[1] >= sim->dom_lo[1] && b[3] <= sim->dom_hi[1], sim->comm, PETSC_ERR_ARG_INCOMP, "-fluid_box_%d reaches outside the domain [%g, %g] x [%g, %g]", (int)i + 1, (double)sim->dom_lo[0], (double)sim->dom_hi[0], (double)sim->dom_lo[1], (double)sim->dom_hi[1]);
   }
   for (PetscInt k = 0; k < c->nlevel; k++) PetscCheck(c->level[k] > sim->dom_lo[0] && c->level[k] < sim->dom_hi[0], sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-gauge_level_%d %g is outside the domain [%g, %g]", (int)k + 1, (double)c->level[k], (double)sim->dom_lo[0], (double)sim->dom_hi[0]);
   for (PetscInt k = 0; k < c->npress; k++) PetscCheck(c->press[k][0] > sim->dom_lo[0] && c->press[k][0] < sim->dom_hi[0] && c->press[k][1] > sim->dom_lo[1] && c->press[k][1] < sim->dom_hi[1], sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-gauge_pressure_%d %g,%g is outside the domain", (int)k + 1, (double)c->press[k][0], (double)c->press[k][1]);
+  PetscCheck(!c->nsgauge || c->nsolid, sim->comm, PETSC_ERR_ARG_INCOMP, "-gauge_solid_1 needs a -solid_box_1");
   /* c0 = 10 x the speed of a fall from the highest water surface to the lowest water */
-  sim->v_ref = PetscSqrtReal(2 * PetscSqrtReal(sim->g[0] * sim->g[0] + sim->g[1] * sim->g[1]) * (top - floor));
+  if (sim->has_fluid) sim->v_ref = PetscSqrtReal(2 * PetscSqrtReal(sim->g[0] * sim->g[0] + sim->g[1] * sim->g[1]) * (top - low));
   /* probes: front_x, v_max, then the gauges */
-  SceneBoxes.nprobes        = 2 + c->nlevel + c->npress;
-  SceneBoxes.probe_names[0] = "front_x";
-  SceneBoxes.probe_names[1] = "v_max";
-  for (PetscInt k = 0; k < c->nlevel; k++) {
-    PetscCall(PetscSNPrintf(c->names[k], sizeof(c->names[k]), "level_%d", (int)k + 1));
-    SceneBoxes.probe_names[2 + k] = c->names[k];
+  n = 0;
+  PetscCall(ProbeName(c, &n, "front_x", 0));
+  PetscCall(ProbeName(c, &n, "v_max", 0));
+  for (PetscInt k = 1; k <= c->nlevel; k++) PetscCall(ProbeName(c, &n, "level", k));
+  for (PetscInt k = 1; k <= c->npress; k++) PetscCall(ProbeName(c, &n, "pressure", k));
+  for (PetscInt k = 1; k <= c->nsgauge; k++) {
+    PetscCall(ProbeName(c, &n, "solid_dx", k));
+    PetscCall(ProbeName(c, &n, "solid_dy", k));
   }
-  for (PetscInt k = 0; k < c->npress; k++) {
-    PetscCall(PetscSNPrintf(c->names[c->nlevel + k], sizeof(c->names[0]), "pressure_%d", (int)k + 1));
-    SceneBoxes.probe_names[2 + c->nlevel + k] = c->names[c->nlevel + k];
-  }
+  PetscCheck(n <= SCENE_MAX_PROBES, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "Scene boxes has %d probe columns (front_x, v_max and the gauges; a solid gauge counts 2): at most %d", (int)n, SCENE_MAX_PROBES);
+  SceneBoxes.nprobes = n;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-/* A box of wall particles: the particles within dx of its edges are walls (they face the water), the
- * inner ones dummies. */
-static PetscErrorCode AddWallBox(Sim sim, const PetscReal b[4])
+/* A lattice filling box B at spacing s, of one kind (rho0 sets the mass); returns the first index. */
+static PetscErrorCode AddBox(Sim sim, const Box *B, ParticleKind kind, PetscReal s, PetscReal rho0, PetscInt *first)
 {
-  const PetscReal dx = sim->dx;
-  const PetscInt  nx = RoundToInt((b[2] - b[0]) / dx), ny = RoundToInt((b[3] - b[1]) / dx);
-  PetscInt        first = sim->P->n;
   PetscFunctionBeginUser;
-  PetscCall(SceneAddLattice(sim, KIND_WALL, b[0] + 0.5 * dx, b[1] + 0.5 * dx, nx, ny, dx, sim->fl.rho0));
-  for (PetscInt a = first; a < sim->P->n; a++) { /* this rank's share of the lattice */
-    const PetscReal *x = PField(sim->P, FIELD_X) + 2 * a;
-    if (x[0] > b[0] + dx && x[0] < b[2] - dx && x[1] > b[1] + dx && x[1] < b[3] - dx) sim->P->kind[a] = KIND_DUMMY;
-  }
+  *first = sim->P->n;
+  PetscCall(SceneAddLattice(sim, kind, B->b[0] + 0.5 * s, B->b[1] + 0.5 * s, RoundToInt((B->b[2] - B->b[0]) / s), RoundToInt((B->b[3] - B->b[1]) / s), s, rho0));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
 static PetscErrorCode Populate(Sim sim)
 {
-  Boxes          *c  = (Boxes *)sim->scene_ctx;
-  const PetscReal dx = sim->dx;
+  Boxes *c = (Boxes *)sim->scene_ctx;
+  PetscInt first;
   PetscFunctionBeginUser;
   for (PetscInt i = 0; i < c->nfluid; i++) {
-    const PetscReal *b     = c->fluid[i];
-    PetscInt         first = sim->P->n, nx = RoundToInt((b[2] - b[0]) / dx), ny = RoundToInt((b[3] - b[1]) / dx);
-    PetscReal       *x, *rho, *p;
-    PetscCall(SceneAddLattice(sim, KIND_FLUID, b[0] + 0.5 * dx, b[1] + 0.5 * dx, nx, ny, dx, sim->fl.rho0));
+    const Box *F = &c->fluid[i];
+    PetscReal *x, *rho, *p, surface = F->b[1] + RoundToInt((F->b[3] - F->b[1]) / F->s) * F->s;
+    PetscCall(AddBox(sim, F, KIND_FLUID, F->s, sim->fl.rho0, &first));
     x = PField(sim->P, FIELD_X); rho = PField(sim->P, FIELD_RHO); p = PField(sim->P, FIELD_P);
     for (PetscInt a = first; a < sim->P->n; a++) { /* at rest: hydrostatic below the lattice's top (Eq. 20) */
-      p[a]   = sim->fl.rho0 * (-sim->g[1]) * (b[1] + ny * dx - x[2 * a + 1]);
+      p[a]   = sim->fl.rho0 * (-sim->g[1]) * (surface - x[2 * a + 1]);
       rho[a] = EOSDensity(&sim->fl, p[a]);
     }
   }
-  if (c->has_tank) PetscCall(SceneAddTank(sim, c->tank[0], c->tank[1], c->tank[2], c->tank[3], dx, c->rows, c->left, c->right));
-  for (PetscInt i = 0; i < c->nwall; i++) PetscCall(AddWallBox(sim, c->wall[i]));
+  for (PetscInt i = 0; i < c->ntank; i++) {
+    const Box *T = &c->tank[i];
+    PetscCall(SceneAddTank(sim, T->b[0], T->b[2], T->b[1], T->b[3], T->s, T->rows, T->left, T->right));
+  }
+  for (PetscInt i = 0; i < c->nsolid; i++) PetscCall(AddBox(sim, &c->solid[i], KIND_SOLID, sim->dx, sim->sl.rho0, &first));
+  for (PetscInt i = 0; i < c->nclamp; i++) PetscCall(AddBox(sim, &c->clamp[i], KIND_CLAMP, sim->dx, sim->sl.rho0, &first));
+  for (PetscInt i = 0; i < c->nwall; i++) PetscCall(SceneAddWallBox(sim, c->wall[i].b, sim->dx, c->wall[i].face));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -170,20 +266,35 @@ static PetscErrorCode Probe(Sim sim, PetscReal *vals)
 {
   Boxes     *c = (Boxes *)sim->scene_ctx;
   Particles  P = sim->P;
-  PetscReal *x = PField(P, FIELD_X), m[1 + GAUGES_MAX];
+  PetscReal *x = PField(P, FIELD_X), *x0 = P->f[FIELD_X0].on ? PField(P, FIELD_X0) : NULL, m[1 + NGAUGE], s[3 * NGAUGE];
+  PetscInt   n = 2;
   PetscFunctionBeginUser;
   for (PetscInt k = 0; k <= c->nlevel; k++) m[k] = -PETSC_MAX_REAL;
+  for (PetscInt k = 0; k < 3 * c->nsgauge; k++) s[k] = 0;
   for (PetscInt a = 0; a < P->n; a++) {
-    if (!KindIsFluid(P->kind[a])) continue;
-    m[0] = PetscMax(m[0], x[2 * a]);
-    for (PetscInt k = 0; k < c->nlevel; k++)
-      if (PetscAbsReal(x[2 * a] - c->level[k]) < 1.5 * sim->dx) m[1 + k] = PetscMax(m[1 + k], x[2 * a + 1]);
+    if (KindIsFluid(P->kind[a])) {
+      m[0] = PetscMax(m[0], x[2 * a]);
+      for (PetscInt k = 0; k < c->nlevel; k++)
+        if (PetscAbsReal(x[2 * a] - c->level[k]) < 1.5 * sim->dx) m[1 + k] = PetscMax(m[1 + k], x[2 * a + 1]);
+    } else if (P->kind[a] == KIND_SOLID && x0)
+      for (PetscInt k = 0; k < c->nsgauge; k++) {
+        const PetscReal *g = c->sgauge[k];
+        if (x0[2 * a] < g[0] || x0[2 * a] > g[2] || x0[2 * a + 1] < g[1] || x0[2 * a + 1] > g[3]) continue;
+        s[3 * k] += x[2 * a] - x0[2 * a];
+        s[3 * k + 1] += x[2 * a + 1] - x0[2 * a + 1];
+        s[3 * k + 2] += 1;
+      }
   }
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, m, 1 + c->nlevel, MPIU_REAL, MPIU_MAX, sim->comm));
-  vals[0] = m[0] + 0.5 * sim->dx;
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, s, 3 * c->nsgauge, MPIU_REAL, MPIU_SUM, sim->comm));
+  vals[0] = m[0] > -PETSC_MAX_REAL ? m[0] + 0.5 * sim->dx : 0;
   PetscCall(SceneMaxSpeed(sim, &vals[1]));
-  for (PetscInt k = 0; k < c->nlevel; k++) vals[2 + k] = m[1 + k] > -PETSC_MAX_REAL ? m[1 + k] + 0.5 * sim->dx : 0; /* 0: no water there */
-  for (PetscInt k = 0; k < c->npress; k++) PetscCall(SceneProbePressure(sim, c->press[k], &vals[2 + c->nlevel + k]));
+  for (PetscInt k = 0; k < c->nlevel; k++) vals[n++] = m[1 + k] > -PETSC_MAX_REAL ? m[1 + k] + 0.5 * sim->dx : 0; /* 0: no water there */
+  for (PetscInt k = 0; k < c->npress; k++) PetscCall(SceneProbePressure(sim, c->press[k], &vals[n++]));
+  for (PetscInt k = 0; k < c->nsgauge; k++) {
+    vals[n++] = s[3 * k + 2] > 0 ? s[3 * k] / s[3 * k + 2] : 0;
+    vals[n++] = s[3 * k + 2] > 0 ? s[3 * k + 1] / s[3 * k + 2] : 0;
+  }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -195,7 +306,7 @@ static PetscErrorCode Destroy(Sim sim)
 }
 
 SceneOps SceneBoxes = {
-  .name = "boxes", .help = "a case given as data: water, tank and obstacles as boxes in the options file",
+  .name = "boxes", .help = "a case given as data: water, tanks, obstacles and solids as boxes in the options file",
   .create = Create, .populate = Populate,
   .probe = Probe, .destroy = Destroy,
 };

@@ -73,10 +73,10 @@ static PetscErrorCode Populate(Sim sim)
   /* the gate and its clamp */
   PetscCall(SceneAddLattice(sim, KIND_SOLID, xg + 0.5 * dx, 0.5 * dx, nt, nl, dx, sim->sl.rho0));
   PetscCall(SceneAddLattice(sim, KIND_CLAMP, xg + 0.5 * dx, (nl + 0.5) * dx, nt, c->nclamp, dx, sim->sl.rho0));
-  /* rigid wall above the clamp: the column facing the water is wall, the rest dummy */
-  for (PetscInt j = nl + c->nclamp; j < ntop; j++) {
-    PetscCall(SceneAddLattice(sim, KIND_WALL, xg + 0.5 * dx, (j + 0.5) * dx, 1, 1, dx, sim->fl.rho0));
-    PetscCall(SceneAddLattice(sim, KIND_DUMMY, xg + 1.5 * dx, (j + 0.5) * dx, nt - 1, 1, dx, sim->fl.rho0));
+  { /* rigid wall above the clamp: the column facing the water is wall, the rest dummy */
+    const PetscReal above[4] = {xg, (nl + c->nclamp) * dx, xg + nt * dx, ntop * dx};
+    const PetscBool faces[4] = {PETSC_TRUE, PETSC_FALSE, PETSC_FALSE, PETSC_FALSE};
+    PetscCall(SceneAddWallBox(sim, above, dx, faces));
   }
   PetscCall(SceneHydrostaticDensity(sim, RoundToInt(c->H / dx) * dx));
   PetscFunctionReturn(PETSC_SUCCESS);

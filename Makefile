@@ -63,7 +63,7 @@ MPIEXEC ?= mpiexec
 MPIEXEC_FLAGS ?= $(shell $(MPIEXEC) --version 2>/dev/null | grep -q "Open MPI" && echo --oversubscribe)
 export MPIEXEC MPIEXEC_FLAGS
 
-.PHONY: all deps run check check-unit bench hard study clean tests FORCE
+.PHONY: all deps run check check-unit bench hard study clean tests install FORCE
 all: $(BIN) $(TEST_BIN)
 
 $(BUILD)/%.o: %.c $(wildcard include/sphfsi/*.h)
@@ -131,6 +131,21 @@ study: deps
 $(BINDIR)/partition_model: $(BUILD)/tools/partition_model.o $(BUILD)/libsphfsi.a
 	@mkdir -p $(BINDIR)
 	$(CC) $(LDFLAGS) -o $@ $^ $(LDLIBS)
+
+# Install for users who do not run from the source tree: PREFIX/bin/sphfsi, the case files and tools
+# in PREFIX/share/sphfsi (cases/, tools/) and the reference data (REFDATA, ../shared/refdata) in
+# PREFIX/share/sphfsi/refdata, where the installed program finds it.
+PREFIX  ?= /usr/local
+REFDATA ?= ../shared/refdata
+SHARE   := $(DESTDIR)$(PREFIX)/share/sphfsi
+install: all
+	install -d $(DESTDIR)$(PREFIX)/bin $(SHARE)/cases/boxes $(SHARE)/tools $(SHARE)/refdata
+	install -m 755 $(BIN) $(DESTDIR)$(PREFIX)/bin/sphfsi
+	install -m 644 cases/*.opts $(SHARE)/cases/
+	install -m 644 cases/boxes/*.opts $(SHARE)/cases/boxes/
+	install -m 755 tools/*.py tools/*.sh $(SHARE)/tools/
+	@if [ -d "$(REFDATA)" ]; then install -m 644 $(REFDATA)/*.csv $(SHARE)/refdata/; else echo "sphfsi: no reference data at $(REFDATA) (REFDATA=...): summary.json will have no errors against experiments"; fi
+	@echo "installed: $(DESTDIR)$(PREFIX)/bin/sphfsi; cases in $(SHARE)/cases"
 
 clean:
 	rm -rf build build-san bin out

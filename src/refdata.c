@@ -1,4 +1,5 @@
 #include <sphfsi/refdata.h>
+#include <unistd.h>
 
 PetscErrorCode SeriesAppend(Series *s, PetscReal t, PetscReal y)
 {
@@ -33,6 +34,21 @@ PetscReal SeriesAt(const Series *s, PetscReal t)
   return s->y[lo] + (s->y[hi] - s->y[lo]) * (t - s->t[lo]) / (s->t[hi] - s->t[lo]);
 }
 
+/* An installed program (make install) finds its data beside it: <prefix>/bin/sphfsi reads
+ * <prefix>/share/sphfsi/refdata.  False when that folder does not exist (running from the source tree). */
+static PetscBool InstalledRefData(char *dir, size_t len)
+{
+  char  exe[PETSC_MAX_PATH_LEN];
+  char *slash;
+  ssize_t n = readlink("/proc/self/exe", exe, sizeof(exe) - 1);
+  if (n <= 0) return PETSC_FALSE;
+  exe[n] = 0;
+  if (!(slash = strrchr(exe, '/'))) return PETSC_FALSE;
+  *slash = 0; /* <prefix>/bin */
+  if (snprintf(dir, len, "%s/../share/sphfsi/refdata", exe) >= (int)len) return PETSC_FALSE;
+  return (PetscBool)(access(dir, R_OK) == 0);
+}
+
 PetscErrorCode RefDataLoad(Sim sim, const char *file, const char *xcol, const char *ycol, Series *ref, PetscBool *found)
 {
   char        dir[PETSC_MAX_PATH_LEN] = "../shared/refdata", path[PETSC_MAX_PATH_LEN], line[4096];
@@ -44,6 +60,7 @@ PetscErrorCode RefDataLoad(Sim sim, const char *file, const char *xcol, const ch
   *found = PETSC_FALSE;
   if (sim->refdata_dir[0]) PetscCall(PetscStrncpy(dir, sim->refdata_dir, sizeof(dir))); /* -refdata_dir */
   else if (env) PetscCall(PetscStrncpy(dir, env, sizeof(dir)));
+  else if (!InstalledRefData(dir, sizeof(dir))) PetscCall(PetscStrncpy(dir, "../shared/refdata", sizeof(dir)));
   if (sim->rank) PetscFunctionReturn(PETSC_SUCCESS);
   PetscCall(PetscSNPrintf(path, sizeof(path), "%s/%s", dir, file));
   if (!(f = fopen(path, "r"))) {

@@ -79,7 +79,7 @@ check "has no water"                   -case boxes -dx 0.01 -tank_1 0,1,0,1
 check "-fluid_box_1 overlaps -wall_box_1" -case boxes -dx 0.01 -tank_1 0,1,0,1 -fluid_box_1 0,0,0.5,0.5 -wall_box_1 0.4,0,0.6,0.1
 check "overlaps the walls of -tank_1"   -case boxes -dx 0.01 -tank_1 0,1,0,1 -fluid_box_1 -0.2,0,0.5,0.5
 check "-gauge_pressure_1 5.,0. is outside the domain" -case boxes -dx 0.01 -tank_1 0,1,0,1 -fluid_box_1 0,0,0.5,0.5 -gauge_pressure_1 5,0
-check "-fluid_box_1 takes 4 numbers"   -case boxes -dx 0.01 -tank_1 0,1,0,1 -fluid_box_1 0,0,0.5
+check "-fluid_box_1 takes 4 or 5 numbers" -case boxes -dx 0.01 -tank_1 0,1,0,1 -fluid_box_1 0,0,0.5
 check "needs -dx"                      -case boxes -tank_1 0,1,0,1 -fluid_box_1 0,0,0.5,0.5
 check "-solid_box_1 touches no -clamp_box" -case boxes -dx 0.01 -tank_1 0,1,0,1 -fluid_box_1 0,0,0.5,0.5 -solid_box_1 0.6,0,0.7,0.3
 echo "bad_input: $((n - bad)) of $n bad inputs rejected with a clear message"

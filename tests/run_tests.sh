@@ -109,6 +109,8 @@ if [ "${1:-}" != "--unit-only" ]; then
   run user_path bash tests/check_user_path.sh "$MPI" "$OUT/user_path"
   # A case without C: the built-in dam break and tank written as data (-case boxes) run bit for bit alike
   run boxes bash tests/check_boxes.sh "$MPI" "$OUT/boxes"
+  # make install for users who do not run from the source tree
+  run install bash tests/check_install.sh "$MPI" "$OUT/install"
 fi
 
 [ ${#failed[@]} -gt 0 ] && echo "failed: ${failed[*]}"

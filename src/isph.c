@@ -26,6 +26,9 @@ PetscErrorCode ISPHSetUp(Sim sim)
   s->source   = ISPH_SOURCE_BLEND;
   s->gradient = ISPH_GRAD_CORRECTED;
   s->solid_eq14 = PETSC_TRUE;
+  /* a thin jet's correction matrix is nearly singular; corrected there, splashing particles were
+   * flung at 16 m/s and over walls (docs/convergence.md, -isph_gradient_cond) */
+  s->grad_cond  = 0.25;
   fs = s->fs; src = s->source; grad = s->gradient;
   PetscOptionsBegin(sim->comm, NULL, "ISPH fluid (section 2.8)", "ISPH");
   PetscCall(PetscOptionsEList("-isph_free_surface", "Free-surface criterion: density (rho* < beta rho0, section 2.5) or divr (divergence of position)", "", ISPHFreeSurfaces, 2, ISPHFreeSurfaces[fs], &fs, NULL));
@@ -34,6 +37,7 @@ PetscErrorCode ISPHSetUp(Sim sim)
   PetscCall(PetscOptionsEList("-isph_source", "PPE source: divergence (Eq. 13, 48), density ((rho0 - rho*)/(rho0 dt^2)) or blend", "", ISPHSources, 3, ISPHSources[src], &src, NULL));
   PetscCall(PetscOptionsReal("-isph_blend", "Weight of the density source in -isph_source blend", "", s->blend, &s->blend, NULL));
   PetscCall(PetscOptionsEList("-isph_gradient", "Pressure gradient of the corrector: eq14 (symmetric, Eq. 14), corrected (Bonet-Lok), hybrid (corrected on and next to the free surface)", "", ISPHGradients, 3, ISPHGradients[grad], &grad, NULL));
+  PetscCall(PetscOptionsReal("-isph_gradient_cond", "The corrected gradient only where its correction matrix is well conditioned: smallest over largest eigenvalue above this (1 on a full or half support; small across a thin jet; 0: wherever it is invertible); elsewhere the uncorrected difference form", "", s->grad_cond, &s->grad_cond, NULL));
   PetscCall(PetscOptionsBool("-isph_solid_eq14", "Fluid particles next to a solid body (and not at the free surface) take Eq. 14, whose pair forces are those the body receives: the momentum exchange is exact", "", s->solid_eq14, &s->solid_eq14, NULL));
   PetscCall(PetscOptionsReal("-isph_alpha", "Artificial viscosity (Eq. 24, velocity scale c0) in the predictor; damps the free-surface noise of the projection", "", s->alpha, &s->alpha, NULL));
   PetscCall(PetscOptionsBool("-isph_wall_contact", "A free-surface particle (P = 0, so no pressure stops it) that approaches a wall within dx of its first row loses its velocity towards the wall", "", s->wall_contact, &s->wall_contact, NULL));
@@ -45,6 +49,7 @@ PetscErrorCode ISPHSetUp(Sim sim)
   PetscCheck(s->blend >= 0 && s->blend <= 1, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-isph_blend %g must be in [0, 1]", (double)s->blend);
   PetscCheck(s->alpha >= 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-isph_alpha %g must be >= 0", (double)s->alpha);
   PetscCheck(s->shift >= 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-isph_shift %g must be >= 0", (double)s->shift);
+  PetscCheck(s->grad_cond >= 0 && s->grad_cond < 1, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-isph_gradient_cond %g must be in [0, 1): the smallest over the largest eigenvalue of the correction matrix (0.25 the default)", (double)s->grad_cond);
   if (s->source == ISPH_SOURCE_DIVERGENCE) s->blend = 0;
   if (s->source == ISPH_SOURCE_DENSITY) s->blend = 1;
   s->lat_w    = KernelLatticeSum(&sim->kernel, LATTICE_W, 0);
@@ -74,7 +79,7 @@ PetscErrorCode ISPHView(Sim sim, PetscViewer v)
 {
   ISPH s = sim->isph;
   PetscFunctionBeginUser;
-  PetscCall(PetscViewerASCIIPrintf(v, "ISPH: free surface by %s (%s %g), PPE source %s (density weight %g), gradient %s%s, AV alpha %g, shifting A = %g, XSPH %g\n", ISPHFreeSurfaces[s->fs], s->fs == ISPH_FS_DENSITY ? "beta" : "div r <", (double)(s->fs == ISPH_FS_DENSITY ? s->beta : s->divr_min), ISPHSources[s->source], (double)s->blend, ISPHGradients[s->gradient], s->solid_eq14 && s->gradient != ISPH_GRAD_EQ14 ? " (Eq. 14 next to solids)" : "", (double)s->alpha, (double)s->shift, (double)sim->fl.xsph));
+  PetscCall(PetscViewerASCIIPrintf(v, "ISPH: free surface by %s (%s %g), PPE source %s (density weight %g), gradient %s (corrected where its matrix's eigenvalue ratio > %g)%s, AV alpha %g, shifting A = %g, XSPH %g\n", ISPHFreeSurfaces[s->fs], s->fs == ISPH_FS_DENSITY ? "beta" : "div r <", (double)(s->fs == ISPH_FS_DENSITY ? s->beta : s->divr_min), ISPHSources[s->source], (double)s->blend, ISPHGradients[s->gradient], (double)s->grad_cond, s->solid_eq14 && s->gradient != ISPH_GRAD_EQ14 ? " (Eq. 14 next to solids)" : "", (double)s->alpha, (double)s->shift, (double)sim->fl.xsph));
   PetscCall(PPEView(s->ppe, v));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -213,7 +218,7 @@ static PetscErrorCode DensityFreeSurfaceSource(Sim sim)
  * on a truncated support: the free surface, where Eq. 14 sees half the gradient and lets surface
  * particles fall at g/2.  The corrected form divides by rho0: rho* is truncated there too.  One
  * pass gathers both forms and whether a free-surface particle is in reach (hybrid). */
-static inline void PressureGradient(Particles P, Cells C, PetscInt a, ISPHGradient mode, PetscBool solid_eq14, PetscReal rho0, PetscReal g[2])
+static inline void PressureGradient(Particles P, Cells C, PetscInt a, ISPHGradient mode, PetscBool solid_eq14, PetscReal cond, PetscReal rho0, PetscReal g[2])
 {
   const PetscReal *x = PField(P, FIELD_X), *m = PField(P, FIELD_M), *rho = PField(P, FIELD_RHO), *p = PField(P, FIELD_P), *fs = PField(P, FIELD_FS), *fv = PField(P, FIELD_FVIEW);
   PetscReal        gs[2] = {0, 0}, gd[2] = {0, 0}, M[3] = {0, 0, 0}, pa = p[a] / (rho[a] * rho[a]), det;
@@ -234,6 +239,10 @@ static inline void PressureGradient(Particles P, Cells C, PetscInt a, ISPHGradie
   corrected = (PetscBool)(mode == ISPH_GRAD_CORRECTED || (mode == ISPH_GRAD_HYBRID && near));
   if (solid_eq14 && body && !near) corrected = PETSC_FALSE; /* the pair forces the body receives (FluidLoad) */
   det       = M[0] * M[2] - M[1] * M[1];
+  { /* the correction only where M is well conditioned: its eigenvalues' ratio above cond (a thin jet's M is nearly singular, and M^-1 amplifies the pressure's noise across it) */
+    const PetscReal half = 0.5 * (M[0] + M[2]), disc = PetscSqrtReal(0.25 * (M[0] - M[2]) * (M[0] - M[2]) + M[1] * M[1]);
+    if (corrected && !(half - disc > cond * (half + disc) && det > 1e-6 * (M[0] * M[0] + M[2] * M[2]))) { g[0] = gd[0]; g[1] = gd[1]; return; }
+  }
   if (!corrected) { g[0] = gs[0]; g[1] = gs[1]; }
   else if (det > 1e-6 * (M[0] * M[0] + M[2] * M[2])) { /* L = M^-1 (M is symmetric) */
     g[0] = (M[2] * gd[0] - M[1] * gd[1]) / det;
@@ -282,7 +291,7 @@ static PetscErrorCode Corrector(Sim sim)
   for (PetscInt a = 0; a < P->n; a++) {
     PetscReal g[2], vx, vy;
     if (!KindIsFluid(P->kind[a])) continue;
-    PressureGradient(P, C, a, s->gradient, s->solid_eq14, sim->fl.rho0, g);
+    PressureGradient(P, C, a, s->gradient, s->solid_eq14, s->grad_cond, sim->fl.rho0, g);
     vx = vs[2 * a] - dt * g[0];
     vy = vs[2 * a + 1] - dt * g[1];
     if (s->wall_contact && PField(P, FIELD_FS)[a] > 0) {

@@ -42,6 +42,7 @@ check "-h_factor"             -case dam_break -h_factor 0.5
 check "-kernel"               -case dam_break -kernel gauss
 check "-isph_beta"            -case dam_break -fluid isph -isph_beta 1.5
 check "-isph_source"          -case dam_break -fluid isph -isph_source magic
+check "-isph_gradient_cond"   -case dam_break -fluid isph -isph_gradient_cond 1.5
 fails "DIVERGED_ITS"          -case hydrostatic -fluid isph -dx 0.01 -ppe_ksp_max_it 1 -ppe_ksp_error_if_not_converged
 fails "DIVERGED_ITS"          -case hydrostatic -fluid isph -dx 0.01 -ppe_ksp_max_it 1
 check "-solid_K"              -case oscillating_plate -solid_K -1

@@ -22,6 +22,7 @@ struct _p_ISPH {
   PetscReal       alpha;    /* artificial viscosity in the predictor */
   PetscReal       shift;    /* Fickian shifting coefficient A (Skillen et al. 2013); 0 = off */
   PetscBool       solid_eq14;   /* Eq. 14 for fluid next to a solid, whatever the gradient (isph.c) */
+  PetscReal       grad_cond;    /* -isph_gradient_cond: the corrected gradient where its matrix's eigenvalue ratio exceeds this */
   PetscBool       wall_contact; /* free-surface particles stopped kinematically at walls (isph.c, WallContact) */
   PetscReal       lat_w, lat_divr; /* sum of m W and div r of a full square lattice: normalisation */
   PetscReal      *src;

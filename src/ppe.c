@@ -457,6 +457,6 @@ PetscErrorCode PPEFaultHint(PPE ppe)
   PetscReal rtol;
   PetscFunctionBeginUser;
   PetscCall(KSPGetTolerances(ppe->ksp, &rtol, NULL, NULL, NULL));
-  if (rtol > PPE_RTOL_DEFAULT) PetscCall(PetscPrintf(ppe->comm, "sphfsi: the pressure equation was solved to -ppe_ksp_rtol %g, looser than the default %g; in splashing flows a looser solve has let particles through walls and jet tips fly off (docs/convergence.md, walls at a/100): try the default first\n", (double)rtol, (double)PPE_RTOL_DEFAULT));
+  if (rtol > PPE_RTOL_DEFAULT) PetscCall(PetscPrintf(ppe->comm, "sphfsi: the pressure equation was solved to -ppe_ksp_rtol %g, looser than the default %g: try the default first (docs/convergence.md)\n", (double)rtol, (double)PPE_RTOL_DEFAULT));
   PetscFunctionReturn(PETSC_SUCCESS);
 }

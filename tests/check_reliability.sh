@@ -82,8 +82,8 @@ fault dt_large "in step [0-9]* (from t = .*left the domain .*e.g. id [0-9]* (flu
 timeout 120 $MPI bin/sphfsi -progress_every 0 -case hydrostatic -dx 0.01 -dt 0.0002 -t_end 0.05 -output_dir "$OUT/dt_large_restart" -restart "$OUT/dt_large/last_good.h5" > "$OUT/dt_large_restart.log" 2>&1 || fail "restart from last_good.h5 with a smaller -dt: status $?"
 fault ksp "DIVERGED_ITS" -case hydrostatic -fluid isph -dx 0.01 -ppe_ksp_max_it 1
 ! grep -q "looser than the default" "$OUT/ksp.log" || fail "ksp: the hint on a loose -ppe_ksp_rtol at the default tolerance"
-fault ksp_loose "DIVERGED_ITS" -case hydrostatic -fluid isph -dx 0.01 -ppe_ksp_max_it 1 -ppe_ksp_rtol 1e-4
-grep -q "solved to -ppe_ksp_rtol 0.0001, looser than the default 1e-08" "$OUT/ksp_loose.log" || fail "ksp_loose: no hint on the loose -ppe_ksp_rtol"
+fault ksp_loose "DIVERGED_ITS" -case hydrostatic -fluid isph -dx 0.01 -ppe_ksp_max_it 1 -ppe_ksp_rtol 1e-3
+grep -q "solved to -ppe_ksp_rtol 0.001, looser than the default 0.0001" "$OUT/ksp_loose.log" || fail "ksp_loose: no hint on the loose -ppe_ksp_rtol"
 fault dt_floor "time step .* fell below its floor 1. s (-dt_min) at step 0, t = 0.*particle id [0-9]*" -case dam_break -dx 0.008 -dt_min 1
 
 # a rank that fails at start: rank 1 runs elsewhere and cannot see the relative output directory

@@ -18,7 +18,7 @@ Per rank and step (P ranks, max over ranks from the partition):
             of counts (Bruck: alpha_ar log2 P) and MPI_Alltoallv, which Open MPI runs pairwise,
             alpha (P - 1) even for empty messages; from 9 ranks the sparse exchange (exchange.h):
             PETSc's two-sided set-up (an allreduce, alpha_ar log2 P) and two exchanges with the
-            neighbour ranks (counts, records).  "MPI_Alltoallv": the code before session 12, all-to-all
+            neighbour ranks (counts, records).  "MPI_Alltoallv": the earlier code, all-to-all
             at every rank count
   reductions n_red * alpha_ar * log2 P  (time step, checks; ISPH: 3 per CG iteration)
   AMG       levels L = log4(rows / 10): per V-cycle 4 exchanges per level (smoothing, residual,

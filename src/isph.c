@@ -221,7 +221,7 @@ static PetscErrorCode DensityFreeSurfaceSource(Sim sim)
 static inline void PressureGradient(Particles P, Cells C, PetscInt a, ISPHGradient mode, PetscBool solid_eq14, PetscReal cond, PetscReal rho0, PetscReal g[2])
 {
   const PetscReal *x = PField(P, FIELD_X), *m = PField(P, FIELD_M), *rho = PField(P, FIELD_RHO), *p = PField(P, FIELD_P), *fs = PField(P, FIELD_FS), *fv = PField(P, FIELD_FVIEW);
-  PetscReal        gs[2] = {0, 0}, gd[2] = {0, 0}, M[3] = {0, 0, 0}, pa = p[a] / (rho[a] * rho[a]), det;
+  PetscReal        gs[2] = {0, 0}, gd[2] = {0, 0}, M[3] = {0, 0, 0}, pa = p[a] / (rho[a] * rho[a]), det, half, disc;
   PetscBool        near = (PetscBool)(fs[a] > 0), corrected, body = PETSC_FALSE;
   for (PetscInt k = C->nstart[a]; k < C->nstart[a + 1]; k++) {
     PetscInt  b = C->nbr[k];
@@ -238,13 +238,13 @@ static inline void PressureGradient(Particles P, Cells C, PetscInt a, ISPHGradie
   }
   corrected = (PetscBool)(mode == ISPH_GRAD_CORRECTED || (mode == ISPH_GRAD_HYBRID && near));
   if (solid_eq14 && body && !near) corrected = PETSC_FALSE; /* the pair forces the body receives (FluidLoad) */
-  det       = M[0] * M[2] - M[1] * M[1];
-  { /* the correction only where M is well conditioned: its eigenvalues' ratio above cond (a thin jet's M is nearly singular, and M^-1 amplifies the pressure's noise across it) */
-    const PetscReal half = 0.5 * (M[0] + M[2]), disc = PetscSqrtReal(0.25 * (M[0] - M[2]) * (M[0] - M[2]) + M[1] * M[1]);
-    if (corrected && !(half - disc > cond * (half + disc) && det > 1e-6 * (M[0] * M[0] + M[2] * M[2]))) { g[0] = gd[0]; g[1] = gd[1]; return; }
-  }
-  if (!corrected) { g[0] = gs[0]; g[1] = gs[1]; }
-  else if (det > 1e-6 * (M[0] * M[0] + M[2] * M[2])) { /* L = M^-1 (M is symmetric) */
+  if (!corrected) { g[0] = gs[0]; g[1] = gs[1]; return; }
+  /* the correction only where M is well conditioned: its eigenvalues' ratio above cond (a thin jet's
+   * M is nearly singular, and M^-1 amplifies the pressure's noise across it) */
+  det  = M[0] * M[2] - M[1] * M[1];
+  half = 0.5 * (M[0] + M[2]);
+  disc = PetscSqrtReal(0.25 * (M[0] - M[2]) * (M[0] - M[2]) + M[1] * M[1]);
+  if (half - disc > cond * (half + disc) && det > 1e-6 * (M[0] * M[0] + M[2] * M[2])) { /* L = M^-1 (M is symmetric) */
     g[0] = (M[2] * gd[0] - M[1] * gd[1]) / det;
     g[1] = (-M[1] * gd[0] + M[0] * gd[1]) / det;
   } else { g[0] = gd[0]; g[1] = gd[1]; }

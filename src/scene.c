@@ -76,11 +76,18 @@ PetscErrorCode SceneAddLattice(Sim sim, ParticleKind kind, PetscReal x0, PetscRe
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+PetscErrorCode SceneAddBox(Sim sim, ParticleKind kind, const PetscReal b[4], PetscReal dx, PetscReal rho0)
+{
+  PetscFunctionBeginUser;
+  PetscCall(SceneAddLattice(sim, kind, b[0] + 0.5 * dx, b[1] + 0.5 * dx, RoundToInt((b[2] - b[0]) / dx), RoundToInt((b[3] - b[1]) / dx), dx, rho0));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 PetscErrorCode SceneAddWallBox(Sim sim, const PetscReal b[4], PetscReal dx, const PetscBool faces[4])
 {
   PetscInt first = sim->P->n;
   PetscFunctionBeginUser;
-  PetscCall(SceneAddLattice(sim, KIND_WALL, b[0] + 0.5 * dx, b[1] + 0.5 * dx, RoundToInt((b[2] - b[0]) / dx), RoundToInt((b[3] - b[1]) / dx), dx, sim->fl.rho0));
+  PetscCall(SceneAddBox(sim, KIND_WALL, b, dx, sim->fl.rho0));
   for (PetscInt a = first; a < sim->P->n; a++) { /* this rank's share of the lattice */
     const PetscReal *x = PField(sim->P, FIELD_X) + 2 * a;
     if (!((faces[0] && x[0] < b[0] + dx) || (faces[1] && x[1] < b[1] + dx) || (faces[2] && x[0] > b[2] - dx) || (faces[3] && x[1] > b[3] - dx))) sim->P->kind[a] = KIND_DUMMY;
@@ -123,7 +130,7 @@ PetscErrorCode SceneAddDamBreak(Sim sim, PetscReal w, PetscReal hgt, PetscReal L
   PetscFunctionBeginUser;
   PetscCall(SceneAddLattice(sim, KIND_FLUID, 0.5 * dx, 0.5 * dx, nx, ny, dx, sim->fl.rho0));
   PetscCall(SceneAddTank(sim, 0, L, 0, top - dx, dx, rows, PETSC_TRUE, PETSC_TRUE));
-  PetscCall(SceneHydrostaticDensity(sim, ny * dx));
+  PetscCall(SceneHydrostaticDensity(sim, 0, ny * dx));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -160,12 +167,12 @@ PetscErrorCode SceneAddZonedWater(Sim sim, PetscReal dc, PetscReal W, PetscReal 
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode SceneHydrostaticDensity(Sim sim, PetscReal y_surface)
+PetscErrorCode SceneHydrostaticDensity(Sim sim, PetscInt first, PetscReal y_surface)
 {
   Particles  P = sim->P;
   PetscReal *x = PField(P, FIELD_X), *rho = PField(P, FIELD_RHO), *p = PField(P, FIELD_P);
   PetscFunctionBeginUser;
-  for (PetscInt a = 0; a < P->n; a++) {
+  for (PetscInt a = first; a < P->n; a++) {
     if (!KindIsFluid(P->kind[a])) continue;
     p[a]   = sim->fl.rho0 * (-sim->g[1]) * (y_surface - x[2 * a + 1]);
     rho[a] = EOSDensity(&sim->fl, p[a]);

@@ -39,6 +39,9 @@ PetscErrorCode SceneAddLattice(Sim sim, ParticleKind kind, PetscReal x0, PetscRe
 /* Walls of `rows` rows (first row KIND_WALL, the rest KIND_DUMMY) around the rectangle
  * [x0, x1] x [y0, ...): floor below y0, side walls left of x0 and right of x1 up to y1. */
 PetscErrorCode SceneAddTank(Sim sim, PetscReal x0, PetscReal x1, PetscReal y0, PetscReal y1, PetscReal dx, PetscInt rows, PetscBool left, PetscBool right);
+/* A lattice of one kind filling the box b = x0,y0,x1,y1 at spacing dx (its extent rounded to whole
+ * particles), the first particle at (x0 + dx/2, y0 + dx/2); rho0 sets the mass. */
+PetscErrorCode SceneAddBox(Sim sim, ParticleKind kind, const PetscReal b[4], PetscReal dx, PetscReal rho0);
 /* An obstacle of wall particles filling the box b = x0,y0,x1,y1 on a lattice of spacing dx: the
  * particles within dx of the faces that meet water (faces: left, bottom, right, top) are walls, the
  * others dummies. */
@@ -48,8 +51,9 @@ void SceneTankDomain(Sim sim, PetscReal L, PetscReal top, PetscInt rows);
 /* A dam break: a water column [0, w] x [0, hgt] at hydrostatic density against the upstream wall of a
  * tank [0, L] whose walls reach top - dx (the domain box's top is top). */
 PetscErrorCode SceneAddDamBreak(Sim sim, PetscReal w, PetscReal hgt, PetscReal L, PetscReal top, PetscInt rows);
-/* Fluid density of a hydrostatic column with free surface at y_surface (WCSPH EOS, Eq. 20). */
-PetscErrorCode SceneHydrostaticDensity(Sim sim, PetscReal y_surface);
+/* Fluid at rest: pressure and density (WCSPH EOS, Eq. 20) of a hydrostatic column with its free
+ * surface at y_surface, for this rank's fluid particles from index `first` on (0: all of them). */
+PetscErrorCode SceneHydrostaticDensity(Sim sim, PetscInt first, PetscReal y_surface);
 /* Mixed particle sizes (section 3.3): water [0, W] x [0, H] at the coarse spacing dc on [0, W - fine]
  * and at sim->dx on [W - fine, W] (next to a gate).  SceneZonesSetUp checks dc and fine (option names
  * -dx_coarse, -fine_width in its messages) and rounds W, fine and H so that the zones tile the water

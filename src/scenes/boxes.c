@@ -61,8 +61,9 @@ static PetscInt TankWalls(const Box *t, PetscReal r[3][4])
   return n;
 }
 
-/* Boxes K = 1..NBOX of one kind (-PREFIX_K); with spacing: a 5th number, the lattice's spacing. */
-static PetscErrorCode ReadBoxes(Sim sim, PetscOptionItems *PetscOptionsObject, const char *prefix, const char *text, Box *list, PetscInt *count, PetscBool spacing)
+/* Boxes K = 1..NBOX of one kind (-PREFIX_K); with spacing: a 5th number, the lattice's spacing; with
+ * faces: -PREFIX_K_faces, the faces that meet water (default all). */
+static PetscErrorCode ReadBoxes(Sim sim, PetscOptionItems *PetscOptionsObject, const char *prefix, const char *text, Box *list, PetscInt *count, PetscBool spacing, PetscBool faces)
 {
   char name[40];
   PetscFunctionBeginUser;
@@ -80,13 +81,13 @@ static PetscErrorCode ReadBoxes(Sim sim, PetscOptionItems *PetscOptionsObject, c
     B->s = n == 5 ? v[4] : sim->dx;
     PetscCheck(B->s > 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "%s: the spacing %g must be > 0", name, (double)B->s);
     for (PetscInt i = 0; i < 4; i++) B->face[i] = PETSC_TRUE;
-    if (!strcmp(prefix, "wall_box")) { /* which faces carry the wall row */
-      char faces[64] = "";
-      PetscCall(PetscSNPrintf(name, sizeof(name), "-wall_box_%d_faces", (int)k));
-      PetscCall(PetscOptionsString(name, "Faces of the obstacle that meet water: left,right,bottom,top (their outer row is wall, the rest dummies)", "", faces, faces, sizeof(faces), &set));
+    if (faces) {
+      char list[64] = "";
+      PetscCall(PetscSNPrintf(name, sizeof(name), "-%s_%d_faces", prefix, (int)k));
+      PetscCall(PetscOptionsString(name, "Faces of the obstacle that meet water: left,right,bottom,top (their outer row is wall, the rest dummies)", "", list, list, sizeof(list), &set));
       if (set) {
         const char *fn[4] = {"left", "bottom", "right", "top"};
-        for (PetscInt i = 0; i < 4; i++) B->face[i] = (PetscBool)(strstr(faces, fn[i]) != NULL);
+        for (PetscInt i = 0; i < 4; i++) B->face[i] = (PetscBool)(strstr(list, fn[i]) != NULL);
       }
     }
   }
@@ -117,9 +118,9 @@ static PetscErrorCode Create(Sim sim)
   PetscFunctionBeginUser;
   PetscCall(PetscNew(&c));
   sim->scene_ctx = c;
-  PetscOptionsBegin(sim->comm, NULL, "Scene boxes: water, tanks, obstacles and solids as boxes given in the options", "");
   PetscCheck(sim->dx > 0, sim->comm, PETSC_ERR_USER_INPUT, "Scene boxes needs -dx (the particle spacing, m)");
-  PetscCall(ReadBoxes(sim, PetscOptionsObject, "fluid_box", "Water at rest x0,y0,x1,y1[,spacing] (m)", c->fluid, &c->nfluid, PETSC_TRUE));
+  PetscOptionsBegin(sim->comm, NULL, "Scene boxes: water, tanks, obstacles and solids as boxes given in the options", "");
+  PetscCall(ReadBoxes(sim, PetscOptionsObject, "fluid_box", "Water at rest x0,y0,x1,y1[,spacing] (m)", c->fluid, &c->nfluid, PETSC_TRUE, PETSC_FALSE));
   rows = KernelSupportRows(&sim->kernel);
   PetscCall(PetscOptionsInt("-wall_rows", "Rows of wall + dummy particles of a tank that does not give its own", "", rows, &rows, NULL));
   PetscCheck(rows >= 1, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-wall_rows %" PetscInt_FMT " must be >= 1", rows);
@@ -143,9 +144,9 @@ static PetscErrorCode Create(Sim sim)
     T->left  = (PetscBool)(side == 0 || side == 1);
     T->right = (PetscBool)(side == 0 || side == 2);
   }
-  PetscCall(ReadBoxes(sim, PetscOptionsObject, "solid_box", "Elastic solid x0,y0,x1,y1 (m), at -dx", c->solid, &c->nsolid, PETSC_FALSE));
-  PetscCall(ReadBoxes(sim, PetscOptionsObject, "clamp_box", "Rigid clamp of a solid x0,y0,x1,y1 (m), at -dx", c->clamp, &c->nclamp, PETSC_FALSE));
-  PetscCall(ReadBoxes(sim, PetscOptionsObject, "wall_box", "Obstacle of wall particles x0,y0,x1,y1 (m), at -dx", c->wall, &c->nwall, PETSC_FALSE));
+  PetscCall(ReadBoxes(sim, PetscOptionsObject, "solid_box", "Elastic solid x0,y0,x1,y1 (m), at -dx", c->solid, &c->nsolid, PETSC_FALSE, PETSC_FALSE));
+  PetscCall(ReadBoxes(sim, PetscOptionsObject, "clamp_box", "Rigid clamp of a solid x0,y0,x1,y1 (m), at -dx", c->clamp, &c->nclamp, PETSC_FALSE, PETSC_FALSE));
+  PetscCall(ReadBoxes(sim, PetscOptionsObject, "wall_box", "Obstacle of wall particles x0,y0,x1,y1 (m), at -dx", c->wall, &c->nwall, PETSC_FALSE, PETSC_TRUE));
   PetscCall(PetscOptionsBool("-outflow", "Water that leaves the domain is removed (an open boundary)", "", sim->outflow, &sim->outflow, NULL));
   n = 4;
   PetscCall(PetscOptionsRealArray("-domain", "Computational box x0,y0,x1,y1 (m); default: the tanks with their walls, open to twice their height", "", dom, &n, &dom_set));
@@ -228,36 +229,22 @@ static PetscErrorCode Create(Sim sim)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-/* A lattice filling box B at spacing s, of one kind (rho0 sets the mass); returns the first index. */
-static PetscErrorCode AddBox(Sim sim, const Box *B, ParticleKind kind, PetscReal s, PetscReal rho0, PetscInt *first)
-{
-  PetscFunctionBeginUser;
-  *first = sim->P->n;
-  PetscCall(SceneAddLattice(sim, kind, B->b[0] + 0.5 * s, B->b[1] + 0.5 * s, RoundToInt((B->b[2] - B->b[0]) / s), RoundToInt((B->b[3] - B->b[1]) / s), s, rho0));
-  PetscFunctionReturn(PETSC_SUCCESS);
-}
-
 static PetscErrorCode Populate(Sim sim)
 {
   Boxes *c = (Boxes *)sim->scene_ctx;
-  PetscInt first;
   PetscFunctionBeginUser;
-  for (PetscInt i = 0; i < c->nfluid; i++) {
-    const Box *F = &c->fluid[i];
-    PetscReal *x, *rho, *p, surface = F->b[1] + RoundToInt((F->b[3] - F->b[1]) / F->s) * F->s;
-    PetscCall(AddBox(sim, F, KIND_FLUID, F->s, sim->fl.rho0, &first));
-    x = PField(sim->P, FIELD_X); rho = PField(sim->P, FIELD_RHO); p = PField(sim->P, FIELD_P);
-    for (PetscInt a = first; a < sim->P->n; a++) { /* at rest: hydrostatic below the lattice's top (Eq. 20) */
-      p[a]   = sim->fl.rho0 * (-sim->g[1]) * (surface - x[2 * a + 1]);
-      rho[a] = EOSDensity(&sim->fl, p[a]);
-    }
+  for (PetscInt i = 0; i < c->nfluid; i++) { /* at rest: hydrostatic below the lattice's top */
+    const Box *F     = &c->fluid[i];
+    PetscInt   first = sim->P->n;
+    PetscCall(SceneAddBox(sim, KIND_FLUID, F->b, F->s, sim->fl.rho0));
+    PetscCall(SceneHydrostaticDensity(sim, first, F->b[1] + RoundToInt((F->b[3] - F->b[1]) / F->s) * F->s));
   }
   for (PetscInt i = 0; i < c->ntank; i++) {
     const Box *T = &c->tank[i];
     PetscCall(SceneAddTank(sim, T->b[0], T->b[2], T->b[1], T->b[3], T->s, T->rows, T->left, T->right));
   }
-  for (PetscInt i = 0; i < c->nsolid; i++) PetscCall(AddBox(sim, &c->solid[i], KIND_SOLID, sim->dx, sim->sl.rho0, &first));
-  for (PetscInt i = 0; i < c->nclamp; i++) PetscCall(AddBox(sim, &c->clamp[i], KIND_CLAMP, sim->dx, sim->sl.rho0, &first));
+  for (PetscInt i = 0; i < c->nsolid; i++) PetscCall(SceneAddBox(sim, KIND_SOLID, c->solid[i].b, sim->dx, sim->sl.rho0));
+  for (PetscInt i = 0; i < c->nclamp; i++) PetscCall(SceneAddBox(sim, KIND_CLAMP, c->clamp[i].b, sim->dx, sim->sl.rho0));
   for (PetscInt i = 0; i < c->nwall; i++) PetscCall(SceneAddWallBox(sim, c->wall[i].b, sim->dx, c->wall[i].face));
   PetscFunctionReturn(PETSC_SUCCESS);
 }

@@ -78,7 +78,7 @@ static PetscErrorCode Populate(Sim sim)
     const PetscBool faces[4] = {PETSC_TRUE, PETSC_FALSE, PETSC_FALSE, PETSC_FALSE};
     PetscCall(SceneAddWallBox(sim, above, dx, faces));
   }
-  PetscCall(SceneHydrostaticDensity(sim, RoundToInt(c->H / dx) * dx));
+  PetscCall(SceneHydrostaticDensity(sim, 0, RoundToInt(c->H / dx) * dx));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

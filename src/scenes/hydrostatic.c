@@ -41,7 +41,7 @@ static PetscErrorCode Populate(Sim sim)
   c->W = nx * dx; c->H = ny * dx; /* the lattice's own extent */
   PetscCall(SceneAddLattice(sim, KIND_FLUID, 0.5 * dx, 0.5 * dx, nx, ny, dx, sim->fl.rho0));
   PetscCall(SceneAddTank(sim, 0, c->W, 0, 1.2 * c->H, dx, c->rows, PETSC_TRUE, PETSC_TRUE));
-  PetscCall(SceneHydrostaticDensity(sim, c->H));
+  PetscCall(SceneHydrostaticDensity(sim, 0, c->H));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

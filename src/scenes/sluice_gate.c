@@ -135,7 +135,7 @@ static PetscErrorCode Populate(Sim sim)
       PetscCall(SceneAddLattice(sim, kind, c->xg0 + (i + 0.5) * dx, c->a + (j + 0.5) * dx, 1, 1, dx, rho0));
     }
   }
-  PetscCall(SceneHydrostaticDensity(sim, c->H));
+  PetscCall(SceneHydrostaticDensity(sim, 0, c->H));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

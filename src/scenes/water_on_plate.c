@@ -58,7 +58,7 @@ static PetscErrorCode Populate(Sim sim)
   PetscCall(SceneAddLattice(sim, KIND_FLUID, 0.5 * dx, 0.5 * dx, nx, ny, dx, sim->fl.rho0));
   PetscCall(SceneAddLattice(sim, KIND_CLAMP, 0.5 * dx, 0.5 * dx - c->T, nx, c->nclamp, dx, sim->sl.rho0));
   PetscCall(SceneAddLattice(sim, KIND_SOLID, 0.5 * dx, (c->nclamp + 0.5) * dx - c->T, nx, nt - c->nclamp, dx, sim->sl.rho0));
-  PetscCall(SceneHydrostaticDensity(sim, c->H));
+  PetscCall(SceneHydrostaticDensity(sim, 0, c->H));
   { /* weights from the masses the particles carry */
     Particles        P = sim->P;
     const PetscReal *m = PField(P, FIELD_M);

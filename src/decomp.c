@@ -68,7 +68,7 @@ PetscErrorCode DecompDestroy(Decomp *d)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-/* Owner of every empty cell: that of the nearest occupied cell (breadth-first over the 8
+/* Owner of every empty cell: that of the nearest occupied cell (breadth-first over the 8 (3D: 26)
  * neighbours, periodic wrap; ties go to the cell reached first, so the result is deterministic). */
 static PetscErrorCode OwnEmptyCells(const Grid *g, const PetscInt *count, PetscMPIInt *owner)
 {
@@ -80,24 +80,18 @@ static PetscErrorCode OwnEmptyCells(const Grid *g, const PetscInt *count, PetscM
     if (count[c]) queue[tail++] = c;
     else owner[c] = -1;
   while (head < tail) {
-    PetscInt c = queue[head++], i = c % g->n[0], j = c / g->n[0];
-    for (PetscInt dj = -1; dj <= 1; dj++)
-      for (PetscInt di = -1; di <= 1; di++) {
-        PetscInt ii = i + di, jj = j + dj, n;
-        if (g->periodic[0]) ii = (ii + g->n[0]) % g->n[0];
-        if (g->periodic[1]) jj = (jj + g->n[1]) % g->n[1];
-        if (ii < 0 || jj < 0 || ii >= g->n[0] || jj >= g->n[1]) continue;
-        n = jj * g->n[0] + ii;
-        if (owner[n] >= 0) continue;
-        owner[n]      = owner[c];
-        queue[tail++] = n;
-      }
+    PetscInt c = queue[head++], nb[26], nn = GridCellNeighbours(g, c, nb);
+    for (PetscInt k = 0; k < nn; k++) {
+      if (owner[nb[k]] >= 0) continue;
+      owner[nb[k]]  = owner[c];
+      queue[tail++] = nb[k];
+    }
   }
   PetscCall(PetscFree(queue));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-/* k-way partition of the cell graph (8 neighbours, periodic wrap), serial (rank 0).  Only the
+/* k-way partition of the cell graph (8 neighbours, 26 in 3D, periodic wrap), serial (rank 0).  Only the
  * occupied cells are vertices: the dam break's tall tank is mostly empty (410k particles: 64k of
  * 900k cells occupied), and METIS on the whole grid took more memory on rank 0 than its share of the
  * particles; empty cells then go to the owner of the nearest occupied cell (OwnEmptyCells).
@@ -119,28 +113,25 @@ PetscErrorCode DecompPartitionCells(const Grid *g, const PetscInt *count, const 
     for (PetscInt c = 0; c < nc; c++) wsum += count[c];
     wscale = (idx_t)PetscMax(1, PetscMin(32, (PetscInt64)PETSC_MAX_INT / 4 / (wsum + nv)));
   }
-  PetscCall(PetscMalloc5(nv + 1, &xadj, 8 * nv, &adj, ncon * nv, &vw, 8 * nv, &ew, nv, &part));
-  for (PetscInt j = 0; j < g->n[1]; j++)
-    for (PetscInt i = 0; i < g->n[0]; i++) {
-      PetscInt c = j * g->n[0] + i, v = vert[c];
-      if (v < 0) continue;
-      xadj[v]      = ne;
-      vw[ncon * v] = wscale * count[c] + 1;
-      if (scount) vw[2 * v + 1] = scount[c];
-      for (PetscInt dj = -1; dj <= 1; dj++)
-        for (PetscInt di = -1; di <= 1; di++) {
-          PetscInt ii = i + di, jj = j + dj, n;
-          if (!di && !dj) continue;
-          if (g->periodic[0]) ii = (ii + g->n[0]) % g->n[0];
-          if (g->periodic[1]) jj = (jj + g->n[1]) % g->n[1];
-          if (ii < 0 || jj < 0 || ii >= g->n[0] || jj >= g->n[1]) continue;
-          n = jj * g->n[0] + ii;
-          if (vert[n] < 0) continue;
-          adj[ne] = vert[n];
-          ew[ne]  = count[c] + count[n] + 1;
-          ne++;
-        }
+  {
+    const idx_t maxdeg = g->dim == 3 ? 26 : 8;
+    PetscCall(PetscMalloc5(nv + 1, &xadj, maxdeg * nv, &adj, ncon * nv, &vw, maxdeg * nv, &ew, nv, &part));
+  }
+  for (PetscInt c = 0; c < nc; c++) {
+    PetscInt v = vert[c], nb[26], nn;
+    if (v < 0) continue;
+    xadj[v]      = ne;
+    vw[ncon * v] = wscale * count[c] + 1;
+    if (scount) vw[2 * v + 1] = scount[c];
+    nn = GridCellNeighbours(g, c, nb);
+    for (PetscInt k = 0; k < nn; k++) {
+      PetscInt n = nb[k];
+      if (vert[n] < 0) continue;
+      adj[ne] = vert[n];
+      ew[ne]  = count[c] + count[n] + 1;
+      ne++;
     }
+  }
   xadj[nv] = ne;
   METIS_SetDefaultOptions(opts);
   opts[METIS_OPTION_SEED]      = 1;
@@ -159,7 +150,7 @@ void DecompCellWork(const Grid *g, Particles P, PetscInt *wcount, PetscInt *scou
 {
   const PetscReal *x = PField(P, FIELD_X);
   for (PetscInt a = 0; a < P->n; a++) {
-    PetscReal xa[2] = {x[2 * a], x[2 * a + 1]};
+    PetscReal xa[3] = {x[P->dim * a], x[P->dim * a + 1], P->dim == 3 ? x[P->dim * a + 2] : 0};
     PetscInt  c;
     GridWrap(g, xa);
     c = GridCellOf(g, xa);
@@ -243,6 +234,19 @@ static void CopyParticle(Particles P, PetscInt to, PetscInt from)
   }
 }
 
+/* "(x, y)" or "(x, y, z)"; the grid's box "[x0, x1] x [y0, y1]" (x [z0, z1]) */
+static void FormatPoint(char *buf, size_t len, PetscInt D, const PetscReal *x)
+{
+  if (D == 3) snprintf(buf, len, "(%g, %g, %g)", (double)x[0], (double)x[1], (double)x[2]);
+  else snprintf(buf, len, "(%g, %g)", (double)x[0], (double)x[1]);
+}
+
+static void FormatBox(char *buf, size_t len, const Grid *g)
+{
+  if (g->dim == 3) snprintf(buf, len, "[%g, %g] x [%g, %g] x [%g, %g]", (double)g->lo[0], (double)g->hi[0], (double)g->lo[1], (double)g->hi[1], (double)g->lo[2], (double)g->hi[2]);
+  else snprintf(buf, len, "[%g, %g] x [%g, %g]", (double)g->lo[0], (double)g->hi[0], (double)g->lo[1], (double)g->hi[1]);
+}
+
 PetscErrorCode DecompMigrate(Decomp d, Particles P)
 {
   const Grid  *g = d->grid;
@@ -250,6 +254,7 @@ PetscErrorCode DecompMigrate(Decomp d, Particles P)
   PetscInt     rs = RecordSize(P), nsend = 0, nrecv = 0, nkeep = 0, nbad = 0, gbad;
   PetscInt    *dest;
   PetscReal   *sbuf, *rbuf, *x = PField(P, FIELD_X);
+  const PetscInt D = P->dim;
 
   PetscFunctionBeginUser;
   P->ng = 0;
@@ -257,10 +262,13 @@ PetscErrorCode DecompMigrate(Decomp d, Particles P)
   PetscCall(PetscCalloc4(size, &scnt, size, &rcnt, size + 1, &sdisp, size + 1, &rdisp));
   for (PetscInt a = 0; a < P->n; a++) {
     PetscInt c;
-    GridWrap(g, x + 2 * a);
-    c = GridCellOf(g, x + 2 * a);
+    GridWrap(g, x + D * a);
+    c = GridCellOf(g, x + D * a);
     if (c < 0) {
-      if (!nbad) PetscCall(PetscPrintf(PETSC_COMM_SELF, "[%d] particle id %" PetscInt_FMT " (%s) at (%g, %g) is outside the domain [%g, %g] x [%g, %g]\n", d->rank, P->id[a], ParticleKindNames[P->kind[a]], (double)x[2 * a], (double)x[2 * a + 1], (double)g->lo[0], (double)g->hi[0], (double)g->lo[1], (double)g->hi[1]));
+      char at[96], box[160];
+      FormatPoint(at, sizeof(at), D, x + D * a);
+      FormatBox(box, sizeof(box), g);
+      if (!nbad) PetscCall(PetscPrintf(PETSC_COMM_SELF, "[%d] particle id %" PetscInt_FMT " (%s) at %s is outside the domain %s\n", d->rank, P->id[a], ParticleKindNames[P->kind[a]], at, box));
       nbad++;
       dest[a] = d->rank;
       continue;
@@ -270,16 +278,23 @@ PetscErrorCode DecompMigrate(Decomp d, Particles P)
   }
   PetscCall(MPIU_Allreduce(&nbad, &gbad, 1, MPIU_INT, MPI_SUM, d->comm));
   if (gbad) { /* name one of them in the message every rank raises */
-    PetscReal mine[4] = {-1, 0, 0, 0}, *all;
+    PetscReal mine[5] = {-1, 0, 0, 0, 0}, *all;
     PetscInt  r = 0;
+    char      at[96], box[160];
     for (PetscInt a = 0; a < P->n && nbad; a++)
-      if (GridCellOf(g, x + 2 * a) < 0) { mine[0] = P->id[a]; mine[1] = P->kind[a]; mine[2] = x[2 * a]; mine[3] = x[2 * a + 1]; break; }
-    PetscCall(PetscMalloc1(4 * size, &all));
-    PetscCallMPI(MPI_Allgather(mine, 4, MPIU_REAL, all, 4, MPIU_REAL, d->comm));
-    while (all[4 * r] < 0) r++;
+      if (GridCellOf(g, x + D * a) < 0) {
+        mine[0] = P->id[a]; mine[1] = P->kind[a];
+        for (PetscInt k = 0; k < D; k++) mine[2 + k] = x[D * a + k];
+        break;
+      }
+    PetscCall(PetscMalloc1(5 * size, &all));
+    PetscCallMPI(MPI_Allgather(mine, 5, MPIU_REAL, all, 5, MPIU_REAL, d->comm));
+    while (all[5 * r] < 0) r++;
+    FormatPoint(at, sizeof(at), D, all + 5 * r + 2);
+    FormatBox(box, sizeof(box), g);
     PetscCall(PetscFree(dest));
     PetscCall(PetscFree4(scnt, rcnt, sdisp, rdisp));
-    SETERRQ(d->comm, PETSC_ERR_NOT_CONVERGED, "%" PetscInt_FMT " particle(s) left the domain [%g, %g] x [%g, %g], e.g. id %d (%s) at (%g, %g): the run is unstable (try a smaller -dt or -cfl) or the geometry lets particles escape", gbad, (double)g->lo[0], (double)g->hi[0], (double)g->lo[1], (double)g->hi[1], (int)all[4 * r], ParticleKindNames[(PetscInt)all[4 * r + 1]], (double)all[4 * r + 2], (double)all[4 * r + 3]);
+    SETERRQ(d->comm, PETSC_ERR_NOT_CONVERGED, "%" PetscInt_FMT " particle(s) left the domain %s, e.g. id %d (%s) at %s: the run is unstable (try a smaller -dt or -cfl) or the geometry lets particles escape", gbad, box, (int)all[5 * r], ParticleKindNames[(PetscInt)all[5 * r + 1]], at);
   }
   if (size == 1) { PetscCall(PetscFree(dest)); PetscCall(PetscFree4(scnt, rcnt, sdisp, rdisp)); PetscFunctionReturn(PETSC_SUCCESS); }
   for (PetscMPIInt r = 0; r < size; r++) sdisp[r + 1] = sdisp[r] + scnt[r];
@@ -324,7 +339,7 @@ PetscErrorCode DecompSortOwned(Decomp d, Particles P)
   stride = (PetscInt64)maxid + 1;
   PetscCall(PetscMalloc2(n, &key, n, &perm));
   for (PetscInt a = 0; a < n; a++) {
-    key[a]  = (PetscInt64)GridCellOf(d->grid, PField(P, FIELD_X) + 2 * a) * stride + P->id[a];
+    key[a]  = (PetscInt64)GridCellOf(d->grid, PField(P, FIELD_X) + P->dim * a) * stride + P->id[a];
     perm[a] = a;
     if (a && key[a] < key[a - 1]) sorted = PETSC_FALSE;
   }
@@ -361,7 +376,10 @@ PetscErrorCode DecompBalance(Decomp d, Particles P, PetscInt step, PetscBool *re
 
 PetscErrorCode DecompView(Decomp d, PetscViewer v)
 {
+  char cells[64];
   PetscFunctionBeginUser;
-  PetscCall(PetscViewerASCIIPrintf(v, "Decomposition: %d rank(s), %" PetscInt_FMT " x %" PetscInt_FMT " cells of %g m, rebalance past %.2f (checked every %" PetscInt_FMT " steps), %" PetscInt_FMT " repartition(s), %s exchanges\n", d->size, d->grid->n[0], d->grid->n[1], (double)d->grid->cs, (double)d->threshold, d->check_every, d->nrepartition, d->sparse ? "sparse" : "all-to-all"));
+  if (d->grid->dim == 3) PetscCall(PetscSNPrintf(cells, sizeof(cells), "%" PetscInt_FMT " x %" PetscInt_FMT " x %" PetscInt_FMT, d->grid->n[0], d->grid->n[1], d->grid->n[2]));
+  else PetscCall(PetscSNPrintf(cells, sizeof(cells), "%" PetscInt_FMT " x %" PetscInt_FMT, d->grid->n[0], d->grid->n[1]));
+  PetscCall(PetscViewerASCIIPrintf(v, "Decomposition: %d rank(s), %s cells of %g m, rebalance past %.2f (checked every %" PetscInt_FMT " steps), %" PetscInt_FMT " repartition(s), %s exchanges\n", d->size, cells, (double)d->grid->cs, (double)d->threshold, d->check_every, d->nrepartition, d->sparse ? "sparse" : "all-to-all"));
   PetscFunctionReturn(PETSC_SUCCESS);
 }

@@ -138,8 +138,20 @@ PetscErrorCode GuardStep(Sim sim, PetscErrorCode (*step)(Sim))
 
 /* Particle data of the owned particle a, or of none (a < 0), for a collective report. */
 typedef struct {
-  PetscReal val, id, kind, x, y, field;
+  PetscReal val, id, kind, x[3], field;
 } Where;
+#define WHERE_REALS 7
+
+/* "(x, y)" or "(x, y, z)" of a report */
+static const char *WherePoint(Sim sim, const Where *w, char buf[96])
+{
+  if (sim->dim == 3) snprintf(buf, 96, "(%g, %g, %g)", (double)w->x[0], (double)w->x[1], (double)w->x[2]);
+  else snprintf(buf, 96, "(%g, %g)", (double)w->x[0], (double)w->x[1]);
+  return buf;
+}
+
+/* |u| of a vector of the run's dimension */
+static PetscReal Norm(Sim sim, const PetscReal *u) { return PetscSqrtReal(u[0] * u[0] + u[1] * u[1] + (sim->dim == 3 ? u[2] * u[2] : 0)); }
 
 static void WhereOf(Sim sim, PetscInt a, PetscInt field, PetscReal val, Where *w)
 {
@@ -147,7 +159,8 @@ static void WhereOf(Sim sim, PetscInt a, PetscInt field, PetscReal val, Where *w
   memset(w, 0, sizeof(*w));
   if (a < 0) { w->id = -1; return; }
   w->val = val; w->id = (PetscReal)sim->P->id[a]; w->kind = (PetscReal)sim->P->kind[a];
-  w->x = x[2 * a]; w->y = x[2 * a + 1]; w->field = (PetscReal)field;
+  for (PetscInt d = 0; d < sim->dim; d++) w->x[d] = x[sim->dim * a + d];
+  w->field = (PetscReal)field;
 }
 
 /* The report of the lowest rank that has one (collective; found = no rank had one). */
@@ -156,7 +169,7 @@ static PetscErrorCode Gather(Sim sim, const Where *mine, Where *w, PetscBool *fo
   Where *all;
   PetscFunctionBeginUser;
   PetscCall(PetscMalloc1(sim->size, &all));
-  PetscCallMPI(MPI_Allgather((void *)mine, 6, MPIU_REAL, all, 6, MPIU_REAL, sim->comm));
+  PetscCallMPI(MPI_Allgather((void *)mine, WHERE_REALS, MPIU_REAL, all, WHERE_REALS, MPIU_REAL, sim->comm));
   *found = PETSC_FALSE;
   for (PetscMPIInt r = 0; r < sim->size && !*found; r++)
     if (all[r].id >= 0) { *w = all[r]; *found = PETSC_TRUE; }
@@ -184,7 +197,7 @@ PetscErrorCode GuardCheckDt(Sim sim, PetscInt medium, PetscReal dt)
   }
   /* where: the owned particle of this medium with the largest acceleration */
   for (PetscInt a = 0; a < P->n && acc; a++) {
-    PetscReal an = PetscSqrtReal(acc[2 * a] * acc[2 * a] + acc[2 * a + 1] * acc[2 * a + 1]);
+    PetscReal an = Norm(sim, acc + sim->dim * a);
     if ((medium ? P->kind[a] == KIND_SOLID : KindIsFluid(P->kind[a])) && an > amax) { amax = an; worst = a; }
   }
   {
@@ -198,9 +211,10 @@ PetscErrorCode GuardCheckDt(Sim sim, PetscInt medium, PetscReal dt)
     PetscReal vn = 0;
     for (PetscInt b = 0; b < P->n; b++)
       if (P->id[b] == (PetscInt)w.id) a = b;
-    if (a >= 0) vn = PetscSqrtReal(v[2 * a] * v[2 * a] + v[2 * a + 1] * v[2 * a + 1]);
+    char      at[96];
+    if (a >= 0) vn = Norm(sim, v + sim->dim * a);
     PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &vn, 1, MPIU_REAL, MPIU_MAX, sim->comm));
-    PetscCall(GuardFault(sim, PETSC_TRUE, "the %s time step %g s fell below its floor %g s (%s) at step %" PetscInt_FMT ", t = %g; largest acceleration %g m/s^2 (speed %g m/s) at particle id %d (%s) at (%g, %g): the run is unstable (try a smaller -cfl; -dt_min sets the floor)", medium ? "solid" : "fluid", (double)dt, (double)floor, g->dt_min > 0 ? "-dt_min" : "1e-3 of the first step", sim->step, (double)sim->t, (double)w.val, (double)vn, (int)w.id, ParticleKindNames[(PetscInt)w.kind], (double)w.x, (double)w.y));
+    PetscCall(GuardFault(sim, PETSC_TRUE, "the %s time step %g s fell below its floor %g s (%s) at step %" PetscInt_FMT ", t = %g; largest acceleration %g m/s^2 (speed %g m/s) at particle id %d (%s) at %s: the run is unstable (try a smaller -cfl; -dt_min sets the floor)", medium ? "solid" : "fluid", (double)dt, (double)floor, g->dt_min > 0 ? "-dt_min" : "1e-3 of the first step", sim->step, (double)sim->t, (double)w.val, (double)vn, (int)w.id, ParticleKindNames[(PetscInt)w.kind], WherePoint(sim, &w, at)));
   } else PetscCall(GuardFault(sim, PETSC_TRUE, "the %s time step %g s fell below its floor %g s at step %" PetscInt_FMT ", t = %g: the run is unstable (try a smaller -cfl)", medium ? "solid" : "fluid", (double)dt, (double)floor, sim->step, (double)sim->t));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -230,14 +244,14 @@ static PetscErrorCode NonFinite(Sim sim, PetscInt bad, PetscInt field, PetscReal
 {
   Where     mine, w;
   PetscBool found;
-  char      when[128], value[32];
+  char      when[128], value[32], at[96];
   PetscFunctionBeginUser;
   WhereOf(sim, bad, field, val, &mine);
   PetscCall(Gather(sim, &mine, &w, &found));
   if (initial) PetscCall(PetscSNPrintf(when, sizeof(when), "in the initial state at step %" PetscInt_FMT " (t = %g): check the scene's options or the checkpoint", sim->step, (double)sim->t));
   else PetscCall(PetscSNPrintf(when, sizeof(when), "after step %" PetscInt_FMT " (t = %g): the run is unstable (reduce -dt or -cfl)", sim->step, (double)sim->t));
   snprintf(value, sizeof(value), "%g", (double)w.val); /* "nan", not PETSc's "nan." */
-  PetscCall(GuardFault(sim, PETSC_FALSE, "%s = %s at particle id %d (%s) at (%g, %g) %s", sim->P->f[(PetscInt)w.field].name, value, (int)w.id, ParticleKindNames[(PetscInt)w.kind], (double)w.x, (double)w.y, when));
+  PetscCall(GuardFault(sim, PETSC_FALSE, "%s = %s at particle id %d (%s) at %s %s", sim->P->f[(PetscInt)w.field].name, value, (int)w.id, ParticleKindNames[(PetscInt)w.kind], WherePoint(sim, &w, at), when));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

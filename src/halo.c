@@ -33,10 +33,14 @@ static PetscInt GhostRecordSize(Particles P)
   return s;
 }
 
-static inline void ShiftOf(const Grid *g, PetscInt code, PetscReal s[2])
+/* Periodic image code of the shifts (sx, sy, sz) in {-1, 0, 1}: 13 is no shift */
+#define HALO_NO_SHIFT 13
+static inline PetscInt ShiftCode(PetscInt sx, PetscInt sy, PetscInt sz) { return 9 * (sz + 1) + 3 * (sy + 1) + (sx + 1); }
+static inline PetscInt ShiftComponent(PetscInt code, PetscInt d) { return (d == 0 ? code % 3 : d == 1 ? (code / 3) % 3 : code / 9) - 1; }
+
+static inline void ShiftOf(const Grid *g, PetscInt code, PetscReal s[3])
 {
-  s[0] = (code % 3 - 1) * (g->hi[0] - g->lo[0]);
-  s[1] = (code / 3 - 1) * (g->hi[1] - g->lo[1]);
+  for (PetscInt d = 0; d < 3; d++) s[d] = ShiftComponent(code, d) * (g->hi[d] - g->lo[d]);
 }
 
 PetscErrorCode HaloBuild(Halo h, Decomp d, Particles P)
@@ -51,37 +55,43 @@ PetscErrorCode HaloBuild(Halo h, Decomp d, Particles P)
   PetscFunctionBeginUser;
   P->ng    = 0;
   cap_pair = n + 16;
-  h->period[0] = g->hi[0] - g->lo[0];
-  h->period[1] = g->hi[1] - g->lo[1];
+  for (PetscInt d = 0; d < 3; d++) h->period[d] = g->hi[d] - g->lo[d];
   PetscCall(PetscMalloc3(cap_pair, &pa, cap_pair, &pr, cap_pair, &pc));
   PetscCall(PetscCalloc4(size, &scnt, size, &rcnt, size + 1, &sdisp, size + 1, &rdisp));
   for (PetscInt a = 0; a < n; a++) {
-    PetscInt i = GridCoord(g, x[2 * a], 0), j = GridCoord(g, x[2 * a + 1], 1), first = npair;
-    for (PetscInt dj = -1; dj <= 1; dj++)
-      for (PetscInt di = -1; di <= 1; di++) {
-        PetscInt    ii = i + di, jj = j + dj, sx = 0, sy = 0, code;
-        PetscMPIInt r;
-        PetscBool   dup = PETSC_FALSE;
-        if (g->periodic[0]) { if (ii < 0) { ii += g->n[0]; sx = 1; } else if (ii >= g->n[0]) { ii -= g->n[0]; sx = -1; } }
-        if (g->periodic[1]) { if (jj < 0) { jj += g->n[1]; sy = 1; } else if (jj >= g->n[1]) { jj -= g->n[1]; sy = -1; } }
-        if (ii < 0 || jj < 0 || ii >= g->n[0] || jj >= g->n[1]) continue;
-        r    = d->owner[jj * g->n[0] + ii];
-        code = 3 * (sy + 1) + (sx + 1);
-        if (r == rank && code == 4) continue;
-        for (PetscInt k = first; k < npair; k++)
-          if (pr[k] == r && pc[k] == code) dup = PETSC_TRUE;
-        if (dup) continue;
-        if (npair == cap_pair) {
-          PetscInt *na, *nr, *nc;
-          cap_pair *= 2;
-          PetscCall(PetscMalloc3(cap_pair, &na, cap_pair, &nr, cap_pair, &nc));
-          PetscCall(PetscArraycpy(na, pa, npair)); PetscCall(PetscArraycpy(nr, pr, npair)); PetscCall(PetscArraycpy(nc, pc, npair));
-          PetscCall(PetscFree3(pa, pr, pc));
-          pa = na; pr = nr; pc = nc;
+    const PetscInt D = g->dim, first = npair;
+    PetscInt       c[3] = {GridCoord(g, x[D * a], 0), GridCoord(g, x[D * a + 1], 1), D == 3 ? GridCoord(g, x[D * a + 2], 2) : 0};
+    for (PetscInt dk = (D == 3 ? -1 : 0); dk <= (D == 3 ? 1 : 0); dk++)
+      for (PetscInt dj = -1; dj <= 1; dj++)
+        for (PetscInt di = -1; di <= 1; di++) {
+          PetscInt    cc[3] = {c[0] + di, c[1] + dj, c[2] + dk}, sh[3] = {0, 0, 0}, code;
+          PetscMPIInt r;
+          PetscBool   dup = PETSC_FALSE, outside = PETSC_FALSE;
+          for (PetscInt d = 0; d < 3; d++) {
+            if (g->periodic[d]) {
+              if (cc[d] < 0) { cc[d] += g->n[d]; sh[d] = 1; }
+              else if (cc[d] >= g->n[d]) { cc[d] -= g->n[d]; sh[d] = -1; }
+            }
+            if (cc[d] < 0 || cc[d] >= g->n[d]) outside = PETSC_TRUE;
+          }
+          if (outside) continue;
+          r    = d->owner[GridIndex(g, cc[0], cc[1], cc[2])];
+          code = ShiftCode(sh[0], sh[1], sh[2]);
+          if (r == rank && code == HALO_NO_SHIFT) continue;
+          for (PetscInt k = first; k < npair; k++)
+            if (pr[k] == r && pc[k] == code) dup = PETSC_TRUE;
+          if (dup) continue;
+          if (npair == cap_pair) {
+            PetscInt *na, *nr, *nc;
+            cap_pair *= 2;
+            PetscCall(PetscMalloc3(cap_pair, &na, cap_pair, &nr, cap_pair, &nc));
+            PetscCall(PetscArraycpy(na, pa, npair)); PetscCall(PetscArraycpy(nr, pr, npair)); PetscCall(PetscArraycpy(nc, pc, npair));
+            PetscCall(PetscFree3(pa, pr, pc));
+            pa = na; pr = nr; pc = nc;
+          }
+          pa[npair] = a; pr[npair] = r; pc[npair] = code; npair++;
+          scnt[r]++;
         }
-        pa[npair] = a; pr[npair] = r; pc[npair] = code; npair++;
-        scnt[r]++;
-      }
   }
   nsend = npair;
   for (PetscMPIInt r = 0; r < size; r++) sdisp[r + 1] = sdisp[r] + scnt[r];
@@ -89,7 +99,7 @@ PetscErrorCode HaloBuild(Halo h, Decomp d, Particles P)
   PetscCall(PetscMalloc1(size, &fill));
   for (PetscMPIInt r = 0; r < size; r++) fill[r] = sdisp[r];
   for (PetscInt k = 0; k < npair; k++) {
-    PetscReal *rec_ = sbuf + (fill[pr[k]]++) * rs, s[2];
+    PetscReal *rec_ = sbuf + (fill[pr[k]]++) * rs, s[3];
     PetscInt   a = pa[k], q = 0;
     ShiftOf(g, pc[k], s);
     rec_[q++] = (PetscReal)a; rec_[q++] = (PetscReal)pc[k];
@@ -153,9 +163,8 @@ PetscErrorCode HaloRefresh(Halo h, Particles P, PetscInt nf, const FieldId f[])
       /* periodic images: the same shift the build applied */
       for (PetscInt j = 0; j < P->ng; j++) {
         PetscInt code = h->shift[j];
-        if (code == 4) continue;
-        F->a[2 * (P->n + j)] += h->period[0] * (code % 3 - 1);
-        F->a[2 * (P->n + j) + 1] += h->period[1] * (code / 3 - 1);
+        if (code == HALO_NO_SHIFT) continue;
+        for (PetscInt d = 0; d < P->dim; d++) F->a[P->dim * (P->n + j) + d] += h->period[d] * ShiftComponent(code, d);
       }
     }
   }

@@ -155,8 +155,9 @@ PetscErrorCode IOWriteParticles(Sim sim, const char *path)
  * snapshots particles_NNNNN.h5 (one = NULL), or the one file `one`; tN: (t, particles) per file. */
 static PetscErrorCode WriteXDMF(Sim sim, const char *xmf, PetscInt n, const char *one, const PetscReal *tN)
 {
-  char  path[PETSC_MAX_PATH_LEN], tmp[PETSC_MAX_PATH_LEN];
-  FILE *f;
+  char           path[PETSC_MAX_PATH_LEN], tmp[PETSC_MAX_PATH_LEN];
+  FILE          *f;
+  const PetscInt D = sim->dim;
 
   PetscFunctionBeginUser;
   int err = 0;
@@ -172,10 +173,10 @@ static PetscErrorCode WriteXDMF(Sim sim, const char *xmf, PetscInt n, const char
     else PetscCall(PetscSNPrintf(h5, sizeof(h5), "particles_%05" PetscInt_FMT ".h5", s));
     fprintf(f, "   <Grid Name=\"step%05d\" GridType=\"Uniform\">\n    <Time Value=\"%.9g\"/>\n", (int)s, (double)tN[2 * s]);
     fprintf(f, "    <Topology TopologyType=\"Polyvertex\" NumberOfElements=\"%d\"/>\n", (int)N);
-    fprintf(f, "    <Geometry GeometryType=\"XY\">\n     <DataItem Dimensions=\"%d 2\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s:/x</DataItem>\n    </Geometry>\n", (int)N, h5);
+    fprintf(f, "    <Geometry GeometryType=\"%s\">\n     <DataItem Dimensions=\"%d %d\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s:/x</DataItem>\n    </Geometry>\n", D == 3 ? "XYZ" : "XY", (int)N, (int)D, h5);
     fprintf(f, "    <Attribute Name=\"id\" Center=\"Node\"><DataItem Dimensions=\"%d\" NumberType=\"Int\" Precision=\"%d\" Format=\"HDF\">%s:/id</DataItem></Attribute>\n", (int)N, (int)sizeof(PetscInt), h5);
     fprintf(f, "    <Attribute Name=\"kind\" Center=\"Node\"><DataItem Dimensions=\"%d\" NumberType=\"Int\" Precision=\"%d\" Format=\"HDF\">%s:/kind</DataItem></Attribute>\n", (int)N, (int)sizeof(PetscInt), h5);
-    fprintf(f, "    <Attribute Name=\"v\" AttributeType=\"Vector\" Center=\"Node\"><DataItem Dimensions=\"%d 2\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s:/v</DataItem></Attribute>\n", (int)N, h5);
+    fprintf(f, "    <Attribute Name=\"v\" AttributeType=\"Vector\" Center=\"Node\"><DataItem Dimensions=\"%d %d\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s:/v</DataItem></Attribute>\n", (int)N, (int)D, h5);
     {
       const char *scal[] = {"p", "rho", "m", "h"};
       for (int k = 0; k < 4; k++)
@@ -183,8 +184,8 @@ static PetscErrorCode WriteXDMF(Sim sim, const char *xmf, PetscInt n, const char
     }
     if (sim->P->f[FIELD_FS].on) /* ISPH, WCSPH with shifting: 1 on the free surface found in the last step */
       fprintf(f, "    <Attribute Name=\"free_surface\" Center=\"Node\"><DataItem Dimensions=\"%d\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s:/free_surface</DataItem></Attribute>\n", (int)N, h5);
-    if (sim->P->f[FIELD_S].on)
-      fprintf(f, "    <Attribute Name=\"stress\" AttributeType=\"Vector\" Center=\"Node\"><DataItem Dimensions=\"%d 3\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s:/stress</DataItem></Attribute>\n", (int)N, h5);
+    if (sim->P->f[FIELD_S].on) /* 2D: xx, xy, yy as a 3-vector; 3D: the six components as Tensor6 */
+      fprintf(f, "    <Attribute Name=\"stress\" AttributeType=\"%s\" Center=\"Node\"><DataItem Dimensions=\"%d %d\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s:/stress</DataItem></Attribute>\n", D == 3 ? "Tensor6" : "Vector", (int)N, (int)sim->P->f[FIELD_S].width, h5);
     fprintf(f, "   </Grid>\n");
   }
   fprintf(f, "  </Grid>\n </Domain>\n</Xdmf>\n");

@@ -165,7 +165,9 @@ int main(int argc, char **argv)
     char header[256], chosen[512];
     PetscCall(PetscSNPrintf(header, sizeof(header), "sphfsi %s (commit %s): the options of this run; -options_file this file repeats it (the defaults not listed are this version's: -help lists them)", SphfsiVersion(), SphfsiCommit()));
     /* the scene's values and -c0 (10x its speed) at full precision */
-    PetscCall(PetscSNPrintf(chosen, sizeof(chosen), "-t_end %.17g\n-gravity %.17g,%.17g\n# -dx %.17g (from the scene's options)\n", (double)sim->t_end, (double)sim->g[0], (double)sim->g[1], (double)sim->dx));
+    PetscCall(PetscSNPrintf(chosen, sizeof(chosen), "-t_end %.17g\n-gravity %.17g,%.17g", (double)sim->t_end, (double)sim->g[0], (double)sim->g[1]));
+    if (sim->dim == 3) PetscCall(PetscSNPrintf(chosen + strlen(chosen), sizeof(chosen) - strlen(chosen), ",%.17g", (double)sim->g[2]));
+    PetscCall(PetscSNPrintf(chosen + strlen(chosen), sizeof(chosen) - strlen(chosen), "\n# -dx %.17g (from the scene's options)\n", (double)sim->dx));
     if (sim->has_fluid) PetscCall(PetscSNPrintf(chosen + strlen(chosen), sizeof(chosen) - strlen(chosen), "-c0 %.17g\n", (double)sim->fl.c0));
     PetscCall(OptionsUsedWrite(PETSC_COMM_WORLD, sim->outdir, header, chosen));
   }

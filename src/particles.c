@@ -2,27 +2,38 @@
 
 const char *const ParticleKindNames[] = {"fluid", "wall", "dummy", "solid", "clamp"};
 
+/* A field's width: a fixed number of reals, or one that follows the dimension d (WIDTH_VECTOR: d,
+ * WIDTH_SYM: the d (d + 1) / 2 components of a symmetric tensor, WIDTH_TENSOR: d x d). */
+enum { WIDTH_VECTOR = -1, WIDTH_SYM = -2, WIDTH_TENSOR = -3 };
 static const struct { const char *name; PetscInt width; } FieldInfo[FIELD_COUNT] = {
-  [FIELD_X] = {"x", 2},         [FIELD_V] = {"v", 2},         [FIELD_RHO] = {"rho", 1},
-  [FIELD_P] = {"p", 1},         [FIELD_M] = {"m", 1},         [FIELD_H] = {"h", 1},
-  [FIELD_X0] = {"x0", 2},       [FIELD_ACC] = {"acc", 2},     [FIELD_DRHO] = {"drho", 1},
-  [FIELD_XSPH] = {"xsph", 2},   [FIELD_VWALL] = {"vwall", 2}, [FIELD_VSTAR] = {"vstar", 2},
-[FIELD_FS] = {"free_surface", 1}, [FIELD_S] = {"stress", 3},
-  [FIELD_NORMAL] = {"normal", 2},   [FIELD_ROW] = {"row", 1},
-  [FIELD_KCORR] = {"kernel_correction", 4}, [FIELD_FVIEW] = {"fluid_view", 3},
-  [FIELD_AMEAN] = {"mean_acc", 2},         [FIELD_XREB] = {"x_rebuild", 2},
-  [FIELD_DEFGRAD] = {"deformation_gradient", 4}, [FIELD_GRAD0] = {"reference_gradient", 25}, [FIELD_PK1B] = {"pk1_gradient", 10},
+  [FIELD_X] = {"x", WIDTH_VECTOR},         [FIELD_V] = {"v", WIDTH_VECTOR},         [FIELD_RHO] = {"rho", 1},
+  [FIELD_P] = {"p", 1},                    [FIELD_M] = {"m", 1},                    [FIELD_H] = {"h", 1},
+  [FIELD_X0] = {"x0", WIDTH_VECTOR},       [FIELD_ACC] = {"acc", WIDTH_VECTOR},     [FIELD_DRHO] = {"drho", 1},
+  [FIELD_XSPH] = {"xsph", WIDTH_VECTOR},   [FIELD_VWALL] = {"vwall", WIDTH_VECTOR}, [FIELD_VSTAR] = {"vstar", WIDTH_VECTOR},
+  [FIELD_FS] = {"free_surface", 1},        [FIELD_S] = {"stress", WIDTH_SYM},
+  [FIELD_NORMAL] = {"normal", WIDTH_VECTOR}, [FIELD_ROW] = {"row", 1},
+  [FIELD_KCORR] = {"kernel_correction", WIDTH_TENSOR}, [FIELD_FVIEW] = {"fluid_view", 3},
+  [FIELD_AMEAN] = {"mean_acc", WIDTH_VECTOR},         [FIELD_XREB] = {"x_rebuild", WIDTH_VECTOR},
+  [FIELD_DEFGRAD] = {"deformation_gradient", WIDTH_TENSOR}, [FIELD_GRAD0] = {"reference_gradient", 25}, [FIELD_PK1B] = {"pk1_gradient", 10},
 };
+
+static PetscInt FieldWidth(PetscInt w, PetscInt dim)
+{
+  switch (w) {
+  case WIDTH_VECTOR: return dim;
+  case WIDTH_SYM: return dim * (dim + 1) / 2;
+  case WIDTH_TENSOR: return dim * dim;
+  default: return w;
+  }
+}
 
 PetscErrorCode ParticlesCreate(MPI_Comm comm, Particles *P)
 {
   PetscFunctionBeginUser;
   PetscCall(PetscNew(P));
   (*P)->comm = comm;
-  for (PetscInt f = 0; f < FIELD_COUNT; f++) {
-    (*P)->f[f].name  = FieldInfo[f].name;
-    (*P)->f[f].width = FieldInfo[f].width;
-  }
+  for (PetscInt f = 0; f < FIELD_COUNT; f++) (*P)->f[f].name = FieldInfo[f].name;
+  PetscCall(ParticlesSetDimension(*P, 2));
   /* every scene needs these */
   PetscCall(ParticlesEnableField(*P, FIELD_X, PETSC_TRUE));
   PetscCall(ParticlesEnableField(*P, FIELD_V, PETSC_TRUE));
@@ -49,6 +60,16 @@ PetscErrorCode ParticlesEnableField(Particles P, FieldId f, PetscBool halo)
   PetscCheck(!P->setup, P->comm, PETSC_ERR_ARG_WRONGSTATE, "Field %s enabled after ParticlesSetUp", P->f[f].name);
   P->f[f].on   = PETSC_TRUE;
   P->f[f].halo = (PetscBool)(P->f[f].halo || halo);
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode ParticlesSetDimension(Particles P, PetscInt dim)
+{
+  PetscFunctionBeginUser;
+  PetscCheck(!P->setup, P->comm, PETSC_ERR_ARG_WRONGSTATE, "The dimension is set before ParticlesSetUp");
+  PetscCheck(dim == 2 || dim == 3, P->comm, PETSC_ERR_ARG_OUTOFRANGE, "Dimension %" PetscInt_FMT " must be 2 or 3", dim);
+  P->dim = dim;
+  for (PetscInt f = 0; f < FIELD_COUNT; f++) P->f[f].width = FieldWidth(FieldInfo[f].width, dim);
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -85,17 +106,17 @@ PetscErrorCode ParticlesReserve(Particles P, PetscInt cap)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode ParticlesAdd(Particles P, PetscInt id, ParticleKind kind, PetscReal x, PetscReal y, PetscReal m, PetscReal h, PetscReal rho)
+PetscErrorCode ParticlesAdd(Particles P, PetscInt id, ParticleKind kind, const PetscReal x[], PetscReal m, PetscReal h, PetscReal rho)
 {
-  PetscInt i = P->n;
+  PetscInt i = P->n, D = P->dim;
   PetscFunctionBeginUser;
   PetscCheck(P->ng == 0, P->comm, PETSC_ERR_ARG_WRONGSTATE, "Particles added while ghosts exist");
   PetscCall(ParticlesReserve(P, i + 1));
   P->id[i] = id; P->kind[i] = kind;
   for (PetscInt f = 0; f < FIELD_COUNT; f++)
     if (P->f[f].on) PetscCall(PetscArrayzero(P->f[f].a + i * P->f[f].width, P->f[f].width));
-  P->f[FIELD_X].a[2 * i] = x; P->f[FIELD_X].a[2 * i + 1] = y;
-  if (P->f[FIELD_X0].on) { P->f[FIELD_X0].a[2 * i] = x; P->f[FIELD_X0].a[2 * i + 1] = y; }
+  PetscCall(PetscArraycpy(P->f[FIELD_X].a + D * i, x, D));
+  if (P->f[FIELD_X0].on) PetscCall(PetscArraycpy(P->f[FIELD_X0].a + D * i, x, D));
   P->f[FIELD_M].a[i] = m; P->f[FIELD_H].a[i] = h; P->f[FIELD_RHO].a[i] = rho;
   P->n++;
   PetscFunctionReturn(PETSC_SUCCESS);

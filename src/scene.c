@@ -45,11 +45,22 @@ PetscErrorCode SceneListNames(char *buf, size_t len)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* One particle at p (sim->dim coordinates) of spacing dx: mass rho0 dx^dim; the next id. */
+static PetscErrorCode AddPoint(Sim sim, ParticleKind kind, const PetscReal p[], PetscReal dx, PetscReal rho0)
+{
+  PetscInt  id = sim->next_id++;
+  PetscReal m  = rho0 * dx * dx;
+  PetscFunctionBeginUser;
+  if (sim->dim == 3) m *= dx;
+  if (id % sim->size == sim->rank) PetscCall(ParticlesAdd(sim->P, id, kind, p, m, sim->kernel.h_factor * dx, rho0));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 static PetscErrorCode AddOne(Sim sim, ParticleKind kind, PetscReal x, PetscReal y, PetscReal dx, PetscReal rho0)
 {
-  PetscInt id = sim->next_id++;
+  const PetscReal p[2] = {x, y};
   PetscFunctionBeginUser;
-  if (id % sim->size == sim->rank) PetscCall(ParticlesAdd(sim->P, id, kind, x, y, rho0 * dx * dx, sim->kernel.h_factor * dx, rho0));
+  PetscCall(AddPoint(sim, kind, p, dx, rho0));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

@@ -21,6 +21,7 @@ PetscErrorCode SimCreate(MPI_Comm comm, Sim *sim)
   s->comm = comm;
   PetscCallMPI(MPI_Comm_rank(comm, &s->rank));
   PetscCallMPI(MPI_Comm_size(comm, &s->size));
+  s->dim            = 2;
   s->fluid          = FLUID_WCSPH;
   s->cfl            = 0.25;
   s->t_end          = -1;
@@ -144,7 +145,7 @@ static PetscErrorCode FluidOptions(Sim sim)
   PetscCheck(sim->fl.rho0 > 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-rho0 %g must be > 0", (double)sim->fl.rho0);
   PetscCheck(sim->fl.mu >= 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-mu %g must be >= 0", (double)sim->fl.mu);
   PetscCheck(sim->fl.eta > 0 && sim->fl.eta <= 1, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-eta %g must be in (0, 1] (eta / h; the paper 0.1)", (double)sim->fl.eta);
-  sim->fl.lap_kappa = norm ? 2.0 / KernelLatticeSum(&sim->kernel, LATTICE_LAPLACIAN, sim->fl.eta) : 1.0;
+  sim->fl.lap_kappa = norm ? (PetscReal)sim->dim / KernelLatticeSum(&sim->kernel, LATTICE_LAPLACIAN, sim->fl.eta) : 1.0;
   PetscCheck(sim->fl.c0 > 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-c0 %g must be > 0", (double)sim->fl.c0);
   PetscCheck(sim->fl.alpha >= 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-alpha %g must be >= 0", (double)sim->fl.alpha);
   PetscCheck(sim->fl.delta >= 0 && sim->fl.delta <= 1, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-delta %g must be in [0, 1]", (double)sim->fl.delta);
@@ -175,8 +176,8 @@ static PetscErrorCode Outflow(Sim sim)
   for (PetscInt a = 0; a < P->n; a++) {
     PetscBool out = PETSC_FALSE;
     if (!KindIsFluid(P->kind[a])) continue;
-    for (PetscInt d = 0; d < 2; d++)
-      if (!sim->periodic[d] && (x[2 * a + d] < sim->grid.lo[d] || x[2 * a + d] >= sim->grid.hi[d])) out = PETSC_TRUE;
+    for (PetscInt d = 0; d < sim->dim; d++)
+      if (!sim->periodic[d] && (x[sim->dim * a + d] < sim->grid.lo[d] || x[sim->dim * a + d] >= sim->grid.hi[d])) out = PETSC_TRUE;
     if (!out) continue;
     if (!drop) PetscCall(PetscCalloc1(P->n, &drop)); /* only in a step where fluid leaves */
     drop[a] = PETSC_TRUE;
@@ -209,7 +210,7 @@ static PetscErrorCode Rebuild(Sim sim, PetscBool full)
   PetscCall(PetscLogStagePop());
   PetscCall(PetscLogStagePush(sim->stage[STAGE_NEIGHBOUR]));
   PetscCall(CellsBuild(sim->cells, P));
-  if (full && P->f[FIELD_XREB].on) PetscCall(PetscArraycpy(PField(P, FIELD_XREB), PField(P, FIELD_X), 2 * P->n)); /* a restart has them */
+  if (full && P->f[FIELD_XREB].on) PetscCall(PetscArraycpy(PField(P, FIELD_XREB), PField(P, FIELD_X), P->dim * P->n)); /* a restart has them */
   PetscCall(PetscLogStagePop());
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -233,16 +234,24 @@ PetscErrorCode SimSetUp(Sim sim)
   PetscFunctionBeginUser;
   PetscCall(sim->scene->create(sim));
   PetscCheck(sim->dx > 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dx %g must be > 0", (double)sim->dx);
+  PetscCheck(sim->dim == 2 || sim->dim == 3, sim->comm, PETSC_ERR_PLIB, "Scene %s set dimension %" PetscInt_FMT, sim->scene->name, sim->dim);
   { /* a -dx so fine that the lattice counts overflow would leave an empty scene: say so first */
-    const PetscReal lattice = (sim->dom_hi[0] - sim->dom_lo[0]) / sim->dx * ((sim->dom_hi[1] - sim->dom_lo[1]) / sim->dx);
-    PetscCheck(lattice < 1e12, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dx %g would make more than 1e12 particles in the %g x %g m domain: choose a larger -dx", (double)sim->dx, (double)(sim->dom_hi[0] - sim->dom_lo[0]), (double)(sim->dom_hi[1] - sim->dom_lo[1]));
+    PetscReal lattice = 1;
+    char      box[128] = "";
+    for (PetscInt d = 0; d < sim->dim; d++) {
+      lattice *= (sim->dom_hi[d] - sim->dom_lo[d]) / sim->dx;
+      PetscCall(PetscSNPrintf(box + strlen(box), sizeof(box) - strlen(box), "%s%g", d ? " x " : "", (double)(sim->dom_hi[d] - sim->dom_lo[d])));
+    }
+    PetscCheck(lattice < 1e12, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dx %g would make more than 1e12 particles in the %s m domain: choose a larger -dx", (double)sim->dx, box);
   }
   PetscCheck(sim->t_end > 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-t_end %g must be > 0", (double)sim->t_end);
   PetscCheck(sim->has_fluid || sim->has_solid, sim->comm, PETSC_ERR_PLIB, "Scene %s has neither fluid nor solid", sim->scene->name);
   PetscOptionsBegin(sim->comm, NULL, "Body force", "Sim");
-  PetscCall(PetscOptionsRealArray("-gravity", "Gravity vector gx,gy (m/s^2)", "", sim->g, (PetscInt[]){2}, NULL));
+  PetscCall(PetscOptionsRealArray("-gravity", "Gravity vector gx,gy (2D) or gx,gy,gz (3D) (m/s^2)", "", sim->g, (PetscInt[]){sim->dim}, NULL));
   PetscOptionsEnd();
-  PetscCheck(!PetscIsInfOrNanReal(sim->g[0]) && !PetscIsInfOrNanReal(sim->g[1]), sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-gravity %g,%g must be finite", (double)sim->g[0], (double)sim->g[1]);
+  for (PetscInt d = 0; d < sim->dim; d++) PetscCheck(!PetscIsInfOrNanReal(sim->g[d]), sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-gravity: component %" PetscInt_FMT " is %g; it must be finite", d + 1, (double)sim->g[d]);
+  KernelInit(&sim->kernel, sim->kernel.type, sim->dim, sim->kernel.h_factor); /* the normalisation of the scene's dimension */
+  PetscCall(ParticlesSetDimension(sim->P, sim->dim));
   if (sim->has_fluid) PetscCall(FluidOptions(sim));
   if (sim->has_solid) {
     PetscCall(SolidSetUp(sim)); /* before ISPH: the coupling decides the PPE's symmetry */
@@ -272,7 +281,7 @@ PetscErrorCode SimSetUp(Sim sim)
     PetscCheck(nfluid > 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "The geometry leaves no fluid particle at -dx %g: the water region is thinner than one -dx; choose a smaller -dx or a larger water region", (double)sim->dx);
   }
   /* solids keep their neighbour lists over sub-steps: cells wide enough for the skin */
-  PetscCall(GridSetUp(&sim->grid, sim->dom_lo, sim->dom_hi, 2.0 * sim->h_max + (sim->solid ? sim->solid->skin * sim->dx : 0), sim->periodic));
+  PetscCall(GridSetUp(&sim->grid, sim->dim, sim->dom_lo, sim->dom_hi, 2.0 * sim->h_max + (sim->solid ? sim->solid->skin * sim->dx : 0), sim->periodic));
   sim->decomp->split_solids = (PetscBool)(sim->decomp->split_solids && sim->has_fluid && sim->has_solid);
   PetscCall(DecompSetUp(sim->decomp, &sim->grid));
   PetscCall(CellsCreate(&sim->grid, &sim->kernel, &sim->cells));

@@ -1,9 +1,22 @@
-/* Kernels (Eq. 12, Wendland C2 and C4): normalisation in 2D and 3D, interior lattice sums, compact support, gradient antisymmetry; the neighbour lists of a
- * random cloud (one smoothing length, and two) equal a brute-force search; the corrected SPH gradient
+/* Kernels (Eq. 12, Wendland C2 and C4): normalisation in 2D and 3D, interior lattice sums (2D and
+ * 3D), compact support, gradient antisymmetry; the neighbour lists of a random cloud in 2D and 3D
+ * (one smoothing length, and two) equal a brute-force search; the corrected SPH gradient
  * of a linear field is exact to round-off on an irregular particle cloud. */
 #include <sphfsi/kernel.h>
 #include <sphfsi/cells.h>
 #include <sphfsi/operators.h>
+
+/* The interior lattice sums (Eq. 17's normalisation, div r = d) cover the whole support: within
+ * the lattice quadrature error of a kernel at h >= 1.3 dx (Wendland C2 there: 1 %, 2.6 % in 2D),
+ * where a missing ring (3D: shell) of neighbours would take 10 % or more. */
+static PetscErrorCode CheckLattice(const SPHKernel *K)
+{
+  PetscReal lw = KernelLatticeSum(K, LATTICE_W, 0), ld = KernelLatticeSum(K, LATTICE_DIVR, 0);
+  PetscFunctionBeginUser;
+  PetscCall(PetscPrintf(PETSC_COMM_WORLD, "kernel %s %dD at h = %g dx: lattice sum of W %.5f, div r %.5f\n", KernelTypes[K->type], (int)K->dim, (double)K->h_factor, (double)lw, (double)ld));
+  PetscCheck(PetscAbsReal(lw - 1) < 0.03 && PetscAbsReal(ld - K->dim) < 0.03 * K->dim, PETSC_COMM_SELF, PETSC_ERR_PLIB, "Lattice sums %g, %g far from 1, %d", (double)lw, (double)ld, (int)K->dim);
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
 
 static PetscErrorCode CheckKernel(const SPHKernel *K)
 {
@@ -35,43 +48,48 @@ static PetscErrorCode CheckKernel(const SPHKernel *K)
     PetscReal ga = KernelF(K, r, PairH(ha, hb)) * (xa[0] - xb[0]), gb = KernelF(K, r, PairH(hb, ha)) * (xb[0] - xa[0]);
     PetscCheck(ga == -gb, PETSC_COMM_SELF, PETSC_ERR_PLIB, "Gradient not antisymmetric");
   }
-  /* the interior lattice sums (Eq. 17's normalisation, div r) cover the whole support: within the
-   * lattice quadrature error of a kernel at h >= 1.3 dx (Wendland C2 there: 1 %, 2.6 %), where a
-   * missing ring of neighbours would take 10 % or more */
-  {
-    PetscReal lw = KernelLatticeSum(K, LATTICE_W, 0), ld = KernelLatticeSum(K, LATTICE_DIVR, 0);
-    PetscCall(PetscPrintf(PETSC_COMM_WORLD, "kernel %s at h = %g dx: lattice sum of W %.5f, div r %.5f\n", KernelTypes[K->type], (double)K->h_factor, (double)lw, (double)ld));
-    PetscCheck(PetscAbsReal(lw - 1) < 0.03 && PetscAbsReal(ld - 2) < 0.06, PETSC_COMM_SELF, PETSC_ERR_PLIB, "Lattice sums %g, %g far from 1, 2", (double)lw, (double)ld);
-  }
+  PetscCall(CheckLattice(K));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-/* Neighbour lists of a random cloud (no lattice: the order in which candidates are pairs is
- * random, as in a splashing flow) against all pairs with r < 2 h_ab by brute force, with one
- * smoothing length and with two; two particles share a position (a pair at r = 0). */
+/* |x_a - x_b|^2 in D dimensions */
+static PetscReal Dist2(const PetscReal *x, PetscInt D, PetscInt a, PetscInt b)
+{
+  PetscReal s = 0;
+  for (PetscInt d = 0; d < D; d++) s += (x[D * a + d] - x[D * b + d]) * (x[D * a + d] - x[D * b + d]);
+  return s;
+}
+
+/* Neighbour lists of a random cloud in 2D or 3D (no lattice: the order in which candidates are
+ * pairs is random, as in a splashing flow) against all pairs with r < 2 h_ab by brute force, with
+ * one smoothing length and with two; two particles share a position (a pair at r = 0). */
 static PetscErrorCode CheckNeighbours(const SPHKernel *K, PetscBool mixed)
 {
   Particles   P;
   Grid        g;
   Cells       C;
-  PetscReal   dx = 0.01, h0 = K->h_factor * dx, lo[2] = {0, 0}, hi[2] = {0.2, 0.15};
-  PetscBool   per[2] = {PETSC_FALSE, PETSC_FALSE};
+  const PetscInt D = K->dim;
+  PetscReal   dx = 0.01, h0 = K->h_factor * dx, lo[3] = {0, 0, 0}, hi[3] = {0.2, 0.15, 0.12};
+  PetscBool   per[3] = {PETSC_FALSE, PETSC_FALSE, PETSC_FALSE};
   PetscRandom rnd;
-  PetscInt    n = 300, pairs = 0, *mark;
+  PetscInt    n = D == 3 ? 1500 : 300, pairs = 0, *mark;
   PetscReal   errw = 0, errf = 0;
 
   PetscFunctionBeginUser;
   PetscCall(ParticlesCreate(PETSC_COMM_SELF, &P));
+  PetscCall(ParticlesSetDimension(P, D));
   PetscCall(ParticlesSetUp(P));
   PetscCall(PetscRandomCreate(PETSC_COMM_SELF, &rnd));
   for (PetscInt a = 0; a < n; a++) {
-    PetscReal rx, ry, h = mixed && a % 3 == 0 ? 0.7 * h0 : h0;
-    PetscCall(PetscRandomGetValueReal(rnd, &rx));
-    PetscCall(PetscRandomGetValueReal(rnd, &ry));
-    if (a == n - 1) { rx = PField(P, FIELD_X)[0] / hi[0]; ry = PField(P, FIELD_X)[1] / hi[1]; } /* on particle 0 */
-    PetscCall(ParticlesAdd(P, a, KIND_FLUID, rx * hi[0], ry * hi[1], 1000 * dx * dx, h, 1000));
+    PetscReal r[3], h = mixed && a % 3 == 0 ? 0.7 * h0 : h0;
+    for (PetscInt d = 0; d < D; d++) {
+      PetscCall(PetscRandomGetValueReal(rnd, &r[d]));
+      r[d] *= hi[d];
+    }
+    if (a == n - 1) PetscCall(PetscArraycpy(r, PField(P, FIELD_X), D)); /* on particle 0 */
+    PetscCall(ParticlesAdd(P, a, KIND_FLUID, r, 1000 * dx * dx, h, 1000));
   }
-  PetscCall(GridSetUp(&g, lo, hi, 2 * h0, per));
+  PetscCall(GridSetUp(&g, D, lo, hi, 2 * h0, per));
   PetscCall(CellsCreate(&g, K, &C));
   PetscCall(CellsBuild(C, P));
   PetscCall(PetscCalloc1(n, &mark));
@@ -80,14 +98,14 @@ static PetscErrorCode CheckNeighbours(const SPHKernel *K, PetscBool mixed)
     PetscInt         found = 0;
     for (PetscInt k = C->nstart[a]; k < C->nstart[a + 1]; k++) {
       PetscInt  b = C->nbr[k];
-      PetscReal r = PetscSqrtReal((x[2 * a] - x[2 * b]) * (x[2 * a] - x[2 * b]) + (x[2 * a + 1] - x[2 * b + 1]) * (x[2 * a + 1] - x[2 * b + 1])), hab = PairH(h[a], h[b]);
+      PetscReal r = PetscSqrtReal(Dist2(x, D, a, b)), hab = PairH(h[a], h[b]);
       PetscCheck(b != a && !mark[b], PETSC_COMM_SELF, PETSC_ERR_PLIB, "Neighbour list of %d holds %d twice or itself", (int)a, (int)b);
       mark[b] = 1;
       errw    = PetscMax(errw, PetscAbsReal(C->w[k] - KernelW(K, r, hab)) / KernelW(K, 0, hab));
       errf    = PetscMax(errf, PetscAbsReal(C->f[k] - KernelF(K, r, hab)) / PetscAbsReal(KernelF(K, hab, hab)));
     }
     for (PetscInt b = 0; b < n; b++) {
-      PetscReal r2 = (x[2 * a] - x[2 * b]) * (x[2 * a] - x[2 * b]) + (x[2 * a + 1] - x[2 * b + 1]) * (x[2 * a + 1] - x[2 * b + 1]), hab = PairH(h[a], h[b]);
+      PetscReal r2 = Dist2(x, D, a, b), hab = PairH(h[a], h[b]);
       PetscBool pair = (PetscBool)(b != a && r2 < 4 * hab * hab);
       PetscCheck(pair == (PetscBool)mark[b], PETSC_COMM_SELF, PETSC_ERR_PLIB, "Particles %d and %d at r = %g h_ab: %s", (int)a, (int)b, (double)(PetscSqrtReal(r2) / hab), pair ? "a pair the list misses" : "listed but no pair");
       found += pair;
@@ -96,7 +114,7 @@ static PetscErrorCode CheckNeighbours(const SPHKernel *K, PetscBool mixed)
     PetscCheck(found == C->nstart[a + 1] - C->nstart[a], PETSC_COMM_SELF, PETSC_ERR_PLIB, "Neighbour count of %d wrong", (int)a);
     pairs += found;
   }
-  PetscCall(PetscPrintf(PETSC_COMM_WORLD, "neighbours (%s, %s): %d particles, %d pairs as by brute force, max error of W %.1e, of F %.1e (relative)\n", KernelTypes[K->type], mixed ? "two smoothing lengths" : "one smoothing length", (int)n, (int)pairs, (double)errw, (double)errf));
+  PetscCall(PetscPrintf(PETSC_COMM_WORLD, "neighbours (%dD, %s, %s): %d particles, %d pairs as by brute force, max error of W %.1e, of F %.1e (relative)\n", (int)D, KernelTypes[K->type], mixed ? "two smoothing lengths" : "one smoothing length", (int)n, (int)pairs, (double)errw, (double)errf));
   PetscCheck(errw < 1e-12 && errf < 1e-12, PETSC_COMM_SELF, PETSC_ERR_PLIB, "Kernel values of the list differ from KernelW/KernelF");
   PetscCall(PetscFree(mark));
   PetscCall(CellsDestroy(&C));
@@ -112,6 +130,7 @@ static PetscErrorCode CheckGradient(const SPHKernel *K)
   Cells     C;
   PetscReal dx = 0.01, lo[2] = {0, 0}, hi[2] = {0.3, 0.3}, *f, *grad, *L, err = 0;
   PetscBool per[2] = {PETSC_FALSE, PETSC_FALSE};
+  SPHKernel K2;
   PetscRandom rnd;
   PetscInt  n = 30, checked = 0;
 
@@ -125,10 +144,11 @@ static PetscErrorCode CheckGradient(const SPHKernel *K)
       PetscReal rx, ry;
       PetscCall(PetscRandomGetValueReal(rnd, &rx));
       PetscCall(PetscRandomGetValueReal(rnd, &ry));
-      PetscCall(ParticlesAdd(P, j * n + i, KIND_FLUID, (i + 0.5) * dx + rx, (j + 0.5) * dx + ry, 1000 * dx * dx, K->h_factor * dx, 1000));
+      PetscCall(ParticlesAdd(P, j * n + i, KIND_FLUID, (PetscReal[]){(i + 0.5) * dx + rx, (j + 0.5) * dx + ry}, 1000 * dx * dx, K->h_factor * dx, 1000));
     }
-  PetscCall(GridSetUp(&g, lo, hi, 2 * K->h_factor * dx, per));
-  PetscCall(CellsCreate(&g, K, &C));
+  KernelInit(&K2, K->type, 2, K->h_factor);
+  PetscCall(GridSetUp(&g, 2, lo, hi, 2 * K->h_factor * dx, per));
+  PetscCall(CellsCreate(&g, &K2, &C));
   PetscCall(CellsBuild(C, P));
   PetscCall(PetscMalloc3(P->n, &f, 2 * P->n, &grad, 4 * P->n, &L));
   for (PetscInt a = 0; a < P->n; a++) f[a] = 3.0 * PField(P, FIELD_X)[2 * a] - 2.0 * PField(P, FIELD_X)[2 * a + 1] + 1;
@@ -155,11 +175,15 @@ int main(int argc, char **argv)
   /* every kernel at the paper's h = 1.3 dx and at a wider 2 dx */
   for (PetscInt t = 0; t < 3; t++)
     for (PetscInt k = 0; k < 2; k++) {
-      SPHKernel K;
+      SPHKernel K, K3;
       KernelInit(&K, (KernelType)t, 2, k ? 2.0 : SPH_H_FACTOR);
+      KernelInit(&K3, (KernelType)t, 3, k ? 2.0 : SPH_H_FACTOR);
       PetscCall(CheckKernel(&K));
+      PetscCall(CheckLattice(&K3));
       PetscCall(CheckNeighbours(&K, PETSC_FALSE));
       PetscCall(CheckNeighbours(&K, PETSC_TRUE));
+      PetscCall(CheckNeighbours(&K3, PETSC_FALSE));
+      PetscCall(CheckNeighbours(&K3, PETSC_TRUE));
       PetscCall(CheckGradient(&K));
     }
   PetscCall(PetscPrintf(PETSC_COMM_WORLD, "test_kernel: ok\n"));

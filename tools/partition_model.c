@@ -29,22 +29,14 @@ static PetscErrorCode BuildScene(Sim sim)
   PetscFunctionBeginUser;
   PetscCall(sim->scene->create(sim));
   if (sim->fl.c0 <= 0) sim->fl.c0 = 10.0 * sim->v_ref; /* as SimSetUp: the EOS of the initial density */
+  KernelInit(&sim->kernel, sim->kernel.type, sim->dim, sim->kernel.h_factor);
+  PetscCall(ParticlesSetDimension(sim->P, sim->dim));
   if (sim->has_solid) PetscCall(SolidSetUp(sim));
   PetscCall(ParticlesSetUp(sim->P));
   sim->h_max = sim->kernel.h_factor * sim->dx;
   PetscCall(sim->scene->populate(sim));
-  PetscCall(GridSetUp(&sim->grid, sim->dom_lo, sim->dom_hi, 2.0 * sim->h_max + (sim->solid ? sim->solid->skin * sim->dx : 0), sim->periodic));
+  PetscCall(GridSetUp(&sim->grid, sim->dim, sim->dom_lo, sim->dom_hi, 2.0 * sim->h_max + (sim->solid ? sim->solid->skin * sim->dx : 0), sim->periodic));
   PetscFunctionReturn(PETSC_SUCCESS);
-}
-
-/* Neighbour cell k (0..7) of cell (i, j), wrapped in periodic directions; -1 outside. */
-static inline PetscInt NeighbourCell(const Grid *g, PetscInt i, PetscInt j, PetscInt k)
-{
-  PetscInt di = (k < 4 ? k : k + 1) % 3 - 1, dj = (k < 4 ? k : k + 1) / 3 - 1, ii = i + di, jj = j + dj;
-  if (g->periodic[0]) ii = (ii + g->n[0]) % g->n[0];
-  if (g->periodic[1]) jj = (jj + g->n[1]) % g->n[1];
-  if (ii < 0 || jj < 0 || ii >= g->n[0] || jj >= g->n[1]) return -1;
-  return jj * g->n[0] + ii;
 }
 
 static PetscErrorCode CountCells(Sim sim, PetscInt solid_weight, PetscReal solid_cost, CellCounts *cc)
@@ -57,7 +49,7 @@ static PetscErrorCode CountCells(Sim sim, PetscInt solid_weight, PetscReal solid
   PetscCall(PetscCalloc6(cc->nc, &cc->all, cc->nc, &cc->fluid, cc->nc, &cc->bnd, cc->nc, &cc->solid, cc->nc, &cc->work, cc->nc, &cc->ppe));
   DecompCellWork(g, P, cc->work, NULL);
   for (PetscInt a = 0; a < P->n; a++) {
-    PetscInt c = GridCellOf(g, x + 2 * a);
+    PetscInt c = GridCellOf(g, x + P->dim * a);
     if (c < 0) continue;
     cc->all[c]++;
     if (KindIsFluid(P->kind[a])) cc->fluid[c]++;
@@ -69,16 +61,13 @@ static PetscErrorCode CountCells(Sim sim, PetscInt solid_weight, PetscReal solid
   PetscCall(PetscMalloc1(cc->nc, &cc->cost));
   for (PetscInt c = 0; c < cc->nc; c++) cc->cost[c] = DecompKindCost(KIND_FLUID) * cc->fluid[c] + DecompKindCost(KIND_WALL) * (cc->bnd[c] - cc->solid[c]) + solid_cost * cc->solid[c];
   /* PPE rows: fluid, and boundary particles of cells next to a fluid cell */
-  for (PetscInt j = 0; j < g->n[1]; j++)
-    for (PetscInt i = 0; i < g->n[0]; i++) {
-      PetscInt  c    = j * g->n[0] + i;
-      PetscBool near = (PetscBool)(cc->fluid[c] > 0);
-      for (PetscInt k = 0; k < 8 && !near; k++) {
-        PetscInt cn = NeighbourCell(g, i, j, k);
-        if (cn >= 0 && cc->fluid[cn] > 0) near = PETSC_TRUE;
-      }
-      cc->ppe[c] = cc->fluid[c] + (near ? cc->bnd[c] : 0);
-    }
+  for (PetscInt c = 0; c < cc->nc; c++) {
+    PetscInt  nb[26], nn = GridCellNeighbours(g, c, nb);
+    PetscBool near = (PetscBool)(cc->fluid[c] > 0);
+    for (PetscInt k = 0; k < nn && !near; k++)
+      if (cc->fluid[nb[k]] > 0) near = PETSC_TRUE;
+    cc->ppe[c] = cc->fluid[c] + (near ? cc->bnd[c] : 0);
+  }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -101,25 +90,24 @@ static PetscErrorCode PartitionStats(Sim sim, const CellCounts *cc, PetscInt np,
   PetscCall(PetscCalloc6(np, &owned, np, &work, np, &ppe, np, &halo, np, &nbrs, np, &solid));
   PetscCall(PetscBTCreate(np * np, &seen));
   PetscCall(PetscCalloc1(np, &cost));
-  for (PetscInt j = 0; j < g->n[1]; j++)
-    for (PetscInt i = 0; i < g->n[0]; i++) {
-      PetscInt    c = j * g->n[0] + i, got[8], ngot = 0;
-      PetscMPIInt r = owner[c];
-      owned[r] += cc->all[c]; work[r] += cc->work[c]; ppe[r] += cc->ppe[c]; solid[r] += cc->solid[c]; cost[r] += cc->cost[c];
-      for (PetscInt k = 0; k < 8; k++) {
-        PetscInt    cn = NeighbourCell(g, i, j, k), dup = 0;
-        PetscMPIInt q;
-        if (cn < 0 || (q = owner[cn]) == r) continue;
-        if (cn > c) cut++; /* each cut edge once (both ends different cells) */
-        for (PetscInt l = 0; l < ngot; l++) dup |= got[l] == q;
-        if (dup) continue;
-        got[ngot++] = q;
-        halo[q] += cc->all[c]; /* rank q needs this cell's particles as ghosts */
-        /* a message from r to q only if there is something to send: cells of two ranks that meet
-         * in empty space exchange nothing (HaloBuild loops over particles) */
-        if (cc->all[c] && !PetscBTLookupSet(seen, (PetscInt)q * np + r)) nbrs[q]++;
-      }
+  for (PetscInt c = 0; c < cc->nc; c++) {
+    PetscInt    got[26], ngot = 0, nb[26], nn = GridCellNeighbours(g, c, nb);
+    PetscMPIInt r = owner[c];
+    owned[r] += cc->all[c]; work[r] += cc->work[c]; ppe[r] += cc->ppe[c]; solid[r] += cc->solid[c]; cost[r] += cc->cost[c];
+    for (PetscInt k = 0; k < nn; k++) {
+      PetscInt    cn = nb[k], dup = 0;
+      PetscMPIInt q;
+      if ((q = owner[cn]) == r) continue;
+      if (cn > c) cut++; /* each cut edge once (both ends different cells) */
+      for (PetscInt l = 0; l < ngot; l++) dup |= got[l] == q;
+      if (dup) continue;
+      got[ngot++] = q;
+      halo[q] += cc->all[c]; /* rank q needs this cell's particles as ghosts */
+      /* a message from r to q only if there is something to send: cells of two ranks that meet
+       * in empty space exchange nothing (HaloBuild loops over particles) */
+      if (cc->all[c] && !PetscBTLookupSet(seen, (PetscInt)q * np + r)) nbrs[q]++;
     }
+  }
   MaxMean(owned, np, &mx[0], &mean[0]);
   MaxMean(work, np, &mx[1], &mean[1]);
   MaxMean(ppe, np, &mx[2], &mean[2]);

@@ -9,7 +9,7 @@
 typedef struct _p_Cells *Cells;
 struct _p_Cells {
   const Grid *grid;
-  PetscInt    lo[2], n[2];     /* local box of cells (global cell coordinates) */
+  PetscInt    lo[3], n[3];     /* local box of cells (global cell coordinates; one layer in 2D) */
   PetscInt   *start, cap_cell; /* particles of local cell c: list[start[c] .. start[c+1]) */
   PetscInt   *list, *cell, cap_part;
   PetscInt   *nstart, *nbr, cap_nbr, cap_start, npart; /* neighbours of owned a < npart: nbr[nstart[a] .. nstart[a+1]) */

@@ -8,11 +8,11 @@ typedef struct _p_Halo *Halo;
 struct _p_Halo {
   MPI_Comm    comm;
   PetscSF     sf;       /* roots: owned particles; leaves: ghost slots n .. n+ng */
-  PetscInt   *shift;    /* per ghost: periodic image code (3*(sy+1) + (sx+1)); 4 = none */
+  PetscInt   *shift;    /* per ghost: periodic image code 9 (sz+1) + 3 (sy+1) + (sx+1); 13 = none */
   PetscInt    cap_shift;
   MPI_Datatype unit[26]; /* contiguous blocks of 1..25 reals (the widest field, FIELD_GRAD0) */
   PetscInt    nghost_sent;
-  PetscReal   period[2]; /* domain lengths, for periodic shifts */
+  PetscReal   period[3]; /* domain lengths, for periodic shifts */
 };
 
 PetscErrorCode HaloCreate(MPI_Comm comm, Halo *h);

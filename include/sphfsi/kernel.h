@@ -1,4 +1,4 @@
-/* Smoothing kernels, all of support radius 2h, in 2D (and the normalisations for 3D):
+/* Smoothing kernels, all of support radius 2h, in 2D and 3D:
  *   cubic        the cubic B-spline, Eq. 12 (the paper's, with h = 1.3 dx);
  *   wendland_c2  Wendland C2 (Dehnen & Aly 2012, Table 1): free of the pairing instability at any
  *                number of neighbours, so its discretisation error falls as h/dx grows;
@@ -17,7 +17,7 @@ extern const char *const KernelTypes[];
 
 typedef struct {
   KernelType type;
-  PetscInt   dim;      /* 2 (3 later: the normalisation is ready for it) */
+  PetscInt   dim;      /* 2 or 3: the normalisation */
   PetscReal  h_factor; /* h / dx of particles made by the scenes */
   PetscReal  num, den; /* normalisation sigma(h) = num / (den pi h^dim) */
 } SPHKernel;
@@ -68,28 +68,29 @@ static inline PetscReal KernelDW(const SPHKernel *K, PetscReal r, PetscReal h) {
 
 static inline PetscReal PairH(PetscReal ha, PetscReal hb) { return ha == hb ? ha : PetscSqrtReal(ha * hb); }
 
-/* Sums over one particle's neighbours on a full square lattice of spacing 1 (h = h_factor), the
- * interior values that normalise the operators built on them:
+/* Sums over one particle's neighbours on a full square (3D: cubic) lattice of spacing 1
+ * (h = h_factor), the interior values that normalise the operators built on them:
  *   LATTICE_W:         sum W, the summation density (Eq. 17) per rho0;
- *   LATTICE_DIVR:      -sum F r^2, div r (2 in the continuum);
+ *   LATTICE_DIVR:      -sum F r^2, div r (d in the continuum);
  *   LATTICE_LAPLACIAN: -sum F r^4 / (r^2 + eta^2 h^2): the Laplacian of Eqs. 16 and 22 applied to
  *     |x|^2 is 2 / rho times this against the exact 2 d / rho, so d over it normalises them (the
- *     cubic spline at 1.3 dx: +1.05 % with eta = 0, -0.02 % with the paper's eta = 0.1 h;
+ *     cubic spline at 1.3 dx in 2D: +1.05 % with eta = 0, -0.02 % with the paper's eta = 0.1 h;
  *     Wendland C2 at 2 dx: -0.08 % and -1.5 %).  eta is read only for this sum. */
 typedef enum { LATTICE_W, LATTICE_DIVR, LATTICE_LAPLACIAN } LatticeSum;
 static inline PetscReal KernelLatticeSum(const SPHKernel *K, LatticeSum which, PetscReal eta)
 {
   PetscReal s = 0, h = K->h_factor;
-  PetscInt  n = (PetscInt)PetscCeilReal(2.0 * h);
-  for (PetscInt j = -n; j <= n; j++)
-    for (PetscInt i = -n; i <= n; i++) {
-      PetscReal r2 = (PetscReal)(i * i + j * j), r = PetscSqrtReal(r2);
-      switch (which) {
-      case LATTICE_W: s += KernelW(K, r, h); break;
-      case LATTICE_DIVR: s += -KernelF(K, r, h) * r * r; break;
-      case LATTICE_LAPLACIAN: if (r2 > 0) s -= KernelF(K, r, h) * r2 * r2 / (r2 + eta * eta * h * h); break;
+  PetscInt  n = (PetscInt)PetscCeilReal(2.0 * h), nz = K->dim == 3 ? n : 0;
+  for (PetscInt k = -nz; k <= nz; k++)
+    for (PetscInt j = -n; j <= n; j++)
+      for (PetscInt i = -n; i <= n; i++) {
+        PetscReal r2 = (PetscReal)(i * i + j * j + k * k), r = PetscSqrtReal(r2);
+        switch (which) {
+        case LATTICE_W: s += KernelW(K, r, h); break;
+        case LATTICE_DIVR: s += -KernelF(K, r, h) * r * r; break;
+        case LATTICE_LAPLACIAN: if (r2 > 0) s -= KernelF(K, r, h) * r2 * r2 / (r2 + eta * eta * h * h); break;
+        }
       }
-    }
   return s;
 }
 

@@ -12,28 +12,28 @@ static inline PetscBool KindIsWall(PetscInt k) { return (PetscBool)(k == KIND_WA
 static inline PetscBool KindIsSolid(PetscInt k) { return (PetscBool)(k == KIND_SOLID || k == KIND_CLAMP); }
 
 typedef enum {
-  FIELD_X = 0, /* position (2) */
-  FIELD_V,     /* velocity (2) */
+  FIELD_X = 0, /* position (dim) */
+  FIELD_V,     /* velocity (dim) */
   FIELD_RHO,   /* density */
   FIELD_P,     /* pressure */
   FIELD_M,     /* mass */
   FIELD_H,     /* smoothing length */
-  FIELD_X0,    /* initial position (2): displacement probes */
-  FIELD_ACC,   /* acceleration (2) */
+  FIELD_X0,    /* initial position (dim): displacement probes */
+  FIELD_ACC,   /* acceleration (dim) */
   FIELD_DRHO,  /* density rate */
-  FIELD_XSPH,  /* XSPH velocity correction (2), Eq. 44 */
-  FIELD_VWALL, /* wall velocity seen by the viscous term (2) */
-  FIELD_VSTAR, /* ISPH: intermediate velocity (2) */
+  FIELD_XSPH,  /* XSPH velocity correction (dim), Eq. 44 */
+  FIELD_VWALL, /* wall velocity seen by the viscous term (dim) */
+  FIELD_VSTAR, /* ISPH: intermediate velocity (dim) */
   FIELD_FS,    /* free-surface flag (0/1) */
-  FIELD_S,     /* solid deviatoric stress (3: xx, xy, yy) */
-  FIELD_NORMAL,  /* interface normal (2) */
+  FIELD_S,     /* solid deviatoric stress (2D: xx, xy, yy; 3D: six components) */
+  FIELD_NORMAL,  /* interface normal (dim) */
   FIELD_ROW,   /* ISPH: global row of the pressure equation (-1: none) */
-  FIELD_KCORR, /* solid: kernel-gradient correction matrix (4, row-major) */
+  FIELD_KCORR, /* solid: kernel-gradient correction matrix (dim x dim, row-major) */
   FIELD_FVIEW, /* solid next to fluid: the fluid's view of it (3: pressure, density, mass; boundary.h) */
   FIELD_AMEAN, /* solid with ISPH: mean acceleration over the last fluid step (2; ppe.c) */
-  FIELD_XREB,  /* scenes with solids: position at the last rebuild (2); solids move after it, and a
+  FIELD_XREB,  /* scenes with solids: position at the last rebuild (dim); solids move after it, and a
                   restart rebuilds the neighbour lists there to continue exactly (checkpoint.h) */
-  FIELD_DEFGRAD, /* total-Lagrangian solid: deformation gradient F (4, row-major, F_ij = dx_i / dX_j) */
+  FIELD_DEFGRAD, /* total-Lagrangian solid: deformation gradient F (dim x dim, row-major, F_ij = dx_i / dX_j) */
   FIELD_GRAD0,   /* total-Lagrangian solid: reference fit operator G (5 x 5, row-major; solid_total.c) */
   FIELD_PK1B,    /* total-Lagrangian solid: derivative of the energy by the fit, dW/dA (2 x 5, row-major; P G01 to first order) */
   FIELD_COUNT
@@ -50,6 +50,7 @@ typedef struct {
 typedef struct _p_Particles *Particles;
 struct _p_Particles {
   MPI_Comm  comm;
+  PetscInt  dim;        /* 2 or 3: the width of the vector fields (x, v, ...) and tensors */
   PetscInt  n, ng, cap; /* owned, ghosts, capacity of every array */
   PetscInt *id, *kind;
   Field     f[FIELD_COUNT];
@@ -60,11 +61,14 @@ PetscErrorCode ParticlesCreate(MPI_Comm comm, Particles *P);
 PetscErrorCode ParticlesDestroy(Particles *P);
 /* Before ParticlesSetUp: allocate this field; `halo` says whether ghosts need it. */
 PetscErrorCode ParticlesEnableField(Particles P, FieldId f, PetscBool halo);
+/* Before ParticlesSetUp: the dimension (2 by default), which sets the widths of the vector fields
+ * (dim), the stress (dim (dim + 1) / 2) and the tensors (dim^2). */
+PetscErrorCode ParticlesSetDimension(Particles P, PetscInt dim);
 PetscErrorCode ParticlesSetUp(Particles P);
 /* Make room for at least `cap` particles (owned + ghosts), keeping the contents. */
 PetscErrorCode ParticlesReserve(Particles P, PetscInt cap);
-/* Append an owned particle (ghosts must be absent); other fields start at zero. */
-PetscErrorCode ParticlesAdd(Particles P, PetscInt id, ParticleKind kind, PetscReal x, PetscReal y, PetscReal m, PetscReal h, PetscReal rho);
+/* Append an owned particle at x (dim coordinates; ghosts must be absent); other fields start at zero. */
+PetscErrorCode ParticlesAdd(Particles P, PetscInt id, ParticleKind kind, const PetscReal x[], PetscReal m, PetscReal h, PetscReal rho);
 /* Remove the owned particles with drop[i] set, keeping the order of the rest; drops ghosts. */
 PetscErrorCode ParticlesRemove(Particles P, const PetscBool *drop);
 /* Reorder owned particles: new[i] = old[perm[i]]; drops ghosts. */

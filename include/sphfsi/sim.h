@@ -37,8 +37,9 @@ struct _p_Sim {
   Decomp    decomp;
   Halo      halo;
   /* physics: the scene says which media it has */
+  PetscInt      dim;       /* 2 or 3: set by the scene's create (default 2) */
   PetscBool     has_fluid, has_solid;
-  PetscReal     g[2];
+  PetscReal     g[3];
   FluidMaterial fl;
   ISPH          isph;  /* NULL unless -fluid isph */
   SolidMaterial sl;
@@ -46,8 +47,8 @@ struct _p_Sim {
   PetscReal     v_ref;      /* expected maximum speed: c0 = 10 v_ref when -c0 is not given */
   SPHKernel     kernel;     /* -kernel, -h_factor: the smoothing kernel of every pair */
   PetscReal     dx, h_max;  /* finest spacing, largest smoothing length */
-  PetscReal     dom_lo[2], dom_hi[2];
-  PetscBool     periodic[2];
+  PetscReal     dom_lo[3], dom_hi[3];
+  PetscBool     periodic[3];
   PetscBool     outflow;    /* fluid leaving the domain box is removed (open boundary) */
   PetscBool     confined;   /* the fluid has no free surface (Taylor-Green, Poiseuille) */
   PetscReal     start_jitter; /* -start_jitter: random displacement of the fluid's start lattice (dx) */

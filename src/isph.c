@@ -349,7 +349,7 @@ static PetscErrorCode Drift(Sim sim)
       }
     }
     xs[2 * a] = eps * sx; xs[2 * a + 1] = eps * sy;
-    ShiftVelocity(s->shift, fs[a] > 0 ? SHIFT_SURFACE : near_fs ? SHIFT_NEAR_SURFACE : SHIFT_BULK, h[a], v + 2 * a, dt, cx, cy, xs + 2 * a);
+    ShiftVelocity(s->shift, fs[a] > 0 ? SHIFT_SURFACE : near_fs ? SHIFT_NEAR_SURFACE : SHIFT_BULK, h[a], v + 2 * a, dt, (PetscReal[]){cx, cy}, xs + 2 * a, 2);
     if (dv) ShiftCorrectVelocity(&sg, dt * (xs[2 * a] - eps * sx), dt * (xs[2 * a + 1] - eps * sy), dv + 2 * a);
   }
   if (dv) {

@@ -74,16 +74,27 @@ static PetscReal IdUniform(PetscInt id, unsigned salt)
   return 2.0 * (PetscReal)(z >> 11) / 9007199254740992.0 - 1.0;
 }
 
-/* Fluid lattices take -start_jitter: each particle displaced by up to that fraction of dx in x and y. */
-PetscErrorCode SceneAddLattice(Sim sim, ParticleKind kind, PetscReal x0, PetscReal y0, PetscInt nx, PetscInt ny, PetscReal dx, PetscReal rho0)
+/* Fluid lattices take -start_jitter: each particle displaced by up to that fraction of dx in every direction. */
+PetscErrorCode SceneAddBlock(Sim sim, ParticleKind kind, const PetscReal lo[], const PetscInt n[], PetscReal dx, PetscReal rho0)
 {
   const PetscReal jit = kind == KIND_FLUID ? sim->start_jitter * dx : 0;
+  const PetscInt  D = sim->dim, nz = D == 3 ? n[2] : 1;
   PetscFunctionBeginUser;
-  for (PetscInt j = 0; j < ny; j++)
-    for (PetscInt i = 0; i < nx; i++) {
-      PetscInt id = sim->next_id; /* the id AddOne hands out */
-      PetscCall(AddOne(sim, kind, x0 + i * dx + jit * IdUniform(id, 0), y0 + j * dx + jit * IdUniform(id, 1), dx, rho0));
-    }
+  for (PetscInt k = 0; k < nz; k++)
+    for (PetscInt j = 0; j < n[1]; j++)
+      for (PetscInt i = 0; i < n[0]; i++) {
+        PetscInt  id = sim->next_id, idx[3] = {i, j, k}; /* the id AddPoint hands out */
+        PetscReal p[3];
+        for (PetscInt d = 0; d < D; d++) p[d] = lo[d] + idx[d] * dx + jit * IdUniform(id, (unsigned)d);
+        PetscCall(AddPoint(sim, kind, p, dx, rho0));
+      }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode SceneAddLattice(Sim sim, ParticleKind kind, PetscReal x0, PetscReal y0, PetscInt nx, PetscInt ny, PetscReal dx, PetscReal rho0)
+{
+  PetscFunctionBeginUser;
+  PetscCall(SceneAddBlock(sim, kind, (PetscReal[]){x0, y0, 0}, (PetscInt[]){nx, ny, 1}, dx, rho0));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -128,10 +139,41 @@ PetscErrorCode SceneAddTank(Sim sim, PetscReal x0, PetscReal x1, PetscReal y0, P
 
 void SceneTankDomain(Sim sim, PetscReal L, PetscReal top, PetscInt rows)
 {
-  sim->dom_lo[0] = -(rows + 0.5) * sim->dx;
-  sim->dom_hi[0] = L + (rows + 0.5) * sim->dx;
-  sim->dom_lo[1] = -(rows + 0.5) * sim->dx;
-  sim->dom_hi[1] = top;
+  const PetscInt up = sim->dim - 1;
+  for (PetscInt d = 0; d < up; d++) { /* the horizontal directions: a square tank in 3D */
+    sim->dom_lo[d] = -(rows + 0.5) * sim->dx;
+    sim->dom_hi[d] = L + (rows + 0.5) * sim->dx;
+  }
+  sim->dom_lo[up] = -(rows + 0.5) * sim->dx;
+  sim->dom_hi[up] = top;
+}
+
+PetscErrorCode SceneAddTankBox(Sim sim, const PetscReal lo[], const PetscReal hi[], PetscReal top, PetscReal dx, PetscInt rows)
+{
+  const PetscInt D = sim->dim, up = D - 1;
+  PetscInt       n[3] = {1, 1, 1}, a[3], b[3];
+  PetscFunctionBeginUser;
+  for (PetscInt d = 0; d < D; d++) {
+    n[d] = RoundToInt((hi[d] - lo[d]) / dx);
+    a[d] = -rows;
+    b[d] = n[d] + rows;
+  }
+  b[up] = RoundToInt((top - lo[up]) / dx);
+  if (D == 2) { a[2] = 0; b[2] = 1; }
+  for (PetscInt k = a[2]; k < b[2]; k++)
+    for (PetscInt j = a[1]; j < b[1]; j++)
+      for (PetscInt i = a[0]; i < b[0]; i++) {
+        PetscInt  idx[3] = {i, j, k}, layer = -1; /* cells outside the water, less one: 0 on its faces */
+        PetscReal p[3];
+        for (PetscInt d = 0; d < D; d++) {
+          PetscInt out = idx[d] < 0 ? -idx[d] - 1 : (d != up && idx[d] >= n[d]) ? idx[d] - n[d] : -1;
+          layer        = PetscMax(layer, out);
+          p[d]         = lo[d] + (idx[d] + 0.5) * dx;
+        }
+        if (layer < 0) continue; /* the water's box (and the open space above it) */
+        PetscCall(AddPoint(sim, layer ? KIND_DUMMY : KIND_WALL, p, dx, sim->fl.rho0));
+      }
+  PetscFunctionReturn(PETSC_SUCCESS);
 }
 
 PetscErrorCode SceneAddDamBreak(Sim sim, PetscReal w, PetscReal hgt, PetscReal L, PetscReal top, PetscInt rows)
@@ -180,30 +222,34 @@ PetscErrorCode SceneAddZonedWater(Sim sim, PetscReal dc, PetscReal W, PetscReal 
 
 PetscErrorCode SceneHydrostaticDensity(Sim sim, PetscInt first, PetscReal y_surface)
 {
-  Particles  P = sim->P;
-  PetscReal *x = PField(P, FIELD_X), *rho = PField(P, FIELD_RHO), *p = PField(P, FIELD_P);
+  Particles      P = sim->P;
+  PetscReal     *x = PField(P, FIELD_X), *rho = PField(P, FIELD_RHO), *p = PField(P, FIELD_P);
+  const PetscInt up = P->dim - 1;
   PetscFunctionBeginUser;
   for (PetscInt a = first; a < P->n; a++) {
     if (!KindIsFluid(P->kind[a])) continue;
-    p[a]   = sim->fl.rho0 * (-sim->g[1]) * (y_surface - x[2 * a + 1]);
+    p[a]   = sim->fl.rho0 * (-sim->g[up]) * (y_surface - x[P->dim * a + up]);
     rho[a] = EOSDensity(&sim->fl, p[a]);
   }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode SceneProbePressure(Sim sim, const PetscReal x0[2], PetscReal *pval)
+PetscErrorCode SceneProbePressure(Sim sim, const PetscReal x0[], PetscReal *pval)
 {
-  Particles  P = sim->P;
-  PetscReal *x = PField(P, FIELD_X), *p = PField(P, FIELD_P), *rho = PField(P, FIELD_RHO), *h = PField(P, FIELD_H);
-  PetscReal  s[2] = {0, 0};
+  Particles      P = sim->P;
+  PetscReal     *x = PField(P, FIELD_X), *p = PField(P, FIELD_P), *rho = PField(P, FIELD_RHO), *h = PField(P, FIELD_H);
+  PetscReal      s[2] = {0, 0};
+  const PetscInt D = P->dim;
   PetscFunctionBeginUser;
   for (PetscInt a = 0; a < P->n; a++) {
-    PetscReal dx, dy, w;
+    PetscReal d[3] = {0, 0, 0}, w, gd;
     if (!KindIsFluid(P->kind[a])) continue;
-    dx = x0[0] - x[2 * a]; dy = x0[1] - x[2 * a + 1];
-    w  = KernelW(&sim->kernel, PetscSqrtReal(dx * dx + dy * dy), h[a]);
+    VSub(x0, x + D * a, d, D);
+    w = KernelW(&sim->kernel, PetscSqrtReal(VDot(d, d, D)), h[a]);
     if (w <= 0) continue;
-    s[0] += w * (p[a] + rho[a] * (sim->g[0] * dx + sim->g[1] * dy));
+    gd = sim->g[0] * d[0] + sim->g[1] * d[1];
+    if (D == 3) gd += sim->g[2] * d[2];
+    s[0] += w * (p[a] + rho[a] * gd);
     s[1] += w;
   }
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, s, 2, MPIU_REAL, MPI_SUM, sim->comm));
@@ -217,7 +263,7 @@ PetscErrorCode SceneMaxSpeed(Sim sim, PetscReal *vmax)
   PetscReal *v = PField(P, FIELD_V), m = 0;
   PetscFunctionBeginUser;
   for (PetscInt a = 0; a < P->n; a++)
-    if (KindIsFluid(P->kind[a])) m = PetscMax(m, v[2 * a] * v[2 * a] + v[2 * a + 1] * v[2 * a + 1]);
+    if (KindIsFluid(P->kind[a])) m = PetscMax(m, VDot(v + P->dim * a, v + P->dim * a, P->dim));
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &m, 1, MPIU_REAL, MPIU_MAX, sim->comm));
   *vmax = PetscSqrtReal(m);
   PetscFunctionReturn(PETSC_SUCCESS);

@@ -385,7 +385,7 @@ PetscErrorCode SolidTimeStep(Sim sim, PetscReal *dt)
 
   PetscFunctionBeginUser;
   for (PetscInt a = 0; a < P->n; a++)
-    if (P->kind[a] == KIND_SOLID) lim = PetscMin(lim, SimAcousticStepLimit(sim->solid->cfl, h[a], sim->sl.c0, v + 2 * a, acc + 2 * a));
+    if (P->kind[a] == KIND_SOLID) lim = PetscMin(lim, SimAcousticStepLimit(sim->solid->cfl, h[a], sim->sl.c0, v + 2 * a, acc + 2 * a, 2));
   PetscCall(MPIU_Allreduce(&lim, dt, 1, MPIU_REAL, MPIU_MIN, sim->comm));
   PetscFunctionReturn(PETSC_SUCCESS);
 }

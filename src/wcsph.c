@@ -4,6 +4,7 @@
 #include <sphfsi/fluid_terms.h>
 #include <sphfsi/solid.h>
 #include <sphfsi/shifting.h>
+#include <sphfsi/dim.h>
 
 PetscErrorCode WCSPHSetUp(Sim sim)
 {
@@ -14,6 +15,7 @@ PetscErrorCode WCSPHSetUp(Sim sim)
   PetscCall(PetscOptionsBool("-wcsph_wall_clip", "Clip the wall pressure (Adami extrapolation) at 0: fluid in tension next to a wall is not held on it", "", fl->wall_clip, &fl->wall_clip, NULL));
   PetscOptionsEnd();
   PetscCheck(fl->shift >= 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-wcsph_shift %g must be >= 0", (double)fl->shift);
+  PetscCheck(!(sim->dim == 3 && fl->shift > 0 && fl->shift_correct), sim->comm, PETSC_ERR_ARG_INCOMP, "-shift_correct is not available in 3D yet: drop it (or use -shift_correct 0)");
   fl->lat_divr = KernelLatticeSum(&sim->kernel, LATTICE_DIVR, 0);
   PetscCall(ParticlesEnableField(sim->P, FIELD_ACC, PETSC_FALSE));
   PetscCall(ParticlesEnableField(sim->P, FIELD_DRHO, PETSC_FALSE));
@@ -46,60 +48,66 @@ PetscErrorCode WCSPHPressure(Sim sim)
  * velocity (shifting.h) over the coming step sim->dt.  With shifting, the free-surface flags (div r)
  * of the neighbours are those of the last call, which the rebuild gave the ghosts; the new flags
  * are written after the loop, so the result does not depend on the order of the particles.  A
- * confined flow has no free surface: a void that opens in it (div r < 1.5) is shifted shut. */
-static PetscErrorCode Continuity(Sim sim)
+ * confined flow has no free surface: a void that opens in it (div r < 1.5 of 2) is shifted shut. */
+SPH_INLINE PetscErrorCode ContinuityD(Sim sim, const PetscInt D)
 {
   Particles            P = sim->P;
   Cells                C = sim->cells;
   const PetscReal     *x = PField(P, FIELD_X), *v = PField(P, FIELD_V), *rho = PField(P, FIELD_RHO);
-  const PetscReal     *m = PField(P, FIELD_M), *h = PField(P, FIELD_H);
+  const PetscReal     *m = PField(P, FIELD_M), *h = PField(P, FIELD_H), *g = sim->g;
   PetscReal           *drho = PField(P, FIELD_DRHO), *xs = PField(P, FIELD_XSPH), *fs = PField(P, FIELD_FS);
   PetscBool           *surface = NULL;
-  PetscReal           *dv = NULL; /* velocity corrections of shifted particles, applied after the loop */
+  PetscReal           *dv = NULL; /* velocity corrections of shifted particles, applied after the loop (2D) */
   const FluidMaterial *fl   = &sim->fl;
   const PetscReal      dcoef = fl->delta * fl->c0, dhyd = fl->rho0 / (fl->c0 * fl->c0);
   const PetscBool      shift = (PetscBool)(fl->shift > 0), surf = (PetscBool)(shift && fs);
 
   PetscFunctionBeginUser;
   if (surf) PetscCall(PetscCalloc1(P->n, &surface));
-  if (shift && fl->shift_correct) PetscCall(PetscCalloc1(2 * P->n, &dv));
+  if (shift && fl->shift_correct) PetscCall(PetscCalloc1(D * P->n, &dv));
   for (PetscInt a = 0; a < P->n; a++) {
-    PetscReal dr = 0, dd = 0, sx = 0, sy = 0, cx = 0, cy = 0, divr = 0;
+    PetscReal dr = 0, dd = 0, sxs[3] = {0, 0, 0}, c[3] = {0, 0, 0}, divr = 0;
     PetscBool near = PETSC_FALSE;
     ShiftGrad sg = {{0, 0, 0}, {0, 0, 0, 0}};
-    PetscReal xa = x[2 * a], ya = x[2 * a + 1], vxa = v[2 * a], vya = v[2 * a + 1], ra = rho[a];
+    const PetscReal *xa = x + D * a, *va = v + D * a, ra = rho[a];
     if (!KindIsFluid(P->kind[a])) continue;
     for (PetscInt k = C->nstart[a]; k < C->nstart[a + 1]; k++) {
       PetscInt  b = C->nbr[k];
-      PetscReal dx = xa - x[2 * b], dy = ya - x[2 * b + 1], F = C->f[k], vb = m[b] / rho[b];
-      PetscReal dvx = vxa - v[2 * b], dvy = vya - v[2 * b + 1];
-      dr += vb * F * (dvx * dx + dvy * dy);
-      if (shift) { cx += vb * F * dx; cy += vb * F * dy; divr -= vb * F * (dx * dx + dy * dy); }
+      PetscReal d[3], dvab[3], F = C->f[k], vb = m[b] / rho[b];
+      VSub(xa, x + D * b, d, D);
+      VSub(va, v + D * b, dvab, D);
+      dr += vb * F * VDot(dvab, d, D);
+      if (shift) {
+        for (PetscInt i = 0; i < D; i++) c[i] += vb * F * d[i];
+        divr -= vb * F * VDot(d, d, D);
+      }
       if (!KindIsFluid(P->kind[b])) continue;
-      if (dv) ShiftGradAdd(&sg, vb, F, dx, dy, dvx, dvy);
+      if (dv) ShiftGradAdd(&sg, vb, F, d[0], d[1], dvab[0], dvab[1]);
       if (surf && fs[b] > 0) near = PETSC_TRUE;
       if (dcoef > 0) {
-        PetscReal dh = dhyd * (-sim->g[0] * dx - sim->g[1] * dy); /* rho_b^H - rho_a^H */
+        PetscReal gd = -g[0] * d[0] - g[1] * d[1], dh;
+        if (D == 3) gd -= g[2] * d[2];
+        dh = dhyd * gd; /* rho_b^H - rho_a^H */
         dd += PairH(h[a], h[b]) * vb * (-2.0 * F) * (rho[b] - ra - dh);
       }
       if (xs) {
         PetscReal w = XSPHWeight(C->w[k], m[b], ra, rho[b]);
-        sx -= w * dvx;
-        sy -= w * dvy;
+        for (PetscInt i = 0; i < D; i++) sxs[i] -= w * dvab[i];
       }
     }
     drho[a] = ra * dr + dcoef * dd;
-    if (xs) { xs[2 * a] = fl->xsph * sx; xs[2 * a + 1] = fl->xsph * sy; }
+    if (xs)
+      for (PetscInt i = 0; i < D; i++) xs[D * a + i] = fl->xsph * sxs[i];
     if (surf) surface[a] = (PetscBool)(2.0 * divr / fl->lat_divr < SHIFT_DIVR_SURFACE);
     if (shift) {
-      PetscReal s0[2] = {xs[2 * a], xs[2 * a + 1]};
-      ShiftVelocity(fl->shift, surf && surface[a] ? SHIFT_SURFACE : near ? SHIFT_NEAR_SURFACE : SHIFT_BULK, h[a], v + 2 * a, sim->dt, cx, cy, xs + 2 * a);
-      if (dv) ShiftCorrectVelocity(&sg, sim->dt * (xs[2 * a] - s0[0]), sim->dt * (xs[2 * a + 1] - s0[1]), dv + 2 * a);
+      PetscReal s0[2] = {xs[D * a], xs[D * a + 1]};
+      ShiftVelocity(fl->shift, surf && surface[a] ? SHIFT_SURFACE : near ? SHIFT_NEAR_SURFACE : SHIFT_BULK, h[a], v + D * a, sim->dt, c, xs + D * a, D);
+      if (dv) ShiftCorrectVelocity(&sg, sim->dt * (xs[D * a] - s0[0]), sim->dt * (xs[D * a + 1] - s0[1]), dv + D * a);
     }
   }
   if (dv) {
     PetscReal *vw = PField(P, FIELD_V);
-    for (PetscInt k = 0; k < 2 * P->n; k++) vw[k] += dv[k];
+    for (PetscInt k = 0; k < D * P->n; k++) vw[k] += dv[k];
     PetscCall(PetscFree(dv));
   }
   if (surf) {
@@ -109,10 +117,12 @@ static PetscErrorCode Continuity(Sim sim)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+static PetscErrorCode Continuity(Sim sim) { return SPH_DIM_DISPATCH(sim->dim, ContinuityD, sim); }
+
 /* Acceleration of owned fluid: pressure Eq. 19 with artificial viscosity Eq. 24, laminar viscosity
  * Eq. 16 (walls and solids with their no-slip velocity), gravity; solids as the fluid sees them
  * (boundary.h) and, when on, the repulsive force Eq. 41 along their normals. */
-static PetscErrorCode Momentum(Sim sim)
+SPH_INLINE PetscErrorCode MomentumD(Sim sim, const PetscInt D)
 {
   Particles            P = sim->P;
   Cells                C = sim->cells;
@@ -124,30 +134,32 @@ static PetscErrorCode Momentum(Sim sim)
 
   PetscFunctionBeginUser;
   for (PetscInt a = 0; a < P->n; a++) {
-    PetscReal ax = 0, ay = 0;
-    PetscReal xa = x[2 * a], ya = x[2 * a + 1], vxa = v[2 * a], vya = v[2 * a + 1], ra = rho[a], pa = p[a] / (ra * ra), ha = h[a];
+    PetscReal        ac[3] = {0, 0, 0};
+    const PetscReal *xa = x + D * a, *va = v + D * a, ra = rho[a], pa = p[a] / (ra * ra), ha = h[a];
     if (!KindIsFluid(P->kind[a])) continue;
     for (PetscInt k = C->nstart[a]; k < C->nstart[a + 1]; k++) {
       PetscInt  b = C->nbr[k];
-      PetscReal dx = xa - x[2 * b], dy = ya - x[2 * b + 1], r2 = dx * dx + dy * dy, F = C->f[k];
-      PetscReal hab = PairH(ha, h[b]), rb, mb, pb;
-      PetscReal dvx = vxa - v[2 * b], dvy = vya - v[2 * b + 1], pterm, visc;
+      PetscReal d[3], dvab[3], r2, F = C->f[k];
+      PetscReal hab = PairH(ha, h[b]), rb, mb, pb, pterm, visc;
+      VSub(xa, x + D * b, d, D);
+      VSub(va, v + D * b, dvab, D);
+      r2 = VDot(d, d, D);
       FluidView(fv, P->kind[b], b, m, rho, p, &mb, &rb, &pb);
-      pterm = pa + pb / (rb * rb) + ArtificialViscosity(fl->alpha, fl->c0, hab, 0.5 * (ra + rb), dvx * dx + dvy * dy, r2);
+      pterm = pa + pb / (rb * rb) + ArtificialViscosity(fl->alpha, fl->c0, hab, 0.5 * (ra + rb), VDot(dvab, d, D), r2);
       visc  = LaminarViscosity(mb, fl->mu, ra, rb, F * r2, r2, hab, fl->eta, fl->lap_kappa);
       if (nrm && KindIsSolid(P->kind[b])) {
-        PetscReal f = FSIRepulsion(dvx * nrm[2 * b] + dvy * nrm[2 * b + 1], PetscSqrtReal(r2) / (2 * hab), sim->dt);
-        ax += f * nrm[2 * b]; ay += f * nrm[2 * b + 1];
+        PetscReal f = FSIRepulsion(VDot(dvab, nrm + D * b, D), PetscSqrtReal(r2) / (2 * hab), sim->dt);
+        for (PetscInt i = 0; i < D; i++) ac[i] += f * nrm[D * b + i];
       }
-      if (KindIsBoundary(P->kind[b])) { dvx = vxa - vw[2 * b]; dvy = vya - vw[2 * b + 1]; }
-      ax += (visc * dvx - mb * pterm * F * dx);
-      ay += (visc * dvy - mb * pterm * F * dy);
+      if (KindIsBoundary(P->kind[b])) VSub(va, vw + D * b, dvab, D);
+      for (PetscInt i = 0; i < D; i++) ac[i] += (visc * dvab[i] - mb * pterm * F * d[i]);
     }
-    acc[2 * a]     = ax + sim->g[0];
-    acc[2 * a + 1] = ay + sim->g[1];
+    for (PetscInt i = 0; i < D; i++) acc[D * a + i] = ac[i] + sim->g[i];
   }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
+
+static PetscErrorCode Momentum(Sim sim) { return SPH_DIM_DISPATCH(sim->dim, MomentumD, sim); }
 
 /* Pressure of fluid (EOS) and walls, then accelerations: the state after a rebuild. */
 PetscErrorCode WCSPHRates(Sim sim)
@@ -172,7 +184,7 @@ PetscErrorCode WCSPHTimeStep(Sim sim, PetscReal *dt)
   PetscFunctionBeginUser;
   for (PetscInt a = 0; a < P->n; a++) {
     if (!KindIsFluid(P->kind[a])) continue;
-    lim = PetscMin(lim, SimAcousticStepLimit(sim->cfl, h[a], sim->fl.c0, v + 2 * a, acc + 2 * a));     /* CFL, force */
+    lim = PetscMin(lim, SimAcousticStepLimit(sim->cfl, h[a], sim->fl.c0, v + P->dim * a, acc + P->dim * a, P->dim)); /* CFL, force */
     if (sim->fl.mu > 0) lim = PetscMin(lim, 0.125 * h[a] * h[a] * rho[a] / sim->fl.mu); /* viscous */
   }
   PetscCall(MPIU_Allreduce(&lim, dt, 1, MPIU_REAL, MPIU_MIN, sim->comm));
@@ -183,10 +195,10 @@ static void KickVelocity(Sim sim, PetscReal dt)
 {
   Particles  P = sim->P;
   PetscReal *v = PField(P, FIELD_V), *acc = PField(P, FIELD_ACC);
+  PetscInt   D = P->dim;
   for (PetscInt a = 0; a < P->n; a++) {
     if (!KindIsFluid(P->kind[a])) continue;
-    v[2 * a] += dt * acc[2 * a];
-    v[2 * a + 1] += dt * acc[2 * a + 1];
+    for (PetscInt i = 0; i < D; i++) v[D * a + i] += dt * acc[D * a + i];
   }
 }
 
@@ -210,11 +222,11 @@ PetscErrorCode WCSPHStep(Sim sim)
   PetscCall(Continuity(sim));
   {
     PetscReal *x = PField(P, FIELD_X), *v = PField(P, FIELD_V), *xs = PField(P, FIELD_XSPH), *rho = PField(P, FIELD_RHO), *drho = PField(P, FIELD_DRHO);
+    PetscInt   D = P->dim;
     for (PetscInt a = 0; a < P->n; a++) {
       if (!KindIsFluid(P->kind[a])) continue;
       rho[a] += dt * drho[a];
-      x[2 * a] += dt * (v[2 * a] + (xs ? xs[2 * a] : 0));
-      x[2 * a + 1] += dt * (v[2 * a + 1] + (xs ? xs[2 * a + 1] : 0));
+      for (PetscInt i = 0; i < D; i++) x[D * a + i] += dt * (v[D * a + i] + (xs ? xs[D * a + i] : 0));
     }
   }
   PetscCall(PetscLogStagePop());

@@ -109,6 +109,8 @@ if [ "${1:-}" != "--unit-only" ]; then
   run user_path bash tests/check_user_path.sh "$MPI" "$OUT/user_path"
   # A case without C: the built-in dam break and tank written as data (-case boxes) run bit for bit alike
   run boxes bash tests/check_boxes.sh "$MPI" "$OUT/boxes"
+  # Three dimensions (WCSPH so far): a 3D tank at rest, 1 and 2 ranks equal, restart equal
+  run three_d bash tests/check_3d.sh "$MPI" "$OUT/three_d"
   # make install for users who do not run from the source tree
   run install bash tests/check_install.sh "$MPI" "$OUT/install"
 fi

@@ -33,6 +33,9 @@ PetscErrorCode SceneKeepReal(Sim sim, PetscReal *r);
 PetscErrorCode SceneListNames(char *buf, size_t len);
 
 /* Helpers for scenes */
+/* Add a lattice of n[0] x n[1] (x n[2] in 3D) particles of spacing dx whose first centre is lo,
+ * ids from sim->next_id (x fastest); each rank keeps every size-th particle. */
+PetscErrorCode SceneAddBlock(Sim sim, ParticleKind kind, const PetscReal lo[], const PetscInt n[], PetscReal dx, PetscReal rho0);
 /* Add an nx x ny lattice of spacing dx starting at cell centre (x0, y0), ids from sim->next_id;
  * each rank keeps every size-th particle (migration sorts them out later). */
 PetscErrorCode SceneAddLattice(Sim sim, ParticleKind kind, PetscReal x0, PetscReal y0, PetscInt nx, PetscInt ny, PetscReal dx, PetscReal rho0);
@@ -46,13 +49,17 @@ PetscErrorCode SceneAddBox(Sim sim, ParticleKind kind, const PetscReal b[4], Pet
  * particles within dx of the faces that meet water (faces: left, bottom, right, top) are walls, the
  * others dummies. */
 PetscErrorCode SceneAddWallBox(Sim sim, const PetscReal b[4], PetscReal dx, const PetscBool faces[4]);
-/* Domain box of a tank [0, L] with `rows` rows of wall particles under and beside it, up to y = top. */
+/* Walls of `rows` layers (the layer next to the water KIND_WALL, the rest KIND_DUMMY) around the
+ * water box [lo, hi] in any dimension: under its floor and beside it in every horizontal direction,
+ * the sides up to `top` (the vertical is the last direction). */
+PetscErrorCode SceneAddTankBox(Sim sim, const PetscReal lo[], const PetscReal hi[], PetscReal top, PetscReal dx, PetscInt rows);
+/* Domain box (square in 3D) of a tank [0, L] with `rows` rows of wall particles under and beside it, up to y = top. */
 void SceneTankDomain(Sim sim, PetscReal L, PetscReal top, PetscInt rows);
 /* A dam break: a water column [0, w] x [0, hgt] at hydrostatic density against the upstream wall of a
  * tank [0, L] whose walls reach top - dx (the domain box's top is top). */
 PetscErrorCode SceneAddDamBreak(Sim sim, PetscReal w, PetscReal hgt, PetscReal L, PetscReal top, PetscInt rows);
 /* Fluid at rest: pressure and density (WCSPH EOS, Eq. 20) of a hydrostatic column with its free
- * surface at y_surface, for this rank's fluid particles from index `first` on (0: all of them). */
+ * surface at height y_surface (y in 2D, z in 3D), for this rank's fluid particles from index `first` on (0: all of them). */
 PetscErrorCode SceneHydrostaticDensity(Sim sim, PetscInt first, PetscReal y_surface);
 /* Mixed particle sizes (section 3.3): water [0, W] x [0, H] at the coarse spacing dc on [0, W - fine]
  * and at sim->dx on [W - fine, W] (next to a gate).  SceneZonesSetUp checks dc and fine (option names
@@ -66,6 +73,6 @@ PetscErrorCode SceneZonesSetUp(Sim sim, PetscReal dc, PetscReal *W, PetscReal *f
 PetscErrorCode SceneAddZonedWater(Sim sim, PetscReal dc, PetscReal W, PetscReal fine, PetscReal H, PetscReal top, PetscInt rows, PetscReal x_end, PetscBool right);
 /* Shepard interpolation of the fluid pressure at a point, each neighbour's value carried to the
  * point hydrostatically: p(x0) = sum (p_b + rho_b g.(x0 - x_b)) W / sum W (collective). */
-PetscErrorCode SceneProbePressure(Sim sim, const PetscReal x0[2], PetscReal *p);
+PetscErrorCode SceneProbePressure(Sim sim, const PetscReal x0[], PetscReal *p);
 /* Largest fluid speed (collective). */
 PetscErrorCode SceneMaxSpeed(Sim sim, PetscReal *vmax);

@@ -5,22 +5,26 @@
  * own grad C, as here, that part is zero. */
 #pragma once
 #include <sphfsi/kernel.h>
+#include <sphfsi/dim.h>
 
 typedef enum { SHIFT_BULK, SHIFT_NEAR_SURFACE, SHIFT_SURFACE } ShiftZone;
 
-/* WCSPH: the free surface where div r (normalised to 2 in the bulk) < 1.5; on a square lattice the
- * surface row has 1.27, the row below 1.88 and the next 2.0 (the kernel's support is 2.6 dx). */
+/* WCSPH: the free surface where div r, normalised to 2 in the bulk (in 2D and 3D), is below 1.5; on
+ * a square lattice the surface row has 1.27, the row below 1.88 and the next 2.0 (the kernel's
+ * support is 2.6 dx). */
 #define SHIFT_DIVR_SURFACE 1.5
 
 /* The shifting velocity dr/dt of a particle with smoothing length h, velocity v and concentration
- * gradient (cx, cy) over a step dt; adds it to xs[0..1]. */
-static inline void ShiftVelocity(PetscReal A, ShiftZone zone, PetscReal h, const PetscReal v[2], PetscReal dt, PetscReal cx, PetscReal cy, PetscReal xs[2])
+ * gradient c over a step dt, in dim dimensions; adds it to xs. */
+static inline void ShiftVelocity(PetscReal A, ShiftZone zone, PetscReal h, const PetscReal v[], PetscReal dt, const PetscReal c[], PetscReal xs[], const PetscInt dim)
 {
-  PetscReal speed = PetscSqrtReal(v[0] * v[0] + v[1] * v[1]), D = A * h * speed * dt, dxs = -D * cx, dys = -D * cy, len;
+  PetscReal speed = PetscSqrtReal(VDot(v, v, dim)), D = A * h * speed * dt, ds[3], len;
   if (A <= 0 || zone != SHIFT_BULK || dt <= 0) return;
-  len = PetscSqrtReal(dxs * dxs + dys * dys);
-  if (len > 0.1 * h) { dxs *= 0.1 * h / len; dys *= 0.1 * h / len; }
-  xs[0] += dxs / dt; xs[1] += dys / dt;
+  for (PetscInt i = 0; i < dim; i++) ds[i] = -D * c[i];
+  len = PetscSqrtReal(VDot(ds, ds, dim));
+  if (len > 0.1 * h)
+    for (PetscInt i = 0; i < dim; i++) ds[i] *= 0.1 * h / len;
+  for (PetscInt i = 0; i < dim; i++) xs[i] += ds[i] / dt;
 }
 
 /* The shifted particle carries its velocity to a new place: corrected to first order there,

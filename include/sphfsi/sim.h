@@ -8,6 +8,7 @@
 #include <sphfsi/halo.h>
 #include <sphfsi/material.h>
 #include <sphfsi/kernel.h>
+#include <sphfsi/dim.h>
 #include <petscviewer.h>
 
 typedef enum { FLUID_WCSPH = 0, FLUID_ISPH } FluidScheme;
@@ -96,9 +97,9 @@ PetscErrorCode SimRebuild(Sim sim);
 PetscErrorCode SimRebuildKeepPartition(Sim sim);
 /* Step limit of one particle of an explicit (weakly compressible) medium of sound speed c:
  * CFL  cfl h / (c + |v|)  and the force limit  0.25 sqrt(h / |a|). */
-static inline PetscReal SimAcousticStepLimit(PetscReal cfl, PetscReal h, PetscReal c, const PetscReal v[2], const PetscReal acc[2])
+static inline PetscReal SimAcousticStepLimit(PetscReal cfl, PetscReal h, PetscReal c, const PetscReal v[], const PetscReal acc[], PetscInt dim)
 {
-  PetscReal vn = PetscSqrtReal(v[0] * v[0] + v[1] * v[1]), an = PetscSqrtReal(acc[0] * acc[0] + acc[1] * acc[1]);
+  PetscReal vn = PetscSqrtReal(VDot(v, v, dim)), an = PetscSqrtReal(VDot(acc, acc, dim));
   PetscReal lim = cfl * h / (c + vn);
   return an > 0 ? PetscMin(lim, 0.25 * PetscSqrtReal(h / an)) : lim;
 }

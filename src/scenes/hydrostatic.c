@@ -1,4 +1,5 @@
-/* Water at rest in a tank: the floor pressure must be rho g H and nothing must move. */
+/* Water at rest in a tank: the floor pressure must be rho g H and nothing must move.  In 2D or 3D
+ * (-dim 3: a square tank W x W, the water H deep, gravity along -z). */
 #include <sphfsi/scene.h>
 #include <sphfsi/refdata.h>
 
@@ -20,7 +21,10 @@ static PetscErrorCode Create(Sim sim)
   PetscCall(PetscOptionsReal("-tank_width", "Tank (and water) width (m)", "", c->W, &c->W, NULL));
   PetscCall(PetscOptionsReal("-water_depth", "Water depth H (m)", "", c->H, &c->H, NULL));
   PetscCall(PetscOptionsInt("-wall_rows", "Rows of wall + dummy particles", "", c->rows, &c->rows, NULL));
+  PetscCall(PetscOptionsInt("-dim", "Dimension: 2, or 3 for a square tank W x W with gravity along -z", "", sim->dim, &sim->dim, NULL));
   PetscOptionsEnd();
+  PetscCheck(sim->dim == 2 || sim->dim == 3, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dim %" PetscInt_FMT " must be 2 or 3", sim->dim);
+  if (sim->dim == 3) { sim->g[1] = 0; sim->g[2] = -9.81; }
   PetscCheck(c->W > 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-tank_width %g must be > 0", (double)c->W);
   PetscCheck(c->H > 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-water_depth %g must be > 0", (double)c->H);
   PetscCheck(c->rows >= 1, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-wall_rows %" PetscInt_FMT " must be >= 1", c->rows);
@@ -39,8 +43,14 @@ static PetscErrorCode Populate(Sim sim)
   PetscInt nx = RoundToInt(c->W / dx), ny = RoundToInt(c->H / dx);
   PetscFunctionBeginUser;
   c->W = nx * dx; c->H = ny * dx; /* the lattice's own extent */
-  PetscCall(SceneAddLattice(sim, KIND_FLUID, 0.5 * dx, 0.5 * dx, nx, ny, dx, sim->fl.rho0));
-  PetscCall(SceneAddTank(sim, 0, c->W, 0, 1.2 * c->H, dx, c->rows, PETSC_TRUE, PETSC_TRUE));
+  if (sim->dim == 3) {
+    const PetscReal lo[3] = {0, 0, 0}, hi[3] = {c->W, c->W, c->H}, first[3] = {0.5 * dx, 0.5 * dx, 0.5 * dx};
+    PetscCall(SceneAddBlock(sim, KIND_FLUID, first, (PetscInt[]){nx, nx, ny}, dx, sim->fl.rho0));
+    PetscCall(SceneAddTankBox(sim, lo, hi, 1.2 * c->H, dx, c->rows));
+  } else {
+    PetscCall(SceneAddLattice(sim, KIND_FLUID, 0.5 * dx, 0.5 * dx, nx, ny, dx, sim->fl.rho0));
+    PetscCall(SceneAddTank(sim, 0, c->W, 0, 1.2 * c->H, dx, c->rows, PETSC_TRUE, PETSC_TRUE));
+  }
   PetscCall(SceneHydrostaticDensity(sim, 0, c->H));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -48,7 +58,7 @@ static PetscErrorCode Populate(Sim sim)
 static PetscErrorCode Probe(Sim sim, PetscReal *vals)
 {
   Hydro    *c = (Hydro *)sim->scene_ctx;
-  PetscReal x0[2] = {0.5 * c->W, 0};
+  PetscReal x0[3] = {0.5 * c->W, sim->dim == 3 ? 0.5 * c->W : 0, 0}; /* the middle of the floor */
   PetscFunctionBeginUser;
   PetscCall(SceneProbePressure(sim, x0, &vals[0]));
   PetscCall(SceneMaxSpeed(sim, &vals[1]));
@@ -60,7 +70,7 @@ static PetscErrorCode Probe(Sim sim, PetscReal *vals)
 static PetscErrorCode Errors(Sim sim, FILE *f)
 {
   Hydro    *c = (Hydro *)sim->scene_ctx;
-  PetscReal ref = sim->fl.rho0 * (-sim->g[1]) * c->H, s = 0, vmax;
+  PetscReal ref = sim->fl.rho0 * (-sim->g[sim->dim - 1]) * c->H, s = 0, vmax;
   PetscInt  n = 0;
   PetscFunctionBeginUser;
   PetscCall(SceneMaxSpeed(sim, &vmax));

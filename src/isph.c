@@ -4,6 +4,7 @@
 #include <sphfsi/kernel.h>
 #include <sphfsi/fluid_terms.h>
 #include <sphfsi/shifting.h>
+#include <sphfsi/dim.h>
 
 const char *const ISPHFreeSurfaces[] = {"density", "divr", "ISPHFreeSurface", "ISPH_FS_", NULL};
 const char *const ISPHSources[]      = {"divergence", "density", "blend", "ISPHSource", "ISPH_SOURCE_", NULL};
@@ -49,6 +50,7 @@ PetscErrorCode ISPHSetUp(Sim sim)
   PetscCheck(s->blend >= 0 && s->blend <= 1, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-isph_blend %g must be in [0, 1]", (double)s->blend);
   PetscCheck(s->alpha >= 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-isph_alpha %g must be >= 0", (double)s->alpha);
   PetscCheck(s->shift >= 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-isph_shift %g must be >= 0", (double)s->shift);
+  PetscCheck(!(sim->dim == 3 && s->shift > 0 && sim->fl.shift_correct), sim->comm, PETSC_ERR_ARG_INCOMP, "-shift_correct is not available in 3D yet: drop it (or use -shift_correct 0)");
   PetscCheck(s->grad_cond >= 0 && s->grad_cond < 1, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-isph_gradient_cond %g must be in [0, 1): the smallest over the largest eigenvalue of the correction matrix (0.25 the default)", (double)s->grad_cond);
   if (s->source == ISPH_SOURCE_DIVERGENCE) s->blend = 0;
   if (s->source == ISPH_SOURCE_DENSITY) s->blend = 1;
@@ -99,7 +101,7 @@ PetscErrorCode ISPHTimeStep(Sim sim, PetscReal *dt)
 {
   Particles        P = sim->P;
   const PetscReal *v = PField(P, FIELD_V), *h = PField(P, FIELD_H);
-  const PetscReal  g = PetscSqrtReal(sim->g[0] * sim->g[0] + sim->g[1] * sim->g[1]);
+  const PetscReal  g = PetscSqrtReal(VDot(sim->g, sim->g, P->dim));
   PetscReal        lim = PETSC_MAX_REAL, hmin = PETSC_MAX_REAL;
 
   PetscFunctionBeginUser;
@@ -108,7 +110,7 @@ PetscErrorCode ISPHTimeStep(Sim sim, PetscReal *dt)
   for (PetscInt a = 0; a < P->n; a++) {
     PetscReal vn;
     if (!KindIsFluid(P->kind[a])) continue;
-    vn   = PetscSqrtReal(v[2 * a] * v[2 * a] + v[2 * a + 1] * v[2 * a + 1]);
+    vn   = PetscSqrtReal(VDot(v + P->dim * a, v + P->dim * a, P->dim));
     hmin = PetscMin(hmin, h[a]);
     if (vn > 0) lim = PetscMin(lim, sim->cfl * h[a] / vn);                                     /* CFL on the flow speed */
     if (g > 0) lim = PetscMin(lim, 0.25 * PetscSqrtReal(h[a] / g));                            /* body force */
@@ -129,7 +131,7 @@ PetscErrorCode ISPHTimeStep(Sim sim, PetscReal *dt)
 /* Eqs. 45-47: v* = v + dt (g + viscous Eq. 16) at r_t; r* = r + dt v.  Walls get
  * v* = v + dt g, the velocity whose projection with their Neumann pressure (ppe.h) leaves them
  * at rest, so that the velocity divergence sees no spurious source at a wall in hydrostatics. */
-static PetscErrorCode Predictor(Sim sim)
+SPH_INLINE PetscErrorCode PredictorD(Sim sim, const PetscInt D)
 {
   Particles        P = sim->P;
   Cells            C = sim->cells;
@@ -139,32 +141,36 @@ static PetscErrorCode Predictor(Sim sim)
 
   PetscFunctionBeginUser;
   for (PetscInt a = 0; a < P->n; a++) {
-    PetscReal ax = sim->g[0], ay = sim->g[1];
+    PetscReal ac[3] = {sim->g[0], sim->g[1], sim->g[2]};
     if (KindIsFluid(P->kind[a]) && (mu > 0 || alpha > 0))
       for (PetscInt k = C->nstart[a]; k < C->nstart[a + 1]; k++) {
-        PetscInt        b = C->nbr[k];
-        PetscReal       dx = x[2 * a] - x[2 * b], dy = x[2 * a + 1] - x[2 * b + 1], r2 = dx * dx + dy * dy, hab = PairH(h[a], h[b]);
-        const PetscReal *vb = KindIsBoundary(P->kind[b]) ? vw + 2 * b : v + 2 * b;
-        PetscReal       mb, rb, pb, c, av;
+        PetscInt         b = C->nbr[k];
+        PetscReal        d[3], dvab[3], r2, hab = PairH(h[a], h[b]);
+        const PetscReal *vb = KindIsBoundary(P->kind[b]) ? vw + D * b : v + D * b;
+        PetscReal        mb, rb, pb, c, av;
+        VSub(x + D * a, x + D * b, d, D);
+        r2 = VDot(d, d, D);
         FluidView(fv, P->kind[b], b, m, rho, NULL, &mb, &rb, &pb);
-        c  = LaminarViscosity(mb, mu, rho[a], rb, C->f[k] * r2, r2, hab, sim->fl.eta, sim->fl.lap_kappa);
-        av = alpha > 0 ? mb * ArtificialViscosity(alpha, sim->fl.c0, hab, 0.5 * (rho[a] + rb), (v[2 * a] - v[2 * b]) * dx + (v[2 * a + 1] - v[2 * b + 1]) * dy, r2) * C->f[k] : 0;
-        ax += c * (v[2 * a] - vb[0]) - av * dx;
-        ay += c * (v[2 * a + 1] - vb[1]) - av * dy;
+        c = LaminarViscosity(mb, mu, rho[a], rb, C->f[k] * r2, r2, hab, sim->fl.eta, sim->fl.lap_kappa);
+        VSub(v + D * a, v + D * b, dvab, D);
+        av = alpha > 0 ? mb * ArtificialViscosity(alpha, sim->fl.c0, hab, 0.5 * (rho[a] + rb), VDot(dvab, d, D), r2) * C->f[k] : 0;
+        for (PetscInt i = 0; i < D; i++) ac[i] += c * (v[D * a + i] - vb[i]) - av * d[i];
       }
-    vs[2 * a]     = v[2 * a] + dt * ax;
-    vs[2 * a + 1] = v[2 * a + 1] + dt * ay;
+    for (PetscInt i = 0; i < D; i++) vs[D * a + i] = v[D * a + i] + dt * ac[i];
   }
   for (PetscInt a = 0; a < P->n; a++)
-    if (KindIsFluid(P->kind[a])) { x[2 * a] += dt * v[2 * a]; x[2 * a + 1] += dt * v[2 * a + 1]; }
+    if (KindIsFluid(P->kind[a]))
+      for (PetscInt i = 0; i < D; i++) x[D * a + i] += dt * v[D * a + i];
   PetscFunctionReturn(PETSC_SUCCESS);
 }
+
+static PetscErrorCode Predictor(Sim sim) { return SPH_DIM_DISPATCH(sim->dim, PredictorD, sim); }
 
 /* rho* by summation (Eq. 17) normalised by the full-lattice sum, walls at rho0; free surface by
  * rho* < beta rho0 (section 2.5) or div r < divr_min; and the PPE source of fluid rows,
  * (1 - w) div v* / dt (Eq. 13 with 1/rho_a, Eq. 48) + w (rho0 - rho*) / (rho0 dt^2) (density
  * invariance, Shao & Lo 2003): one pass, since v* of the neighbours came with the rebuild. */
-static PetscErrorCode DensityFreeSurfaceSource(Sim sim)
+SPH_INLINE PetscErrorCode DensityFreeSurfaceSourceD(Sim sim, const PetscInt D)
 {
   ISPH             s = sim->isph;
   Particles        P = sim->P;
@@ -192,11 +198,13 @@ static PetscErrorCode DensityFreeSurfaceSource(Sim sim)
     sw = m[a] * KernelW(&sim->kernel, 0, h[a]);
     for (PetscInt k = C->nstart[a]; k < C->nstart[a + 1]; k++) {
       PetscInt  b = C->nbr[k];
-      PetscReal dx = x[2 * a] - x[2 * b], dy = x[2 * a + 1] - x[2 * b + 1], F = C->f[k], mb, rb, pb;
+      PetscReal d[3], dvs[3], F = C->f[k], mb, rb, pb;
+      VSub(x + D * a, x + D * b, d, D);
+      VSub(vs + D * b, vs + D * a, dvs, D);
       FluidView(fv, P->kind[b], b, m, rho, NULL, &mb, &rb, &pb);
       sw += mb * C->w[k];
-      divr -= mb / rho0 * F * (dx * dx + dy * dy);
-      div += mb * F * ((vs[2 * b] - vs[2 * a]) * dx + (vs[2 * b + 1] - vs[2 * a + 1]) * dy);
+      divr -= mb / rho0 * F * VDot(d, d, D);
+      div += mb * F * VDot(dvs, d, D);
     }
     rho[a] = sw / s->lat_w;
     divr *= 2.0 / s->lat_divr;
@@ -213,41 +221,42 @@ static PetscErrorCode DensityFreeSurfaceSource(Sim sim)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+static PetscErrorCode DensityFreeSurfaceSource(Sim sim) { return SPH_DIM_DISPATCH(sim->dim, DensityFreeSurfaceSourceD, sim); }
+
 /* grad P / rho at particle a.  Eq. 14 (symmetric, conserves momentum; its rho_a cancels), or the
  * difference form with the kernel-gradient correction of Bonet & Lok 1999, exact for a linear P
  * on a truncated support: the free surface, where Eq. 14 sees half the gradient and lets surface
  * particles fall at g/2.  The corrected form divides by rho0: rho* is truncated there too.  One
  * pass gathers both forms and whether a free-surface particle is in reach (hybrid). */
-static inline void PressureGradient(Particles P, Cells C, PetscInt a, ISPHGradient mode, PetscBool solid_eq14, PetscReal cond, PetscReal rho0, PetscReal g[2])
+SPH_INLINE void PressureGradient(Particles P, Cells C, PetscInt a, ISPHGradient mode, PetscBool solid_eq14, PetscReal cond, PetscReal rho0, PetscReal g[], const PetscInt D)
 {
   const PetscReal *x = PField(P, FIELD_X), *m = PField(P, FIELD_M), *rho = PField(P, FIELD_RHO), *p = PField(P, FIELD_P), *fs = PField(P, FIELD_FS), *fv = PField(P, FIELD_FVIEW);
-  PetscReal        gs[2] = {0, 0}, gd[2] = {0, 0}, M[3] = {0, 0, 0}, pa = p[a] / (rho[a] * rho[a]), det, half, disc;
+  PetscReal        gs[3] = {0, 0, 0}, gd[3] = {0, 0, 0}, M[6] = {0, 0, 0, 0, 0, 0}, pa = p[a] / (rho[a] * rho[a]);
   PetscBool        near = (PetscBool)(fs[a] > 0), corrected, body = PETSC_FALSE;
   for (PetscInt k = C->nstart[a]; k < C->nstart[a + 1]; k++) {
     PetscInt  b = C->nbr[k];
-    PetscReal dx = x[2 * a] - x[2 * b], dy = x[2 * a + 1] - x[2 * b + 1], F = C->f[k], mb, rb, pb, cs, vb;
+    PetscReal d[3], F = C->f[k], mb, rb, pb, cs, vb;
+    VSub(x + D * a, x + D * b, d, D);
     FluidView(fv, P->kind[b], b, m, rho, p, &mb, &rb, &pb);
     cs = mb * (pb / (rb * rb) + pa) * F; vb = mb / rho0 * F;
-    gs[0] += cs * dx; gs[1] += cs * dy;
+    for (PetscInt i = 0; i < D; i++) gs[i] += cs * d[i];
     if (!(KindIsWall(P->kind[b]) && fs[b] > 0)) { /* a dry wall (its pressure clipped, ppe.c) would tilt the plane fit */
-      gd[0] += vb * (pb - p[a]) / rho0 * dx; gd[1] += vb * (pb - p[a]) / rho0 * dy;
-      M[0] -= vb * dx * dx; M[1] -= vb * dx * dy; M[2] -= vb * dy * dy; /* (x_b - x_a) (x) V_b grad_a W */
+      for (PetscInt i = 0; i < D; i++) gd[i] += vb * (pb - p[a]) / rho0 * d[i];
+      SymOuterSubtract(M, vb, d, D); /* (x_b - x_a) (x) V_b grad_a W */
     }
     if (fs[b] > 0 && KindIsFluid(P->kind[b])) near = PETSC_TRUE;
     if (KindIsSolid(P->kind[b])) body = PETSC_TRUE;
   }
   corrected = (PetscBool)(mode == ISPH_GRAD_CORRECTED || (mode == ISPH_GRAD_HYBRID && near));
   if (solid_eq14 && body && !near) corrected = PETSC_FALSE; /* the pair forces the body receives (FluidLoad) */
-  if (!corrected) { g[0] = gs[0]; g[1] = gs[1]; return; }
+  if (!corrected) {
+    for (PetscInt i = 0; i < D; i++) g[i] = gs[i];
+    return;
+  }
   /* the correction only where M is well conditioned: its eigenvalues' ratio above cond (a thin jet's
    * M is nearly singular, and M^-1 amplifies the pressure's noise across it) */
-  det  = M[0] * M[2] - M[1] * M[1];
-  half = 0.5 * (M[0] + M[2]);
-  disc = PetscSqrtReal(0.25 * (M[0] - M[2]) * (M[0] - M[2]) + M[1] * M[1]);
-  if (half - disc > cond * (half + disc) && det > 1e-6 * (M[0] * M[0] + M[2] * M[2])) { /* L = M^-1 (M is symmetric) */
-    g[0] = (M[2] * gd[0] - M[1] * gd[1]) / det;
-    g[1] = (-M[1] * gd[0] + M[0] * gd[1]) / det;
-  } else { g[0] = gd[0]; g[1] = gd[1]; }
+  if (!SymSolveConditioned(M, gd, cond, g, D))
+    for (PetscInt i = 0; i < D; i++) g[i] = gd[i];
 }
 
 /* A free-surface particle has P = 0 in the pressure equation, so no pressure acts on it and a wall
@@ -256,29 +265,32 @@ static inline void PressureGradient(Particles P, Cells C, PetscInt a, ISPHGradie
  * velocity component (an inelastic contact).  The wall's normal is that of the wall particles'
  * volume seen from the particle, n = -sum_w V_w grad_a W_aw / |.|; the distance is the smallest
  * (x_a - x_w) . n over the first-row (KIND_WALL) neighbours.  Walls are at rest. */
-static inline void WallContact(Particles P, Cells C, PetscInt a, PetscReal rho0, PetscReal dxa, PetscReal v[2])
+SPH_INLINE void WallContact(Particles P, Cells C, PetscInt a, PetscReal rho0, PetscReal dxa, PetscReal v[], const PetscInt D)
 {
   const PetscReal *x = PField(P, FIELD_X), *m = PField(P, FIELD_M);
-  PetscReal        g[2] = {0, 0}, gn, n[2], dmin = PETSC_MAX_REAL, vn;
+  PetscReal        g[3] = {0, 0, 0}, gn, n[3], dmin = PETSC_MAX_REAL, vn;
   for (PetscInt k = C->nstart[a]; k < C->nstart[a + 1]; k++) {
     PetscInt b = C->nbr[k];
     if (!KindIsWall(P->kind[b])) continue;
-    g[0] += m[b] / rho0 * C->f[k] * (x[2 * a] - x[2 * b]);
-    g[1] += m[b] / rho0 * C->f[k] * (x[2 * a + 1] - x[2 * b + 1]);
+    for (PetscInt i = 0; i < D; i++) g[i] += m[b] / rho0 * C->f[k] * (x[D * a + i] - x[D * b + i]);
   }
-  gn = PetscSqrtReal(g[0] * g[0] + g[1] * g[1]);
+  gn = PetscSqrtReal(VDot(g, g, D));
   if (gn == 0) return;
-  n[0] = -g[0] / gn; n[1] = -g[1] / gn;
+  for (PetscInt i = 0; i < D; i++) n[i] = -g[i] / gn;
   for (PetscInt k = C->nstart[a]; k < C->nstart[a + 1]; k++) {
-    PetscInt b = C->nbr[k];
-    if (P->kind[b] == KIND_WALL) dmin = PetscMin(dmin, (x[2 * a] - x[2 * b]) * n[0] + (x[2 * a + 1] - x[2 * b + 1]) * n[1]);
+    PetscInt  b = C->nbr[k];
+    PetscReal d[3];
+    if (P->kind[b] != KIND_WALL) continue;
+    VSub(x + D * a, x + D * b, d, D);
+    dmin = PetscMin(dmin, VDot(d, n, D));
   }
-  vn = v[0] * n[0] + v[1] * n[1];
-  if (dmin < dxa && vn < 0) { v[0] -= vn * n[0]; v[1] -= vn * n[1]; }
+  vn = VDot(v, n, D);
+  if (dmin < dxa && vn < 0)
+    for (PetscInt i = 0; i < D; i++) v[i] -= vn * n[i];
 }
 
 /* Eqs. 49, 51: v = v* - dt grad P / rho; acc = (v - v_t) / dt. */
-static PetscErrorCode Corrector(Sim sim)
+SPH_INLINE PetscErrorCode CorrectorD(Sim sim, const PetscInt D)
 {
   ISPH             s = sim->isph;
   Particles        P = sim->P;
@@ -289,26 +301,24 @@ static PetscErrorCode Corrector(Sim sim)
 
   PetscFunctionBeginUser;
   for (PetscInt a = 0; a < P->n; a++) {
-    PetscReal g[2], vx, vy;
+    PetscReal g[3], vn[3];
     if (!KindIsFluid(P->kind[a])) continue;
-    PressureGradient(P, C, a, s->gradient, s->solid_eq14, s->grad_cond, sim->fl.rho0, g);
-    vx = vs[2 * a] - dt * g[0];
-    vy = vs[2 * a + 1] - dt * g[1];
-    if (s->wall_contact && PField(P, FIELD_FS)[a] > 0) {
-      PetscReal vc[2] = {vx, vy};
-      WallContact(P, C, a, sim->fl.rho0, PField(P, FIELD_H)[a] / sim->kernel.h_factor, vc);
-      vx = vc[0]; vy = vc[1];
+    PressureGradient(P, C, a, s->gradient, s->solid_eq14, s->grad_cond, sim->fl.rho0, g, D);
+    for (PetscInt i = 0; i < D; i++) vn[i] = vs[D * a + i] - dt * g[i];
+    if (s->wall_contact && PField(P, FIELD_FS)[a] > 0) WallContact(P, C, a, sim->fl.rho0, PField(P, FIELD_H)[a] / sim->kernel.h_factor, vn, D);
+    for (PetscInt i = 0; i < D; i++) {
+      acc[D * a + i] = (vn[i] - v[D * a + i]) / dt;
+      v[D * a + i]   = vn[i];
     }
-    acc[2 * a]     = (vx - v[2 * a]) / dt;
-    acc[2 * a + 1] = (vy - v[2 * a + 1]) / dt;
-    v[2 * a] = vx; v[2 * a + 1] = vy;
   }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+static PetscErrorCode Corrector(Sim sim) { return SPH_DIM_DISPATCH(sim->dim, CorrectorD, sim); }
+
 /* Position corrections as velocities: XSPH (Eq. 44) and Fickian shifting (shifting.h); a particle
  * is next to the free surface when a fluid neighbour is on it. */
-static PetscErrorCode Drift(Sim sim)
+SPH_INLINE PetscErrorCode DriftD(Sim sim, const PetscInt D)
 {
   ISPH             s = sim->isph;
   Particles        P = sim->P;
@@ -317,51 +327,51 @@ static PetscErrorCode Drift(Sim sim)
   PetscReal       *xs = PField(P, FIELD_XSPH);
   const PetscReal  dt = sim->dt, rho0 = sim->fl.rho0, eps = sim->fl.xsph;
   const FieldId    vel[] = {FIELD_V};
-  PetscReal       *dv = NULL; /* velocity corrections of shifted particles, applied after the loop */
+  PetscReal       *dv = NULL; /* velocity corrections of shifted particles, applied after the loop (2D) */
 
   PetscFunctionBeginUser;
   PetscCall(PetscLogStagePush(sim->stage[STAGE_HALO]));
   PetscCall(HaloRefresh(sim->halo, P, 1, vel));
   PetscCall(PetscLogStagePop());
-  if (s->shift > 0 && sim->fl.shift_correct) PetscCall(PetscCalloc1(2 * P->n, &dv));
+  if (s->shift > 0 && sim->fl.shift_correct) PetscCall(PetscCalloc1(D * P->n, &dv));
   for (PetscInt a = 0; a < P->n; a++) {
-    PetscReal sx = 0, sy = 0, cx = 0, cy = 0;
+    PetscReal sx[3] = {0, 0, 0}, c[3] = {0, 0, 0};
     PetscBool near_fs = PETSC_FALSE;
     ShiftGrad sg = {{0, 0, 0}, {0, 0, 0, 0}};
-    xs[2 * a] = xs[2 * a + 1] = 0;
+    for (PetscInt i = 0; i < D; i++) xs[D * a + i] = 0;
     if (!KindIsFluid(P->kind[a])) continue;
     for (PetscInt k = C->nstart[a]; k < C->nstart[a + 1]; k++) {
       PetscInt  b = C->nbr[k];
-      PetscReal dx = x[2 * a] - x[2 * b], dy = x[2 * a + 1] - x[2 * b + 1];
+      PetscReal d[3], dvab[3];
+      VSub(x + D * a, x + D * b, d, D);
+      VSub(v + D * a, v + D * b, dvab, D);
       if (KindIsFluid(P->kind[b])) {
         PetscReal w = XSPHWeight(C->w[k], m[b], rho[a], rho[b]);
-        sx -= w * (v[2 * a] - v[2 * b]);
-        sy -= w * (v[2 * a + 1] - v[2 * b + 1]);
+        for (PetscInt i = 0; i < D; i++) sx[i] -= w * dvab[i];
         if (fs[b] > 0) near_fs = PETSC_TRUE;
-        if (dv) ShiftGradAdd(&sg, m[b] / rho0, C->f[k], dx, dy, v[2 * a] - v[2 * b], v[2 * a + 1] - v[2 * b + 1]);
+        if (dv) ShiftGradAdd(&sg, m[b] / rho0, C->f[k], d[0], d[1], dvab[0], dvab[1]);
       }
-      if (!KindIsSolid(P->kind[b])) { /* a solid's volume: its own mass over its own density */
-        cx += m[b] / rho0 * C->f[k] * dx;
-        cy += m[b] / rho0 * C->f[k] * dy;
-      } else {
-        cx += m[b] / rho[b] * C->f[k] * dx;
-        cy += m[b] / rho[b] * C->f[k] * dy;
-      }
+      if (!KindIsSolid(P->kind[b])) /* a solid's volume: its own mass over its own density */
+        for (PetscInt i = 0; i < D; i++) c[i] += m[b] / rho0 * C->f[k] * d[i];
+      else
+        for (PetscInt i = 0; i < D; i++) c[i] += m[b] / rho[b] * C->f[k] * d[i];
     }
-    xs[2 * a] = eps * sx; xs[2 * a + 1] = eps * sy;
-    ShiftVelocity(s->shift, fs[a] > 0 ? SHIFT_SURFACE : near_fs ? SHIFT_NEAR_SURFACE : SHIFT_BULK, h[a], v + 2 * a, dt, (PetscReal[]){cx, cy}, xs + 2 * a, 2);
-    if (dv) ShiftCorrectVelocity(&sg, dt * (xs[2 * a] - eps * sx), dt * (xs[2 * a + 1] - eps * sy), dv + 2 * a);
+    for (PetscInt i = 0; i < D; i++) xs[D * a + i] = eps * sx[i];
+    ShiftVelocity(s->shift, fs[a] > 0 ? SHIFT_SURFACE : near_fs ? SHIFT_NEAR_SURFACE : SHIFT_BULK, h[a], v + D * a, dt, c, xs + D * a, D);
+    if (dv) ShiftCorrectVelocity(&sg, dt * (xs[D * a] - eps * sx[0]), dt * (xs[D * a + 1] - eps * sx[1]), dv + D * a);
   }
   if (dv) {
     PetscReal *vv = PField(P, FIELD_V);
-    for (PetscInt k = 0; k < 2 * P->n; k++) vv[k] += dv[k];
+    for (PetscInt k = 0; k < D * P->n; k++) vv[k] += dv[k];
     PetscCall(PetscFree(dv));
   }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+static PetscErrorCode Drift(Sim sim) { return SPH_DIM_DISPATCH(sim->dim, DriftD, sim); }
+
 /* Eq. 50: r = r_t + dt (v_t + v) / 2 = r* + dt^2 acc / 2, plus the drift corrections. */
-static void MoveToEnd(Sim sim)
+SPH_INLINE PetscErrorCode MoveToEndD(Sim sim, const PetscInt D)
 {
   Particles        P = sim->P;
   const PetscReal *acc = PField(P, FIELD_ACC), *xs = PField(P, FIELD_XSPH);
@@ -369,10 +379,12 @@ static void MoveToEnd(Sim sim)
   const PetscReal  dt = sim->dt;
   for (PetscInt a = 0; a < P->n; a++) {
     if (!KindIsFluid(P->kind[a])) continue;
-    x[2 * a] += 0.5 * dt * dt * acc[2 * a] + (xs ? dt * xs[2 * a] : 0);
-    x[2 * a + 1] += 0.5 * dt * dt * acc[2 * a + 1] + (xs ? dt * xs[2 * a + 1] : 0);
+    for (PetscInt i = 0; i < D; i++) x[D * a + i] += 0.5 * dt * dt * acc[D * a + i] + (xs ? dt * xs[D * a + i] : 0);
   }
+  return PETSC_SUCCESS;
 }
+
+static PetscErrorCode MoveToEnd(Sim sim) { return SPH_DIM_DISPATCH(sim->dim, MoveToEndD, sim); }
 
 PetscErrorCode ISPHPressureEquation(Sim sim)
 {
@@ -400,7 +412,7 @@ PetscErrorCode ISPHStep(Sim sim)
   PetscCall(PetscLogStagePush(sim->stage[STAGE_PHYSICS]));
   PetscCall(Corrector(sim));
   if (PField(sim->P, FIELD_XSPH)) PetscCall(Drift(sim));
-  MoveToEnd(sim);
+  PetscCall(MoveToEnd(sim));
   PetscCall(PetscLogStagePop());
   PetscCall(SimRebuild(sim));
   PetscCall(BoundaryWallVelocity(sim));

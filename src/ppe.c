@@ -1,4 +1,5 @@
 #include <sphfsi/ppe.h>
+#include <sphfsi/dim.h>
 #include <sphfsi/fluid_terms.h>
 #include <sphfsi/kernel.h>
 #include <sphfsi/boundary.h>
@@ -273,33 +274,37 @@ static PetscReal MovingSolidRow(PPE ppe, Sim sim, PetscInt a, PetscReal va, Pets
 
 /* The unit normal of wall (or solid) particle a into the fluid: towards the kernel-weighted centre
  * of its fluid neighbours (a flat wall's normal; a corner's bisector). */
-static void WallNormal(Particles P, Cells C, PetscInt a, PetscReal n[2])
+SPH_INLINE void WallNormal(Particles P, Cells C, PetscInt a, PetscReal n[], const PetscInt D)
 {
   const PetscReal *x = PField(P, FIELD_X);
   PetscReal        nn;
-  n[0] = n[1] = 0;
+  for (PetscInt i = 0; i < D; i++) n[i] = 0;
   for (PetscInt k = C->nstart[a]; k < C->nstart[a + 1]; k++) {
     PetscInt b = C->nbr[k];
     if (!KindIsFluid(P->kind[b])) continue;
-    n[0] += C->w[k] * (x[2 * b] - x[2 * a]);
-    n[1] += C->w[k] * (x[2 * b + 1] - x[2 * a + 1]);
+    for (PetscInt i = 0; i < D; i++) n[i] += C->w[k] * (x[D * b + i] - x[D * a + i]);
   }
-  nn = PetscSqrtReal(n[0] * n[0] + n[1] * n[1]);
-  if (nn > 0) { n[0] /= nn; n[1] /= nn; }
+  nn = PetscSqrtReal(VDot(n, n, D));
+  if (nn > 0)
+    for (PetscInt i = 0; i < D; i++) n[i] /= nn;
 }
 
 /* The wall's share of the projection's Neumann condition dP/dn = rho (v* - v*_wall) . n / dt for a
  * fluid neighbour f approaching wall particle w (times dt / rho0): its approach speed along the
- * wall's normal n times its distance from the wall along n, (x_f - x_w) = (dx, dy) reversed.  Walls
- * at rest take v* = dt g like the fluid, so the difference is the fluid's own velocity.  One-sided:
- * fluid moving away from a wall is not pulled back. */
-static inline PetscReal WallApproach(const PetscReal vf[2], const PetscReal vw[2], const PetscReal n[2], PetscReal dx, PetscReal dy)
+ * wall's normal n times its distance from the wall along n, (x_f - x_w) = -d.  Walls at rest take
+ * v* = dt g like the fluid, so the difference is the fluid's own velocity.  One-sided: fluid moving
+ * away from a wall is not pulled back. */
+SPH_INLINE PetscReal WallApproach(const PetscReal vf[], const PetscReal vw[], const PetscReal n[], const PetscReal d[], const PetscInt D)
 {
-  PetscReal un = -((vf[0] - vw[0]) * n[0] + (vf[1] - vw[1]) * n[1]), dn = -(dx * n[0] + dy * n[1]);
+  PetscReal dv[3], un, dn;
+  VSub(vf, vw, dv, D);
+  un = -VDot(dv, n, D);
+  dn = -VDot(d, n, D);
   return PetscMax(un, 0) * PetscMax(dn, 0);
 }
 
-PetscErrorCode PPEAssemble(PPE ppe, Sim sim, const PetscReal *src)
+/* The rows of this rank (Eq. 22 with the free-surface, wall and solid rows of ppe.h) in D dimensions. */
+SPH_INLINE PetscErrorCode AssembleRowsD(PPE ppe, Sim sim, const PetscReal *src, PetscScalar *bb, const PetscInt D)
 {
   Particles        P = sim->P;
   Cells            C = sim->cells;
@@ -308,24 +313,18 @@ PetscErrorCode PPEAssemble(PPE ppe, Sim sim, const PetscReal *src)
   const PetscReal  rho0 = sim->fl.rho0;
   const PetscBool  sparse = (PetscBool)(ppe->pc_qmax > 0);
   const PetscReal *vs = PField(P, FIELD_VSTAR);
-  PetscScalar     *bb;
 
   PetscFunctionBeginUser;
-  PetscCall(PetscLogStagePush(sim->stage[STAGE_PPE_ASSEMBLY]));
-  ppe->pin = ppe->ndirichlet_global ? -1 : 0; /* no free surface: P = 0 at global row 0 (ppe.h) */
-  PetscCall(Reset(ppe, sim));
-  PetscCall(VecGetArrayWrite(ppe->b, &bb));
   for (PetscInt r = 0; r < ppe->nrow; r++) {
     PetscInt  a = ppe->rowpart[r], ga = ppe->rstart + r, nc = 1;
     PetscReal ma, ra, pa, va, diag = 0, hyd = 0, lumped = 0, fa = sparse ? KernelF(&sim->kernel, ppe->pc_qmax * h[a], h[a]) : 0;
     PetscInt  ncp = 1;
-    const PetscReal gx = sim->g[0], gy = sim->g[1];
     PetscBool wall = KindIsBoundary(P->kind[a]), dir = (PetscBool)(IsDirichlet(fs, a) || ga == ppe->pin);
     PetscBool approach = (PetscBool)(ppe->wall_approach && KindIsWall(P->kind[a])); /* fixed walls; a solid's rows keep rho0 g . n */
-    PetscReal nw[2] = {0, 0};
+    PetscReal nw[3] = {0, 0, 0};
     FluidView(fv, P->kind[a], a, m, rho, NULL, &ma, &ra, &pa);
     va = ma / rho0;
-    if (approach) WallNormal(P, C, a, nw);
+    if (approach) WallNormal(P, C, a, nw, D);
     if (!ppe->symmetric && P->kind[a] == KIND_SOLID) {
       ppe->cols[0] = ga;
       ppe->hyd[r]  = 0;
@@ -337,14 +336,15 @@ PetscErrorCode PPEAssemble(PPE ppe, Sim sim, const PetscReal *src)
     for (PetscInt k = C->nstart[a]; k < C->nstart[a + 1]; k++) {
       PetscInt  b = C->nbr[k];
       NbrRole   role = Role(P, row, fs, ppe->pin, a, b);
-      PetscReal dx, dy, r2, c, mb, rb, pb;
+      PetscReal d[3], r2, c, mb, rb, pb;
       if (role == NBR_SKIP) continue;
       FluidView(fv, P->kind[b], b, m, rho, NULL, &mb, &rb, &pb);
-      dx = x[2 * a] - x[2 * b]; dy = x[2 * a + 1] - x[2 * b + 1]; r2 = dx * dx + dy * dy;
+      VSub(x + D * a, x + D * b, d, D);
+      r2 = VDot(d, d, D);
       c  = PPECoefficient(mb, ra, rb, C->f[k], r2, PairH(h[a], h[b]), sim->fl.eta, sim->fl.lap_kappa);
       diag += c;
-      if (wall) hyd += c * rho0 * (gx * dx + gy * dy); /* L_a(rho0 g . r) */
-      if (approach) hyd += c * rho0 * WallApproach(vs + 2 * b, vs + 2 * a, nw, dx, dy) / sim->dt;
+      if (wall) hyd += c * rho0 * VDot(sim->g, d, D); /* L_a(rho0 g . r) */
+      if (approach) hyd += c * rho0 * WallApproach(vs + D * b, vs + D * a, nw, d, D) / sim->dt;
       if (dir || role == NBR_KNOWN) continue; /* free surface: P = 0 */
       ppe->cols[nc] = (PetscInt)row[b]; ppe->vals[nc++] = va * c;
       if (!sparse) continue;
@@ -367,6 +367,20 @@ PetscErrorCode PPEAssemble(PPE ppe, Sim sim, const PetscReal *src)
     PetscCall(SplitCSRAppendRow(&ppe->csr, nc, ppe->cols, ppe->vals));
     if (sparse) PetscCall(SplitCSRAppendRow(&ppe->csrp, ncp, ppe->colsp, ppe->valsp));
   }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode PPEAssemble(PPE ppe, Sim sim, const PetscReal *src)
+{
+  const PetscBool  sparse = (PetscBool)(ppe->pc_qmax > 0);
+  PetscScalar     *bb;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscLogStagePush(sim->stage[STAGE_PPE_ASSEMBLY]));
+  ppe->pin = ppe->ndirichlet_global ? -1 : 0; /* no free surface: P = 0 at global row 0 (ppe.h) */
+  PetscCall(Reset(ppe, sim));
+  PetscCall(VecGetArrayWrite(ppe->b, &bb));
+  PetscCall(SPH_DIM_DISPATCH(sim->dim, AssembleRowsD, ppe, sim, src, bb));
   PetscCall(VecRestoreArrayWrite(ppe->b, &bb));
   PetscCall(CreateMatrix(ppe, &ppe->csr, (PetscBool)!sparse, &ppe->A));
   if (sparse) PetscCall(CreateMatrix(ppe, &ppe->csrp, PETSC_TRUE, &ppe->Ap));

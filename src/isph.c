@@ -50,7 +50,6 @@ PetscErrorCode ISPHSetUp(Sim sim)
   PetscCheck(s->blend >= 0 && s->blend <= 1, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-isph_blend %g must be in [0, 1]", (double)s->blend);
   PetscCheck(s->alpha >= 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-isph_alpha %g must be >= 0", (double)s->alpha);
   PetscCheck(s->shift >= 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-isph_shift %g must be >= 0", (double)s->shift);
-  PetscCheck(!(sim->dim == 3 && s->shift > 0 && sim->fl.shift_correct), sim->comm, PETSC_ERR_ARG_INCOMP, "-shift_correct is not available in 3D yet: drop it (or use -shift_correct 0)");
   PetscCheck(s->grad_cond >= 0 && s->grad_cond < 1, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-isph_gradient_cond %g must be in [0, 1): the smallest over the largest eigenvalue of the correction matrix (0.25 the default)", (double)s->grad_cond);
   if (s->source == ISPH_SOURCE_DIVERGENCE) s->blend = 0;
   if (s->source == ISPH_SOURCE_DENSITY) s->blend = 1;
@@ -337,7 +336,7 @@ SPH_INLINE PetscErrorCode DriftD(Sim sim, const PetscInt D)
   for (PetscInt a = 0; a < P->n; a++) {
     PetscReal sx[3] = {0, 0, 0}, c[3] = {0, 0, 0};
     PetscBool near_fs = PETSC_FALSE;
-    ShiftGrad sg = {{0, 0, 0}, {0, 0, 0, 0}};
+    ShiftGrad sg = {{0}, {0}};
     for (PetscInt i = 0; i < D; i++) xs[D * a + i] = 0;
     if (!KindIsFluid(P->kind[a])) continue;
     for (PetscInt k = C->nstart[a]; k < C->nstart[a + 1]; k++) {
@@ -349,7 +348,7 @@ SPH_INLINE PetscErrorCode DriftD(Sim sim, const PetscInt D)
         PetscReal w = XSPHWeight(C->w[k], m[b], rho[a], rho[b]);
         for (PetscInt i = 0; i < D; i++) sx[i] -= w * dvab[i];
         if (fs[b] > 0) near_fs = PETSC_TRUE;
-        if (dv) ShiftGradAdd(&sg, m[b] / rho0, C->f[k], d[0], d[1], dvab[0], dvab[1]);
+        if (dv) ShiftGradAdd(&sg, m[b] / rho0, C->f[k], d, dvab, D);
       }
       if (!KindIsSolid(P->kind[b])) /* a solid's volume: its own mass over its own density */
         for (PetscInt i = 0; i < D; i++) c[i] += m[b] / rho0 * C->f[k] * d[i];
@@ -358,7 +357,11 @@ SPH_INLINE PetscErrorCode DriftD(Sim sim, const PetscInt D)
     }
     for (PetscInt i = 0; i < D; i++) xs[D * a + i] = eps * sx[i];
     ShiftVelocity(s->shift, fs[a] > 0 ? SHIFT_SURFACE : near_fs ? SHIFT_NEAR_SURFACE : SHIFT_BULK, h[a], v + D * a, dt, c, xs + D * a, D);
-    if (dv) ShiftCorrectVelocity(&sg, dt * (xs[D * a] - eps * sx[0]), dt * (xs[D * a + 1] - eps * sx[1]), dv + D * a);
+    if (dv) {
+      PetscReal dr[3];
+      for (PetscInt i = 0; i < D; i++) dr[i] = dt * (xs[D * a + i] - eps * sx[i]);
+      ShiftCorrectVelocity(&sg, dr, dv + D * a, D);
+    }
   }
   if (dv) {
     PetscReal *vv = PField(P, FIELD_V);

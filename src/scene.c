@@ -1,9 +1,9 @@
 #include <sphfsi/scene.h>
 #include <sphfsi/kernel.h>
 
-extern const SceneOps SceneHydrostatic, SceneDamBreak, SceneDamBreakLobovsky, SceneSluiceGate, SceneTaylorGreen, ScenePoiseuille, SceneOscillatingPlate, SceneSolidBlock, SceneElasticGate, SceneWaterOnPlate;
+extern const SceneOps SceneHydrostatic, SceneDamBreak, SceneDamBreakLobovsky, SceneSluiceGate, SceneTaylorGreen, ScenePoiseuille, SceneOscillatingPlate, SceneSolidBlock, SceneElasticGate, SceneWaterOnPlate, SceneSphericTest2;
 extern SceneOps       SceneBoxes; /* its probes come from the options */
-static const SceneOps *const Scenes[] = {&SceneHydrostatic, &SceneDamBreak, &SceneDamBreakLobovsky, &SceneSluiceGate, &SceneTaylorGreen, &ScenePoiseuille, &SceneOscillatingPlate, &SceneSolidBlock, &SceneElasticGate, &SceneWaterOnPlate, &SceneBoxes};
+static const SceneOps *const Scenes[] = {&SceneHydrostatic, &SceneDamBreak, &SceneDamBreakLobovsky, &SceneSluiceGate, &SceneTaylorGreen, &ScenePoiseuille, &SceneOscillatingPlate, &SceneSolidBlock, &SceneElasticGate, &SceneWaterOnPlate, &SceneSphericTest2, &SceneBoxes};
 #define NSCENES ((PetscInt)(sizeof(Scenes) / sizeof(Scenes[0])))
 
 PetscErrorCode SceneFind(const char *name, const SceneOps **ops)
@@ -98,21 +98,31 @@ PetscErrorCode SceneAddLattice(Sim sim, ParticleKind kind, PetscReal x0, PetscRe
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode SceneAddBox(Sim sim, ParticleKind kind, const PetscReal b[4], PetscReal dx, PetscReal rho0)
+PetscErrorCode SceneAddBox(Sim sim, ParticleKind kind, const PetscReal b[], PetscReal dx, PetscReal rho0)
 {
+  const PetscInt D = sim->dim;
+  PetscReal      first[3] = {0, 0, 0};
+  PetscInt       n[3]     = {1, 1, 1};
   PetscFunctionBeginUser;
-  PetscCall(SceneAddLattice(sim, kind, b[0] + 0.5 * dx, b[1] + 0.5 * dx, RoundToInt((b[2] - b[0]) / dx), RoundToInt((b[3] - b[1]) / dx), dx, rho0));
+  for (PetscInt d = 0; d < D; d++) {
+    first[d] = b[d] + 0.5 * dx;
+    n[d]     = RoundToInt((b[D + d] - b[d]) / dx);
+  }
+  PetscCall(SceneAddBlock(sim, kind, first, n, dx, rho0));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode SceneAddWallBox(Sim sim, const PetscReal b[4], PetscReal dx, const PetscBool faces[4])
+PetscErrorCode SceneAddWallBox(Sim sim, const PetscReal b[], PetscReal dx, const PetscBool faces[])
 {
-  PetscInt first = sim->P->n;
+  const PetscInt D = sim->dim;
+  PetscInt       first = sim->P->n;
   PetscFunctionBeginUser;
   PetscCall(SceneAddBox(sim, KIND_WALL, b, dx, sim->fl.rho0));
   for (PetscInt a = first; a < sim->P->n; a++) { /* this rank's share of the lattice */
-    const PetscReal *x = PField(sim->P, FIELD_X) + 2 * a;
-    if (!((faces[0] && x[0] < b[0] + dx) || (faces[1] && x[1] < b[1] + dx) || (faces[2] && x[0] > b[2] - dx) || (faces[3] && x[1] > b[3] - dx))) sim->P->kind[a] = KIND_DUMMY;
+    const PetscReal *x = PField(sim->P, FIELD_X) + D * a;
+    PetscBool        wet = PETSC_FALSE;
+    for (PetscInt d = 0; d < D; d++) wet = (PetscBool)(wet || (faces[d] && x[d] < b[d] + dx) || (faces[D + d] && x[d] > b[D + d] - dx));
+    if (!wet) sim->P->kind[a] = KIND_DUMMY;
   }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -266,5 +276,48 @@ PetscErrorCode SceneMaxSpeed(Sim sim, PetscReal *vmax)
     if (KindIsFluid(P->kind[a])) m = PetscMax(m, VDot(v + P->dim * a, v + P->dim * a, P->dim));
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &m, 1, MPIU_REAL, MPIU_MAX, sim->comm));
   *vmax = PetscSqrtReal(m);
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+void SceneColumnKernelInit(Sim sim, SceneColumnKernel *ck)
+{
+  /* h^(d-1) W_col(S h) = int W(sqrt(S^2 + T^2), 1) dT, S in [0, 2] */
+  for (PetscInt k = 0; k <= SCENE_NCOLUMN; k++) {
+    PetscReal S = 2.0 * k / SCENE_NCOLUMN, T = PetscSqrtReal(PetscMax(4.0 - S * S, 0.0)), s = 0;
+    const PetscInt nq = 400;
+    for (PetscInt q = 0; q < nq; q++) {
+      PetscReal t = -T + (q + 0.5) * 2 * T / nq;
+      s += KernelW(&sim->kernel, PetscSqrtReal(S * S + t * t), 1.0) * 2 * T / nq;
+    }
+    ck->w[k] = s;
+  }
+  ck->dim = sim->kernel.dim;
+}
+
+/* W_col(s, h) from the table (linear in s / h) */
+static inline PetscReal ColumnKernel(const SceneColumnKernel *ck, PetscReal s, PetscReal h)
+{
+  PetscReal S = PetscAbsReal(s) / h * (SCENE_NCOLUMN / 2.0);
+  PetscInt  k = (PetscInt)S;
+  if (k >= SCENE_NCOLUMN) return 0;
+  return ((1 - (S - k)) * ck->w[k] + (S - k) * ck->w[k + 1]) / (ck->dim == 3 ? h * h : h);
+}
+
+PetscErrorCode SceneWaterDepth(Sim sim, const SceneColumnKernel *ck, PetscInt n, const PetscReal *xg, PetscReal *depth)
+{
+  Particles        P = sim->P;
+  const PetscReal *x = PField(P, FIELD_X), *m = PField(P, FIELD_M), *rho = PField(P, FIELD_RHO), *h = PField(P, FIELD_H);
+  const PetscInt   D = P->dim, H = D - 1; /* the horizontal directions */
+  PetscFunctionBeginUser;
+  PetscCheck(ck->dim == D, sim->comm, PETSC_ERR_PLIB, "Column kernel of dimension %" PetscInt_FMT " in a %" PetscInt_FMT "D run: initialise it after the scene's create", ck->dim, D);
+  for (PetscInt g = 0; g < n; g++) depth[g] = 0;
+  for (PetscInt a = 0; a < P->n; a++) {
+    if (!KindIsFluid(P->kind[a])) continue;
+    for (PetscInt g = 0; g < n; g++) {
+      PetscReal s = D == 3 ? PetscSqrtReal(PetscSqr(xg[H * g] - x[D * a]) + PetscSqr(xg[H * g + 1] - x[D * a + 1])) : xg[g] - x[D * a];
+      depth[g] += m[a] / rho[a] * ColumnKernel(ck, s, h[a]);
+    }
+  }
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, depth, n, MPIU_REAL, MPI_SUM, sim->comm));
   PetscFunctionReturn(PETSC_SUCCESS);
 }

@@ -15,7 +15,6 @@ PetscErrorCode WCSPHSetUp(Sim sim)
   PetscCall(PetscOptionsBool("-wcsph_wall_clip", "Clip the wall pressure (Adami extrapolation) at 0: fluid in tension next to a wall is not held on it", "", fl->wall_clip, &fl->wall_clip, NULL));
   PetscOptionsEnd();
   PetscCheck(fl->shift >= 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-wcsph_shift %g must be >= 0", (double)fl->shift);
-  PetscCheck(!(sim->dim == 3 && fl->shift > 0 && fl->shift_correct), sim->comm, PETSC_ERR_ARG_INCOMP, "-shift_correct is not available in 3D yet: drop it (or use -shift_correct 0)");
   fl->lat_divr = KernelLatticeSum(&sim->kernel, LATTICE_DIVR, 0);
   PetscCall(ParticlesEnableField(sim->P, FIELD_ACC, PETSC_FALSE));
   PetscCall(ParticlesEnableField(sim->P, FIELD_DRHO, PETSC_FALSE));
@@ -68,7 +67,7 @@ SPH_INLINE PetscErrorCode ContinuityD(Sim sim, const PetscInt D)
   for (PetscInt a = 0; a < P->n; a++) {
     PetscReal dr = 0, dd = 0, sxs[3] = {0, 0, 0}, c[3] = {0, 0, 0}, divr = 0;
     PetscBool near = PETSC_FALSE;
-    ShiftGrad sg = {{0, 0, 0}, {0, 0, 0, 0}};
+    ShiftGrad sg = {{0}, {0}};
     const PetscReal *xa = x + D * a, *va = v + D * a, ra = rho[a];
     if (!KindIsFluid(P->kind[a])) continue;
     for (PetscInt k = C->nstart[a]; k < C->nstart[a + 1]; k++) {
@@ -82,7 +81,7 @@ SPH_INLINE PetscErrorCode ContinuityD(Sim sim, const PetscInt D)
         divr -= vb * F * VDot(d, d, D);
       }
       if (!KindIsFluid(P->kind[b])) continue;
-      if (dv) ShiftGradAdd(&sg, vb, F, d[0], d[1], dvab[0], dvab[1]);
+      if (dv) ShiftGradAdd(&sg, vb, F, d, dvab, D);
       if (surf && fs[b] > 0) near = PETSC_TRUE;
       if (dcoef > 0) {
         PetscReal gd = -g[0] * d[0] - g[1] * d[1], dh;
@@ -100,9 +99,11 @@ SPH_INLINE PetscErrorCode ContinuityD(Sim sim, const PetscInt D)
       for (PetscInt i = 0; i < D; i++) xs[D * a + i] = fl->xsph * sxs[i];
     if (surf) surface[a] = (PetscBool)(2.0 * divr / fl->lat_divr < SHIFT_DIVR_SURFACE);
     if (shift) {
-      PetscReal s0[2] = {xs[D * a], xs[D * a + 1]};
+      PetscReal s0[3], dr[3];
+      for (PetscInt i = 0; i < D; i++) s0[i] = xs[D * a + i];
       ShiftVelocity(fl->shift, surf && surface[a] ? SHIFT_SURFACE : near ? SHIFT_NEAR_SURFACE : SHIFT_BULK, h[a], v + D * a, sim->dt, c, xs + D * a, D);
-      if (dv) ShiftCorrectVelocity(&sg, sim->dt * (xs[D * a] - s0[0]), sim->dt * (xs[D * a + 1] - s0[1]), dv + D * a);
+      for (PetscInt i = 0; i < D; i++) dr[i] = sim->dt * (xs[D * a + i] - s0[i]);
+      if (dv) ShiftCorrectVelocity(&sg, dr, dv + D * a, D);
     }
   }
   if (dv) {

@@ -76,9 +76,8 @@ check "-dt_min -1. must be >= 0"      -case dam_break -dt_min -1
 check "not used by this run: -t_ned 1" -case dam_break -t_ned 1
 check "-gravity: component 2 is not finite" -case dam_break -gravity 0,nan
 check "-gravity takes 2 components in this 2D scene" -case dam_break -gravity 0,0,-9.81
-check "-shift_correct is not available in 3D yet" -case hydrostatic -dim 3 -fluid isph -isph_shift 1 -shift_correct 1
 check "-dim 4 must be 2 or 3" -case hydrostatic -dim 4
-check "-shift_correct is not available in 3D yet" -case hydrostatic -dim 3 -wcsph_shift 1 -shift_correct 1
+check "-dim 4 must be 2 or 3" -case taylor_green -dim 4
 # issue 27: bad geometry of a case given as data (-case boxes)
 check "has no water"                   -case boxes -dx 0.01 -tank_1 0,1,0,1
 check "-fluid_box_1 overlaps -wall_box_1" -case boxes -dx 0.01 -tank_1 0,1,0,1 -fluid_box_1 0,0,0.5,0.5 -wall_box_1 0.4,0,0.6,0.1

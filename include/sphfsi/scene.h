@@ -3,7 +3,7 @@
 #pragma once
 #include <sphfsi/sim.h>
 
-#define SCENE_MAX_PROBES 8
+#define SCENE_MAX_PROBES 16
 
 struct _SceneOps {
   const char *name;
@@ -42,13 +42,14 @@ PetscErrorCode SceneAddLattice(Sim sim, ParticleKind kind, PetscReal x0, PetscRe
 /* Walls of `rows` rows (first row KIND_WALL, the rest KIND_DUMMY) around the rectangle
  * [x0, x1] x [y0, ...): floor below y0, side walls left of x0 and right of x1 up to y1. */
 PetscErrorCode SceneAddTank(Sim sim, PetscReal x0, PetscReal x1, PetscReal y0, PetscReal y1, PetscReal dx, PetscInt rows, PetscBool left, PetscBool right);
-/* A lattice of one kind filling the box b = x0,y0,x1,y1 at spacing dx (its extent rounded to whole
- * particles), the first particle at (x0 + dx/2, y0 + dx/2); rho0 sets the mass. */
-PetscErrorCode SceneAddBox(Sim sim, ParticleKind kind, const PetscReal b[4], PetscReal dx, PetscReal rho0);
-/* An obstacle of wall particles filling the box b = x0,y0,x1,y1 on a lattice of spacing dx: the
- * particles within dx of the faces that meet water (faces: left, bottom, right, top) are walls, the
- * others dummies. */
-PetscErrorCode SceneAddWallBox(Sim sim, const PetscReal b[4], PetscReal dx, const PetscBool faces[4]);
+/* A lattice of one kind filling the box b (its low corner, then its high corner: x0,y0,x1,y1 in 2D,
+ * x0,y0,z0,x1,y1,z1 in 3D) at spacing dx (its extent rounded to whole particles), the first
+ * particle at the low corner + dx/2; rho0 sets the mass. */
+PetscErrorCode SceneAddBox(Sim sim, ParticleKind kind, const PetscReal b[], PetscReal dx, PetscReal rho0);
+/* An obstacle of wall particles filling the box b (as SceneAddBox) on a lattice of spacing dx: the
+ * particles within dx of the faces that meet water are walls, the others dummies; faces: the low
+ * faces, then the high faces (2D: left, bottom, right, top; 3D: x-, y-, z-, x+, y+, z+). */
+PetscErrorCode SceneAddWallBox(Sim sim, const PetscReal b[], PetscReal dx, const PetscBool faces[]);
 /* Walls of `rows` layers (the layer next to the water KIND_WALL, the rest KIND_DUMMY) around the
  * water box [lo, hi] in any dimension: under its floor and beside it in every horizontal direction,
  * the sides up to `top` (the vertical is the last direction). */
@@ -74,5 +75,18 @@ PetscErrorCode SceneAddZonedWater(Sim sim, PetscReal dc, PetscReal W, PetscReal 
 /* Shepard interpolation of the fluid pressure at a point, each neighbour's value carried to the
  * point hydrostatically: p(x0) = sum (p_b + rho_b g.(x0 - x_b)) W / sum W (collective). */
 PetscErrorCode SceneProbePressure(Sim sim, const PetscReal x0[], PetscReal *p);
+/* Level gauges: the water depth under a point, as the volume of fluid per unit length (2D) or area
+ * (3D) on the vertical line through it, sum_b V_b W_col(s), with W_col(s) = int W(sqrt(s^2 + t^2)) dt
+ * the kernel integrated along the vertical and s the horizontal distance (a still layer of depth d
+ * reads d; spray above the water counts with its volume, not as the surface).  The table is of the
+ * run's kernel: initialise it after the scene's create (SimSetUp gives the kernel its dimension). */
+#define SCENE_NCOLUMN 200
+typedef struct {
+  PetscReal w[SCENE_NCOLUMN + 1]; /* h^(d-1) W_col at s / h = 2 k / SCENE_NCOLUMN */
+  PetscInt  dim;
+} SceneColumnKernel;
+void SceneColumnKernelInit(Sim sim, SceneColumnKernel *ck);
+/* Depths at n gauges; xg holds each gauge's horizontal position (x in 2D, x,y in 3D) (collective). */
+PetscErrorCode SceneWaterDepth(Sim sim, const SceneColumnKernel *ck, PetscInt n, const PetscReal *xg, PetscReal *depth);
 /* Largest fluid speed (collective). */
 PetscErrorCode SceneMaxSpeed(Sim sim, PetscReal *vmax);

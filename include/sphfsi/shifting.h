@@ -33,27 +33,34 @@ static inline void ShiftVelocity(PetscReal A, ShiftZone zone, PetscReal h, const
  * kernel-gradient correction, so that the gradient of a linear field is exact on any arrangement).
  * Accumulate pair by pair with ShiftGradAdd, then apply with ShiftCorrectVelocity. */
 typedef struct {
-  PetscReal M[3]; /* xx, xy, yy (symmetric) */
-  PetscReal G[4]; /* row-major: G[i][j] = sum V (v_b - v_a)_i (grad_a W)_j */
+  PetscReal M[6]; /* symmetric: 2D xx, xy, yy; 3D xx, xy, xz, yy, yz, zz */
+  PetscReal G[9]; /* row-major D x D: G[i][j] = sum V (v_b - v_a)_i (grad_a W)_j */
 } ShiftGrad;
 
-/* pair with volume V, F = (dW/dr) / r, d = x_a - x_b, dv = v_a - v_b */
-static inline void ShiftGradAdd(ShiftGrad *s, PetscReal V, PetscReal F, PetscReal dx, PetscReal dy, PetscReal dvx, PetscReal dvy)
+/* pair with volume V, F = (dW/dr) / r, d = x_a - x_b, dv = v_a - v_b, in D dimensions */
+static inline void ShiftGradAdd(ShiftGrad *s, PetscReal V, PetscReal F, const PetscReal d[], const PetscReal dv[], const PetscInt D)
 {
   PetscReal c = V * F;
-  s->M[0] -= c * dx * dx; s->M[1] -= c * dx * dy; s->M[2] -= c * dy * dy;
-  s->G[0] -= c * dvx * dx; s->G[1] -= c * dvx * dy; s->G[2] -= c * dvy * dx; s->G[3] -= c * dvy * dy;
+  SymOuterSubtract(s->M, c, d, D);
+  for (PetscInt i = 0; i < D; i++)
+    for (PetscInt j = 0; j < D; j++) s->G[D * i + j] -= c * dv[i] * d[j];
 }
 
 /* v += dr . grad v for the shift dr = dt * (shift velocity); none where M cannot be inverted. */
-static inline void ShiftCorrectVelocity(const ShiftGrad *s, PetscReal drx, PetscReal dry, PetscReal v[2])
+static inline void ShiftCorrectVelocity(const ShiftGrad *s, const PetscReal dr[], PetscReal v[], const PetscInt D)
 {
-  PetscReal det = s->M[0] * s->M[2] - s->M[1] * s->M[1], ix, iy, jx, jy;
-  if (!(det > 1e-6 * (s->M[0] * s->M[0] + s->M[2] * s->M[2])) || (drx == 0 && dry == 0)) return;
-  /* w = M^-1 dr (M symmetric), then dv_i = sum_k G[i][k] w_k */
-  ix = (s->M[2] * drx - s->M[1] * dry) / det;
-  iy = (-s->M[1] * drx + s->M[0] * dry) / det;
-  jx = s->G[0] * ix + s->G[1] * iy;
-  jy = s->G[2] * ix + s->G[3] * iy;
-  v[0] += jx; v[1] += jy;
+  PetscReal w[3];
+  if (dr[0] == 0 && dr[1] == 0 && (D == 2 || dr[2] == 0)) return;
+  if (D == 2) {
+    PetscReal det = s->M[0] * s->M[2] - s->M[1] * s->M[1];
+    if (!(det > 1e-6 * (s->M[0] * s->M[0] + s->M[2] * s->M[2]))) return;
+    /* w = M^-1 dr (M symmetric), then dv_i = sum_k G[i][k] w_k */
+    w[0] = (s->M[2] * dr[0] - s->M[1] * dr[1]) / det;
+    w[1] = (-s->M[1] * dr[0] + s->M[0] * dr[1]) / det;
+    v[0] += s->G[0] * w[0] + s->G[1] * w[1];
+    v[1] += s->G[2] * w[0] + s->G[3] * w[1];
+  } else {
+    if (!SymSolveConditioned(s->M, dr, 0, w, 3)) return;
+    for (PetscInt i = 0; i < 3; i++) v[i] += s->G[3 * i] * w[0] + s->G[3 * i + 1] * w[1] + s->G[3 * i + 2] * w[2];
+  }
 }

@@ -22,7 +22,7 @@ typedef struct _p_ISPH *ISPH;
 typedef struct _p_Solid *Solid;
 typedef struct _p_Guard *Guard;     /* guard.h */
 typedef struct _n_Series Series;    /* refdata.h */
-#define SIM_MAX_KEEP 8              /* scene histories and scalars a checkpoint carries (SceneKeep*) */
+#define SIM_MAX_KEEP 16             /* scene histories and scalars a checkpoint carries (SceneKeep*) */
 
 struct _p_Sim {
   MPI_Comm    comm;

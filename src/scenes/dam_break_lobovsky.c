@@ -1,9 +1,7 @@
 /* Dam break of Lobovsky et al. (2014), H = 0.3 m: a water column 0.6 m long and 0.3 m high at the
  * upstream end of a tank 1.61 m long, with the experiment's probes.
- *   Level gauges H1..H4 at x = 0.300, 0.865, 1.114, 1.3625 m: the water depth under the gauge, as
- *   the volume of fluid per unit length crossing the vertical line there, sum_b V_b W_line(x_g - x_b),
- *   with W_line(s) = int W(sqrt(s^2 + t^2)) dt the kernel integrated along the line (a still layer of
- *   depth d reads d; spray above the water counts with its volume, not as the surface).
+ *   Level gauges H1..H4 at x = 0.300, 0.865, 1.114, 1.3625 m: the water depth under the gauge
+ *   (SceneWaterDepth: the fluid's volume on the vertical line there).
  *   Pressure sensors P1..P4 on the downstream wall (x = 1.61 m) at y = 3, 15, 30, 80 mm: the fluid
  *   pressure interpolated onto the wall face (SceneProbePressure's Shepard form) and averaged over the
  *   sensor's face, -sensor_size tall (5 points), as a transducer integrates over its membrane.
@@ -17,7 +15,6 @@
 #define NGAUGE  4
 #define NSENSOR 4
 #define NFACE   5   /* points over a sensor's face */
-#define NLINE   200 /* table of the line-integrated kernel over s / h in [0, 2] */
 
 static const PetscReal GaugeX[NGAUGE] = {0.300, 0.865, 1.114, 1.3625};
 static const PetscReal SensorY[NSENSOR] = {0.003, 0.015, 0.030, 0.080};
@@ -27,7 +24,7 @@ static const char *const SensorCols[NSENSOR] = {"s1_y0.003m", "s2_y0.015m", "s3_
 typedef struct {
   PetscReal L, H, Lt, top, sensor;
   PetscInt  rows;
-  PetscReal wline[NLINE + 1]; /* h W_line(s, h) at s / h = 2 k / NLINE */
+  SceneColumnKernel col; /* the level gauges' kernel */
   Series    level[NGAUGE], pres[NSENSOR];
 } Lobovsky;
 
@@ -53,16 +50,6 @@ static PetscErrorCode Create(Sim sim)
   PetscCheck(sim->dx <= c->H / 10, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dx %g leaves fewer than 10 particles over the column height %g: choose a smaller -dx", (double)sim->dx, (double)c->H);
   sim->v_ref     = PetscSqrtReal(2 * 9.81 * c->H);
   SceneTankDomain(sim, c->Lt, c->top, c->rows);
-  /* the kernel integrated along a line at distance s = S h: h W_line = int W(sqrt(S^2 + T^2), 1) dT */
-  for (PetscInt k = 0; k <= NLINE; k++) {
-    PetscReal S = 2.0 * k / NLINE, T = PetscSqrtReal(PetscMax(4.0 - S * S, 0.0)), s = 0;
-    const PetscInt nq = 400;
-    for (PetscInt q = 0; q < nq; q++) {
-      PetscReal t = -T + (q + 0.5) * 2 * T / nq;
-      s += KernelW(&sim->kernel, PetscSqrtReal(S * S + t * t), 1.0) * 2 * T / nq;
-    }
-    c->wline[k] = s;
-  }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -70,32 +57,18 @@ static PetscErrorCode Populate(Sim sim)
 {
   Lobovsky *c = (Lobovsky *)sim->scene_ctx;
   PetscFunctionBeginUser;
+  SceneColumnKernelInit(sim, &c->col);
   PetscCall(SceneAddDamBreak(sim, c->L, c->H, c->Lt, c->top, c->rows));
   PetscFunctionReturn(PETSC_SUCCESS);
-}
-
-/* W_line(s, h) from the table (linear in s / h) */
-static inline PetscReal LineKernel(const Lobovsky *c, PetscReal s, PetscReal h)
-{
-  PetscReal S = PetscAbsReal(s) / h * (NLINE / 2.0);
-  PetscInt  k = (PetscInt)S;
-  if (k >= NLINE) return 0;
-  return ((1 - (S - k)) * c->wline[k] + (S - k) * c->wline[k + 1]) / h;
 }
 
 /* H1..H4 (m), then P1..P4 (Pa) */
 static PetscErrorCode Probe(Sim sim, PetscReal *vals)
 {
-  Lobovsky        *c = (Lobovsky *)sim->scene_ctx;
-  Particles        P = sim->P;
-  const PetscReal *x = PField(P, FIELD_X), *m = PField(P, FIELD_M), *rho = PField(P, FIELD_RHO), *h = PField(P, FIELD_H);
-  PetscReal        lev[NGAUGE] = {0, 0, 0, 0};
+  Lobovsky *c = (Lobovsky *)sim->scene_ctx;
+  PetscReal lev[NGAUGE];
   PetscFunctionBeginUser;
-  for (PetscInt a = 0; a < P->n; a++) {
-    if (!KindIsFluid(P->kind[a])) continue;
-    for (PetscInt g = 0; g < NGAUGE; g++) lev[g] += m[a] / rho[a] * LineKernel(c, GaugeX[g] - x[2 * a], h[a]);
-  }
-  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, lev, NGAUGE, MPIU_REAL, MPI_SUM, sim->comm));
+  PetscCall(SceneWaterDepth(sim, &c->col, NGAUGE, GaugeX, lev));
   for (PetscInt g = 0; g < NGAUGE; g++) {
     vals[g] = lev[g];
     PetscCall(SeriesAppend(&c->level[g], sim->t, lev[g]));

@@ -1,0 +1,44 @@
+#!/usr/bin/env python3
+"""SPHERIC Test 2 (3D dam break onto a box): pressures P1, P3, P5, P7 on the box and water levels
+H1..H4 of spheric_test2 runs against Kleefsman et al. (2005).
+Usage: tools/plot_spheric.py PNG LABEL=OUTDIR [LABEL=OUTDIR ...]"""
+import csv, os, sys
+import numpy as np
+import matplotlib
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt
+
+ref_dir = os.environ.get("SPHFSI_REFDATA", "../shared/refdata")
+
+
+def load_ref(name):
+    """columns of a refdata CSV (comment lines start with #) as a dict of arrays"""
+    lines = [l for l in open(os.path.join(ref_dir, name)) if not l.startswith("#")]
+    cols = lines[0].strip().split(",")
+    data = np.array([[float(v) for v in l.strip().split(",")] for l in lines[1:] if l.strip()])
+    return {c: data[:, k] for k, c in enumerate(cols)}
+
+
+if len(sys.argv) < 3:
+    sys.exit(__doc__)
+png, runs = sys.argv[1], [a.split("=", 1) for a in sys.argv[2:]]
+ref = load_ref("spheric_test2_kleefsman2005_3D_pressure_waterlevel.csv")
+sims = [(label, list(csv.DictReader(open(os.path.join(out, "probes.csv"))))) for label, out in runs]
+fig, axes = plt.subplots(4, 2, figsize=(12, 11), sharex=True)
+for k, (pname, hname) in enumerate(zip(["P1", "P3", "P5", "P7"], ["H1", "H2", "H3", "H4"])):
+    axp, axh = axes[k]
+    axp.plot(ref["time_s"], ref[pname + "_Pa"] / 1000, color="0.6", lw=0.6, label="experiment")
+    axh.plot(ref["time_s"], ref[hname + "_m"], "k.", ms=1.5, label="experiment")
+    for label, rows in sims:
+        t = np.array([float(r["t"]) for r in rows])
+        axp.plot(t, np.array([float(r[pname]) for r in rows]) / 1000, lw=0.8, label=label)
+        axh.plot(t, np.array([float(r[hname]) for r in rows]), lw=1, label=label)
+    axp.set_ylabel(f"{pname} (kPa)"); axh.set_ylabel(f"{hname} (m)")
+    axp.set_ylim(-2, 12)
+    for ax in (axp, axh):
+        ax.grid(alpha=0.3); ax.set_xlim(0, 6)
+axes[0, 0].legend(fontsize=8); axes[0, 1].legend(fontsize=8)
+axes[3, 0].set_xlabel("t (s)"); axes[3, 1].set_xlabel("t (s)")
+fig.suptitle("SPHERIC Test 2 (Kleefsman et al. 2005): pressures on the box and water levels")
+fig.savefig(png, dpi=100, bbox_inches="tight")
+print(f"wrote {png}")

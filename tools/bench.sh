@@ -19,13 +19,16 @@
 # Writes out/bench/bench.md (goals, measured, ratio to the anchors), out/bench/scaling_model.md/png.
 # Environment: MPIEXEC, MPIEXEC_FLAGS, BINDIR (bin), BENCH_TIMEOUT (s per run, 1800),
 #   BENCH_QUICK=1 (smaller sizes and times: a check of the script, not numbers to quote),
-#   BENCH_ONLY (space-separated subset of: throughput t05 plate scaling model).
+#   BENCH_ONLY (space-separated subset of: throughput t05 plate scaling model 3d).
+#   6. (3d) the three-dimensional benchmarks of tools/bench3d.sh: SPHERIC Test 2 throughput, CG
+#      iterations and memory of the 3D pressure equation up to 1.1 M particles, the 3D cell graph's
+#      partition; out/bench/bench3d.md
 cd "$(dirname "$0")/.."
 MPI="${MPIEXEC:-mpiexec} ${MPIEXEC_FLAGS:-}"
 BIN=${BINDIR:-bin}
 OUT=out/bench; mkdir -p $OUT
 TMO=${BENCH_TIMEOUT:-1800}
-ONLY=${BENCH_ONLY:-throughput t05 plate scaling model}
+ONLY=${BENCH_ONLY:-throughput t05 plate scaling model 3d}
 A=0.05715
 div() { python3 -c "print(f'{$A/$1:.7g}')"; }
 if [ -n "${BENCH_QUICK:-}" ]; then
@@ -102,6 +105,9 @@ PY
     timeout $TMO $BIN/partition_model -options_file cases/$1.opts -dx $2 -nparts_max $NPMAX "${@:4}" > $OUT/partition_$3.csv 2> $OUT/partition_$3.log || { echo "partition_model $3 failed: $OUT/partition_$3.log" >&2; FAILS="$FAILS partition_$3"; }
   done
   echo "$SC" > $OUT/solid_cost.txt
+fi
+if has 3d; then
+  BINDIR=$BIN bash tools/bench3d.sh || FAILS="$FAILS 3d"
 fi
 echo "bench: $((SECONDS - T0)) s" | tee -a $OUT/runs.txt >&2
 python3 tools/scaling_model.py $OUT || { echo "scaling model failed" >&2; FAILS="$FAILS scaling_model"; }

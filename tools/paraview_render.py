@@ -2,7 +2,9 @@
 grey, one PNG per time.  Run through tools/paraview_render.sh (it supplies a virtual display when
 there is none):
 
-  tools/paraview_render.sh OUTDIR PNGBASE [t1 t2 ...] [--field p|rho|v] [--size 1200x600]
+  tools/paraview_render.sh OUTDIR PNGBASE [t1 t2 ...] [--field p|rho|v] [--size 1200x600] [--3d]
+
+--3d: an oblique perspective view, the walls faint (a 3D run's XYZ geometry).
 
 Reads OUTDIR/particles.xmf (every snapshot) as ParaView's Xdmf reader does; writes PNGBASE_t<t>.png
 for the snapshot nearest each time (default: the last one)."""
@@ -12,7 +14,8 @@ from paraview.simple import (ColorBy, GetActiveViewOrCreate, GetColorTransferFun
                              ResetCamera, SaveScreenshot, Show, Threshold, XDMFReader)
 
 args = sys.argv[1:]
-field, size = "p", (1200, 600)
+field, size, three_d = "p", (1200, 600), "--3d" in args
+args = [a for a in args if a != "--3d"]
 if "--field" in args:
     i = args.index("--field"); field = args[i + 1]; del args[i:i + 2]
 if "--size" in args:
@@ -44,6 +47,8 @@ shown_walls = Show(walls, view)
 shown_walls.SetRepresentationType("Points")
 ColorBy(shown_walls, None)
 shown_walls.AmbientColor = shown_walls.DiffuseColor = [0.5, 0.5, 0.5]
+if three_d:
+    shown_walls.Opacity = 0.15
 shown_water = Show(water, view)
 shown_water.SetRepresentationType("Points")
 shown_water.PointSize = 2
@@ -58,9 +63,19 @@ for t in times or [steps[-1]]:
     near = min(steps, key=lambda s: abs(s - t))
     view.ViewTime = near
     reader.UpdatePipeline(near)
+    water.UpdatePipeline(near)  # the colour range of this time's water, not the first time's
     shown_water.RescaleTransferFunctionToDataRange(False, True)
-    ResetCamera(view)
-    view.CameraParallelProjection = 1
+    if three_d:  # from the front left, above: x along the tank, z up
+        b = reader.GetDataInformation().GetBounds()
+        c = [(b[0] + b[1]) / 2, (b[2] + b[3]) / 2, (b[4] + b[5]) / 2]
+        span = max(b[1] - b[0], b[3] - b[2], b[5] - b[4])
+        view.CameraFocalPoint = c
+        view.CameraPosition = [c[0] - 0.25 * span, c[1] - 0.9 * span, c[2] + 0.6 * span]
+        view.CameraViewUp = [0, 0, 1]
+        ResetCamera(view)
+    else:
+        ResetCamera(view)
+        view.CameraParallelProjection = 1
     Render(view)
     png = f"{base}_t{near:.3f}.png"
     SaveScreenshot(png, view, ImageResolution=list(size))

@@ -28,7 +28,8 @@ fig, axes = plt.subplots(4, 2, figsize=(12, 11), sharex=True)
 for k, (pname, hname) in enumerate(zip(["P1", "P3", "P5", "P7"], ["H1", "H2", "H3", "H4"])):
     axp, axh = axes[k]
     axp.plot(ref["time_s"], ref[pname + "_Pa"] / 1000, color="0.6", lw=0.6, label="experiment")
-    axh.plot(ref["time_s"], ref[hname + "_m"], "k.", ms=1.5, label="experiment")
+    # the reference's H1 and H3 columns are swapped against the gauges' positions (src/scenes/spheric_test2.c)
+    axh.plot(ref["time_s"], ref[{"H1": "H3", "H3": "H1"}.get(hname, hname) + "_m"], "k.", ms=1.5, label="experiment")
     for label, rows in sims:
         t = np.array([float(r["t"]) for r in rows])
         axp.plot(t, np.array([float(r[pname]) for r in rows]) / 1000, lw=0.8, label=label)

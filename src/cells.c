@@ -1,5 +1,6 @@
 #include <sphfsi/cells.h>
 #include <sphfsi/kernel.h>
+#include <sphfsi/dim.h>
 #include <math.h>
 
 PetscErrorCode CellsCreate(const Grid *g, const SPHKernel *K, Cells *c)
@@ -34,6 +35,26 @@ PetscErrorCode CellsDestroy(Cells *c)
 /* Local cell of cell coordinates (i, j, k) (k = 0 in 2D) */
 static inline PetscInt LocalCell(Cells c, PetscInt i, PetscInt j, PetscInt k) { return ((k - c->lo[2]) * c->n[1] + (j - c->lo[1])) * c->n[0] + (i - c->lo[0]); }
 
+/* The range of cell coordinates of n particles (D a constant: the loops unroll) */
+SPH_INLINE void CellRange(const Grid *g, const PetscReal *x, PetscInt n, PetscInt imin[], PetscInt imax[], const PetscInt D)
+{
+  for (PetscInt a = 0; a < n; a++)
+    for (PetscInt d = 0; d < D; d++) {
+      PetscInt k = GridCoord(g, x[D * a + d], d);
+      imin[d] = PetscMin(imin[d], k); imax[d] = PetscMax(imax[d], k);
+    }
+}
+
+/* Each particle's local cell, and the counts per cell in start[cell + 1] */
+SPH_INLINE void BinParticles(Cells c, const PetscReal *x, PetscInt n, const PetscInt D)
+{
+  const Grid *g = c->grid;
+  for (PetscInt a = 0; a < n; a++) {
+    c->cell[a] = LocalCell(c, GridCoord(g, x[D * a], 0), GridCoord(g, x[D * a + 1], 1), D == 3 ? GridCoord(g, x[D * a + 2], 2) : 0);
+    c->start[c->cell[a] + 1]++;
+  }
+}
+
 PetscErrorCode CellsBuild(Cells c, Particles P)
 {
   const Grid      *g = c->grid;
@@ -48,11 +69,7 @@ PetscErrorCode CellsBuild(Cells c, Particles P)
     PetscCall(PetscMalloc2(c->cap_part, &c->list, c->cap_part, &c->cell));
   }
   if (D == 3) { imin[2] = PETSC_MAX_INT; imax[2] = PETSC_MIN_INT; }
-  for (PetscInt a = 0; a < ntot; a++)
-    for (PetscInt d = 0; d < D; d++) {
-      PetscInt k = GridCoord(g, x[D * a + d], d);
-      imin[d] = PetscMin(imin[d], k); imax[d] = PetscMax(imax[d], k);
-    }
+  SPH_DIM_DISPATCH(D, CellRange, g, x, ntot, imin, imax);
   if (!ntot)
     for (PetscInt d = 0; d < 3; d++) imin[d] = imax[d] = 0;
   for (PetscInt d = 0; d < 3; d++) { c->lo[d] = imin[d]; c->n[d] = imax[d] - imin[d] + 1; }
@@ -64,10 +81,7 @@ PetscErrorCode CellsBuild(Cells c, Particles P)
   }
   /* counting sort by cell */
   PetscCall(PetscArrayzero(c->start, nc + 1));
-  for (PetscInt a = 0; a < ntot; a++) {
-    c->cell[a] = LocalCell(c, GridCoord(g, x[D * a], 0), GridCoord(g, x[D * a + 1], 1), D == 3 ? GridCoord(g, x[D * a + 2], 2) : 0);
-    c->start[c->cell[a] + 1]++;
-  }
+  SPH_DIM_DISPATCH(D, BinParticles, c, x, ntot);
   for (PetscInt k = 0; k < nc; k++) c->start[k + 1] += c->start[k];
   {
     PetscInt *fill;
@@ -160,7 +174,7 @@ static PetscErrorCode ReserveNeighbours(Cells out, PetscInt cnt, PetscInt more)
 
 /* |x_a - x_b|^2 in D dimensions (D a constant where it is called, so that it unrolls); in 2D the
  * compiler's contraction of dx dx + dy dy from before, bit for bit. */
-static inline PetscReal PairDistance2(const PetscReal *restrict x, const PetscReal xa[], PetscInt b, const PetscInt D)
+SPH_INLINE PetscReal PairDistance2(const PetscReal *restrict x, const PetscReal xa[], PetscInt b, const PetscInt D)
 {
   PetscReal dx = xa[0] - x[D * b], dy = xa[1] - x[D * b + 1], r2 = fma(dy, dy, dx * dx);
   if (D == 3) {
@@ -175,7 +189,7 @@ static inline PetscReal PairDistance2(const PetscReal *restrict x, const PetscRe
  * candidate is stored and kept if it is a pair: in a splashing flow one candidate in three is a
  * pair, in no order a branch predictor learns, and this runs twice as fast as a test per
  * candidate (7 % slower on the initial lattice, where the test is predictable). */
-static inline PetscInt UniformCandidates(const PetscInt *restrict list, PetscInt s0, PetscInt s1, const PetscReal *restrict x, PetscInt a, const PetscReal xa[], PetscReal rc2, PetscInt *restrict nbr, PetscReal *restrict w, PetscInt cnt, const PetscInt D)
+SPH_INLINE PetscInt UniformCandidates(const PetscInt *restrict list, PetscInt s0, PetscInt s1, const PetscReal *restrict x, PetscInt a, const PetscReal xa[], PetscReal rc2, PetscInt *restrict nbr, PetscReal *restrict w, PetscInt cnt, const PetscInt D)
 {
   PetscInt  *nb = nbr + cnt; /* pointers advanced by the test: no index to widen in the loop's chain */
   PetscReal *wb = w + cnt;
@@ -196,12 +210,12 @@ static inline PetscInt UniformCandidates(const PetscInt *restrict list, PetscInt
  * Pairs of equal h (the usual case) use the cut-off and kernel normalisation of particle a.
  * The three cells of a stencil row are consecutive in the binning, so each row (3 in 2D, 9 in 3D)
  * is one range of candidates, visited in the order of the cells and, within a cell, of the ids. */
-static PetscErrorCode NeighbourPass(Cells bins, Particles P, PetscBool (*keep)(PetscInt), PetscReal skin, Cells out)
+SPH_INLINE PetscErrorCode NeighbourPassD(Cells bins, Particles P, PetscBool (*keep)(PetscInt), PetscReal skin, Cells out, const PetscInt D)
 {
   Cells            c = bins;
   const PetscReal *x = PField(P, FIELD_X), *h = PField(P, FIELD_H);
   const PetscInt  *list = c->list, *cstart = c->start;
-  PetscInt         n = P->n, ntot = P->n + P->ng, cnt = 0, D = P->dim;
+  PetscInt         n = P->n, ntot = P->n + P->ng, cnt = 0;
   PetscBool        uniform = PETSC_TRUE; /* one smoothing length for owned and ghosts: no h per candidate */
   const SPHKernel *K = out->kernel;
 
@@ -218,7 +232,7 @@ static PetscErrorCode NeighbourPass(Cells bins, Particles P, PetscBool (*keep)(P
   for (PetscInt a = 1; a < ntot && uniform; a++) uniform = (PetscBool)(h[a] == h[0]);
   out->max_nbr = 0;
   for (PetscInt a = 0; a < n; a++) {
-    PetscInt  ca = c->cell[a], ia = ca % c->n[0], ja = (ca / c->n[0]) % c->n[1], ka = ca / (c->n[0] * c->n[1]), r0[9], r1[9], nrow = 0, ncand = 0;
+    PetscInt  ca = c->cell[a], ia = ca % c->n[0], ja = ca / c->n[0], ka = 0, r0[9], r1[9], nrow = 0, ncand = 0;
     PetscReal xa[3] = {x[D * a], x[D * a + 1], D == 3 ? x[D * a + 2] : 0}, ha = h[a], rca = 2.0 * ha + skin, rc2a = rca * rca;
     PetscReal swa = KernelSigma(K, ha), sfa = swa / (ha * ha), iha = 1.0 / ha;
     PetscBool mixed = PETSC_FALSE; /* a pair of another h: its kernel values are already in place */
@@ -226,7 +240,8 @@ static PetscErrorCode NeighbourPass(Cells bins, Particles P, PetscBool (*keep)(P
     PetscReal *w, *f;
     out->nstart[a] = cnt;
     if (keep && !keep(P->kind[a])) continue;
-    for (PetscInt dk = -1; dk <= 1; dk++) {
+    if (D == 3) { ka = ja / c->n[1]; ja = ja % c->n[1]; } /* (2D: one layer, no division) */
+    for (PetscInt dk = D == 3 ? -1 : 0; dk <= (D == 3 ? 1 : 0); dk++) {
       PetscInt k = ka + dk;
       if (k < 0 || k >= c->n[2]) continue;
       for (PetscInt dj = -1; dj <= 1; dj++) {
@@ -242,12 +257,12 @@ static PetscErrorCode NeighbourPass(Cells bins, Particles P, PetscBool (*keep)(P
     nbr = out->nbr; w = out->w; f = out->f;
     for (PetscInt r = 0; r < nrow; r++) {
       if (uniform) {
-        cnt = D == 3 ? UniformCandidates(list, r0[r], r1[r], x, a, xa, rc2a, nbr, w, cnt, 3) : UniformCandidates(list, r0[r], r1[r], x, a, xa, rc2a, nbr, w, cnt, 2);
+        cnt = UniformCandidates(list, r0[r], r1[r], x, a, xa, rc2a, nbr, w, cnt, D);
         continue;
       }
       for (PetscInt s = r0[r]; s < r1[r]; s++) {
         PetscInt  b = list[s];
-        PetscReal r2 = D == 3 ? PairDistance2(x, xa, b, 3) : PairDistance2(x, xa, b, 2);
+        PetscReal r2 = PairDistance2(x, xa, b, D);
         if (h[b] == ha) {
           if (b == a || !(r2 < rc2a)) continue;
           w[cnt] = r2;
@@ -271,6 +286,8 @@ static PetscErrorCode NeighbourPass(Cells bins, Particles P, PetscBool (*keep)(P
   out->npart     = n;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
+
+static PetscErrorCode NeighbourPass(Cells bins, Particles P, PetscBool (*keep)(PetscInt), PetscReal skin, Cells out) { return SPH_DIM_DISPATCH(P->dim, NeighbourPassD, bins, P, keep, skin, out); }
 
 PetscErrorCode CellsBuildNeighbours(Cells c, Particles P)
 {

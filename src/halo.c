@@ -1,5 +1,6 @@
 #include <sphfsi/halo.h>
 #include <sphfsi/exchange.h>
+#include <sphfsi/dim.h>
 
 PetscErrorCode HaloCreate(MPI_Comm comm, Halo *h)
 {
@@ -43,10 +44,64 @@ static inline void ShiftOf(const Grid *g, PetscInt code, PetscReal s[3])
   for (PetscInt d = 0; d < 3; d++) s[d] = ShiftComponent(code, d) * (g->hi[d] - g->lo[d]);
 }
 
+/* The (particle, rank, periodic image) triples of the owned particles whose cells neighbour a cell of
+ * another rank (or an image), in D dimensions (a constant: the loops unroll); counts per rank in scnt. */
+typedef struct {
+  PetscInt *pa, *pr, *pc, n, cap;
+} HaloPairs;
+
+SPH_INLINE PetscErrorCode CollectPairsD(const Grid *g, const Decomp d, const PetscReal *x, PetscInt n, HaloPairs *hp, PetscMPIInt *scnt, const PetscInt D)
+{
+  const PetscMPIInt rank = d->rank;
+  PetscInt         *pa = hp->pa, *pr = hp->pr, *pc = hp->pc, np = hp->n, cap = hp->cap; /* locals: no reload after each store */
+  PetscFunctionBeginUser;
+  for (PetscInt a = 0; a < n; a++) {
+    const PetscInt first = np;
+    PetscInt       cc[3][3], sh[3][3], nc[3] = {1, 1, 1}; /* per direction: the neighbouring cell coordinates in reach and their periodic shifts */
+    cc[2][0] = 0; sh[2][0] = 0;
+    for (PetscInt d = 0; d < D; d++) {
+      PetscInt c = GridCoord(g, x[D * a + d], d);
+      nc[d]      = 0;
+      for (PetscInt o = -1; o <= 1; o++) {
+        PetscInt q = c + o, s = 0;
+        if (g->periodic[d]) {
+          if (q < 0) { q += g->n[d]; s = 1; }
+          else if (q >= g->n[d]) { q -= g->n[d]; s = -1; }
+        }
+        if (q < 0 || q >= g->n[d]) continue;
+        cc[d][nc[d]] = q; sh[d][nc[d]] = s; nc[d]++;
+      }
+    }
+    for (PetscInt kk = 0; kk < nc[2]; kk++)
+      for (PetscInt jj = 0; jj < nc[1]; jj++)
+        for (PetscInt ii = 0; ii < nc[0]; ii++) {
+          PetscInt    code = ShiftCode(sh[0][ii], sh[1][jj], sh[2][kk]);
+          PetscMPIInt r    = d->owner[GridIndex(g, cc[0][ii], cc[1][jj], cc[2][kk])];
+          PetscBool   dup  = PETSC_FALSE;
+          if (r == rank && code == HALO_NO_SHIFT) continue;
+          for (PetscInt k = first; k < np; k++)
+            if (pr[k] == r && pc[k] == code) dup = PETSC_TRUE;
+          if (dup) continue;
+          if (np == cap) {
+            PetscInt *na, *nr, *ncp;
+            cap *= 2;
+            PetscCall(PetscMalloc3(cap, &na, cap, &nr, cap, &ncp));
+            PetscCall(PetscArraycpy(na, pa, np)); PetscCall(PetscArraycpy(nr, pr, np)); PetscCall(PetscArraycpy(ncp, pc, np));
+            PetscCall(PetscFree3(pa, pr, pc));
+            pa = na; pr = nr; pc = ncp;
+          }
+          pa[np] = a; pr[np] = r; pc[np] = code; np++;
+          scnt[r]++;
+        }
+  }
+  hp->pa = pa; hp->pr = pr; hp->pc = pc; hp->n = np; hp->cap = cap;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 PetscErrorCode HaloBuild(Halo h, Decomp d, Particles P)
 {
   const Grid  *g = d->grid;
-  PetscMPIInt  size = d->size, rank = d->rank, *scnt, *rcnt, *sdisp, *rdisp, *fill;
+  PetscMPIInt  size = d->size, *scnt, *rcnt, *sdisp, *rdisp, *fill;
   PetscInt     rs = GhostRecordSize(P), n = P->n, nsend = 0, nrecv, npair = 0, cap_pair;
   PetscInt    *pa, *pr, *pc; /* (particle, rank, shift code) to send */
   PetscReal   *sbuf, *rbuf, *x = PField(P, FIELD_X);
@@ -58,40 +113,10 @@ PetscErrorCode HaloBuild(Halo h, Decomp d, Particles P)
   for (PetscInt d = 0; d < 3; d++) h->period[d] = g->hi[d] - g->lo[d];
   PetscCall(PetscMalloc3(cap_pair, &pa, cap_pair, &pr, cap_pair, &pc));
   PetscCall(PetscCalloc4(size, &scnt, size, &rcnt, size + 1, &sdisp, size + 1, &rdisp));
-  for (PetscInt a = 0; a < n; a++) {
-    const PetscInt D = g->dim, first = npair;
-    PetscInt       c[3] = {GridCoord(g, x[D * a], 0), GridCoord(g, x[D * a + 1], 1), D == 3 ? GridCoord(g, x[D * a + 2], 2) : 0};
-    for (PetscInt dk = (D == 3 ? -1 : 0); dk <= (D == 3 ? 1 : 0); dk++)
-      for (PetscInt dj = -1; dj <= 1; dj++)
-        for (PetscInt di = -1; di <= 1; di++) {
-          PetscInt    cc[3] = {c[0] + di, c[1] + dj, c[2] + dk}, sh[3] = {0, 0, 0}, code;
-          PetscMPIInt r;
-          PetscBool   dup = PETSC_FALSE, outside = PETSC_FALSE;
-          for (PetscInt d = 0; d < 3; d++) {
-            if (g->periodic[d]) {
-              if (cc[d] < 0) { cc[d] += g->n[d]; sh[d] = 1; }
-              else if (cc[d] >= g->n[d]) { cc[d] -= g->n[d]; sh[d] = -1; }
-            }
-            if (cc[d] < 0 || cc[d] >= g->n[d]) outside = PETSC_TRUE;
-          }
-          if (outside) continue;
-          r    = d->owner[GridIndex(g, cc[0], cc[1], cc[2])];
-          code = ShiftCode(sh[0], sh[1], sh[2]);
-          if (r == rank && code == HALO_NO_SHIFT) continue;
-          for (PetscInt k = first; k < npair; k++)
-            if (pr[k] == r && pc[k] == code) dup = PETSC_TRUE;
-          if (dup) continue;
-          if (npair == cap_pair) {
-            PetscInt *na, *nr, *nc;
-            cap_pair *= 2;
-            PetscCall(PetscMalloc3(cap_pair, &na, cap_pair, &nr, cap_pair, &nc));
-            PetscCall(PetscArraycpy(na, pa, npair)); PetscCall(PetscArraycpy(nr, pr, npair)); PetscCall(PetscArraycpy(nc, pc, npair));
-            PetscCall(PetscFree3(pa, pr, pc));
-            pa = na; pr = nr; pc = nc;
-          }
-          pa[npair] = a; pr[npair] = r; pc[npair] = code; npair++;
-          scnt[r]++;
-        }
+  {
+    HaloPairs hp = {pa, pr, pc, 0, cap_pair};
+    PetscCall(SPH_DIM_DISPATCH(g->dim, CollectPairsD, g, d, x, n, &hp, scnt));
+    pa = hp.pa; pr = hp.pr; pc = hp.pc; npair = hp.n;
   }
   nsend = npair;
   for (PetscMPIInt r = 0; r < size; r++) sdisp[r + 1] = sdisp[r] + scnt[r];

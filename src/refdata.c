@@ -24,6 +24,13 @@ PetscErrorCode SeriesDestroy(Series *s)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+void SeriesPeak(const Series *s, PetscReal t0, PetscReal t1, PetscReal *v, PetscReal *t)
+{
+  *v = -PETSC_MAX_REAL; *t = 0;
+  for (PetscInt k = 0; k < s->n; k++)
+    if (s->t[k] >= t0 && s->t[k] <= t1 && s->y[k] > *v) { *v = s->y[k]; *t = s->t[k]; }
+}
+
 PetscReal SeriesAt(const Series *s, PetscReal t)
 {
   PetscInt lo = 0, hi = s->n - 1;

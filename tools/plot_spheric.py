@@ -8,16 +8,8 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt
 
-ref_dir = os.environ.get("SPHFSI_REFDATA", "../shared/refdata")
-
-
-def load_ref(name):
-    """columns of a refdata CSV (comment lines start with #) as a dict of arrays"""
-    lines = [l for l in open(os.path.join(ref_dir, name)) if not l.startswith("#")]
-    cols = lines[0].strip().split(",")
-    data = np.array([[float(v) for v in l.strip().split(",")] for l in lines[1:] if l.strip()])
-    return {c: data[:, k] for k, c in enumerate(cols)}
-
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from refdata_csv import load_ref  # noqa: E402
 
 if len(sys.argv) < 3:
     sys.exit(__doc__)

@@ -13,6 +13,9 @@ PetscErrorCode SeriesDestroy(Series *s);
 /* Linear interpolation (clamped to the ends). */
 PetscReal SeriesAt(const Series *s, PetscReal t);
 
+/* The largest value of a series for t in [t0, t1] and its time (-PETSC_MAX_REAL, 0 if none). */
+void SeriesPeak(const Series *s, PetscReal t0, PetscReal t1, PetscReal *v, PetscReal *t);
+
 /* Load columns xcol, ycol of FILE in the reference directory (-refdata_dir, $SPHFSI_REFDATA, or
  * ../shared/refdata). On rank 0 only; *found says whether the file was there. */
 PetscErrorCode RefDataLoad(Sim sim, const char *file, const char *xcol, const char *ycol, Series *ref, PetscBool *found);

@@ -86,14 +86,6 @@ static PetscErrorCode Probe(Sim sim, PetscReal *vals)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-/* first maximum of a series over t in [t0, t1]: value and time */
-static void Peak(const Series *s, PetscReal t0, PetscReal t1, PetscReal *v, PetscReal *t)
-{
-  *v = -PETSC_MAX_REAL; *t = 0;
-  for (PetscInt k = 0; k < s->n; k++)
-    if (s->t[k] >= t0 && s->t[k] <= t1 && s->y[k] > *v) { *v = s->y[k]; *t = s->t[k]; }
-}
-
 static PetscErrorCode Errors(Sim sim, FILE *f)
 {
   Lobovsky *c = (Lobovsky *)sim->scene_ctx;
@@ -121,8 +113,8 @@ static PetscErrorCode Errors(Sim sim, FILE *f)
       /* the impact: the first peak within t sqrt(g/H) in [2, 3.5] in both (sensor 4, higher up,
        * peaks later with the run-up: over the whole window) */
       PetscReal w1 = k < 3 ? 3.5 : tend;
-      Peak(&ref, 2.0, w1, &pe, &te);
-      Peak(&c->pres[k], 2.0 * ts, w1 * ts, &ps, &tsim);
+      SeriesPeak(&ref, 2.0, w1, &pe, &te);
+      SeriesPeak(&c->pres[k], 2.0 * ts, w1 * ts, &ps, &tsim);
       PetscCall(SeriesCompare(&c->pres[k], &ref, ts, rg, 2.0, tend, PETSC_FALSE, &rms, &max, &n));
       fprintf(f, "\"P%d_peak\": %.6g, \"P%d_peak_exp\": %.6g, \"P%d_peak_rel_err\": %.6g, \"P%d_peak_t_star\": %.6g, \"P%d_peak_t_star_exp\": %.6g, \"P%d_err_rms\": %.6g, ", (int)k + 1, (double)(ps / rg), (int)k + 1, (double)pe, (int)k + 1,
               (double)((ps / rg - pe) / pe), (int)k + 1, (double)(tsim / ts), (int)k + 1, (double)te, (int)k + 1, (double)rms);

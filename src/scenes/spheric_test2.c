@@ -108,14 +108,6 @@ static PetscErrorCode Probe(Sim sim, PetscReal *vals)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-/* largest value of a series for t in [t0, t1] and its time */
-static void Peak(const Series *s, PetscReal t0, PetscReal t1, PetscReal *v, PetscReal *t)
-{
-  *v = -PETSC_MAX_REAL; *t = 0;
-  for (PetscInt k = 0; k < s->n; k++)
-    if (s->t[k] >= t0 && s->t[k] <= t1 && s->y[k] > *v) { *v = s->y[k]; *t = s->t[k]; }
-}
-
 static PetscErrorCode Errors(Sim sim, FILE *f)
 {
   Spheric2       *c    = (Spheric2 *)sim->scene_ctx;
@@ -141,8 +133,8 @@ static PetscErrorCode Errors(Sim sim, FILE *f)
     PetscInt  n;
     PetscCall(RefDataLoad(sim, file, "time_s", PCols[k], &ref, &found));
     if (found && f) {
-      Peak(&ref, 0, sim->t, &pe, &te);
-      Peak(&c->pres[k], 0, sim->t, &ps, &ts);
+      SeriesPeak(&ref, 0, sim->t, &pe, &te);
+      SeriesPeak(&c->pres[k], 0, sim->t, &ps, &ts);
       PetscCall(SeriesCompare(&c->pres[k], &ref, 1.0, 1.0, 0, sim->t, PETSC_FALSE, &rms, &max, &n)); /* in Pa */
       fprintf(f, "\"P%d_err_rms\": %.6g, \"P%d_peak\": %.6g, \"P%d_peak_exp\": %.6g, \"P%d_peak_t\": %.6g, \"P%d_peak_t_exp\": %.6g, ", (int)k + 1, (double)(rms / rg), (int)k + 1, (double)ps, (int)k + 1, (double)pe, (int)k + 1, (double)ts, (int)k + 1, (double)te);
     }

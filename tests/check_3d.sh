@@ -10,7 +10,7 @@
 # tank's at the same dx (within 0.5 % of rho g H: a verification of the 3D pressure equation,
 # whose own resolution error at H/10 is the 2D one); nothing moves faster than 5 % of sqrt(g H);
 # 1 and 2 ranks agree to the solver's round-off (1e-8, as the 2D rank test) and a restart on the
-# same ranks is exact.
+# same ranks is exact.  The run guard: a step 100 times too large ends as a fault naming a 3D point.
 # Taylor-Green in a triply periodic cube (-dim 3: the 2D vortices, uniform in z, an exact solution;
 # the case file's Wendland C2 at 2 dx, shifting and jittered start, L/25, to t = 0.1 s): periodic
 # images in all three directions and the 3D viscous and pressure operators.  The flow does not depend
@@ -49,6 +49,15 @@ timeout 300 $MPI $BIN $R3 -checkpoint_interval 0.05 -max_steps 300 -output_dir "
 timeout 300 $MPI $BIN $R3 -restart "$OUT/restart/checkpoint.h5" -output_dir "$OUT/restart" > "$OUT/restart2.log" 2>&1
 r=$(python3 tests/compare_snapshots.py "$OUT/rank2" "$OUT/restart" 0) || { echo "3d: the restarted run differs: $r"; exit 1; }
 echo "3d restart: $r"
+# the run guard in 3D: a step 100 times too large ends as a fault (exit status 4) that names a 3D point,
+# with a finite last good state of 3-component positions
+set +e
+timeout 120 $MPI $BIN -case hydrostatic -dim 3 -dx 0.02 -dt 0.01 -t_end 0.5 -progress_every 0 -output_dir "$OUT/fault" > "$OUT/fault.log" 2>&1
+rc=$?
+set -e
+[ $rc -eq 4 ] && grep -q 'left the domain .* x .* x .*at ([-0-9.e]*, [-0-9.e]*, [-0-9.e]*)' "$OUT/fault.log" || { echo "3d: the unstable run did not end as a fault naming a 3D point (exit $rc)"; exit 1; }
+python3 -c "import h5py, numpy as np, sys; f = h5py.File(sys.argv[1]); assert f['x'].shape[1] == 3 and np.isfinite(f['x'][:]).all()" "$OUT/fault/last_good.h5"
+echo "3d fault: exit 4, $(grep -o 'e.g. id .*) at ([^)]*)' "$OUT/fault.log" | head -1), last_good.h5 finite"
 # ISPH, with the BoomerAMG block for 3D (strong threshold 0.5, HMIS, ext+i, aggressive coarsening)
 I3="-options_file cases/hydrostatic.opts -fluid isph -dx 0.01 -progress_every 0 -ppe_pc_hypre_boomeramg_coarsen_type HMIS -ppe_pc_hypre_boomeramg_interp_type ext+i -ppe_pc_hypre_boomeramg_P_max 4 -ppe_pc_hypre_boomeramg_agg_nl 1 -ppe_pc_hypre_boomeramg_strong_threshold 0.5"
 timeout 300 $MPI $BIN $I3 -dim 3 -t_end 0.6 -output_interval 0.3 -output_dir "$OUT/isph3" > "$OUT/isph3.log" 2>&1

@@ -5,7 +5,7 @@
 #      each is reported: the machine's speed drifts)
 #   2. CG + BoomerAMG iterations per 3D pressure equation against its size: the same case, ISPH, 3
 #      steps from a zero initial guess (-ppe_ksp_initial_guess_nonzero 0, so the count is the
-#      solver's, not the warm start's) at dx = 0.04 .. 0.011 m (36 000 .. 1.1 M particles), 2 ranks;
+#      solver's, not the warm start's) at dx = 0.04 .. 0.009 m (36 000 .. 1.5 M particles), 2 ranks;
 #      memory per particle (maximum resident set over ranks, summed) at each size
 #   3. partition statistics of the 3D cell graph (bin/partition_model) at dx = 0.01 m (1.4 M) for
 #      2..1024 ranks
@@ -17,7 +17,7 @@ BIN=${BINDIR:-bin}
 OUT=out/bench; mkdir -p $OUT
 TMO=${BENCH_TIMEOUT:-1800}
 ONLY=${BENCH3D_ONLY:-throughput cg partition}
-SIZES=${BENCH3D_SIZES:-0.04 0.03 0.02 0.015 0.012 0.011}
+SIZES=${BENCH3D_SIZES:-0.04 0.03 0.02 0.015 0.012 0.01 0.009}
 has() { [[ " $ONLY " == *" $1 "* ]]; }
 S2="-options_file cases/spheric_test2.opts -output_interval 0 -probe_interval 0"
 FAILS=""

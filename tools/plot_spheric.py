@@ -35,3 +35,21 @@ axes[3, 0].set_xlabel("t (s)"); axes[3, 1].set_xlabel("t (s)")
 fig.suptitle("SPHERIC Test 2 (Kleefsman et al. 2005): pressures on the box and water levels")
 fig.savefig(png, dpi=100, bbox_inches="tight")
 print(f"wrote {png}")
+
+# the errors as the scene defines them (src/scenes/spheric_test2.c): at the reference's points with t
+# up to the run's end, |sim - ref| (sim interpolated linearly), rms over H = 0.55 m and rho g H
+rg, Hw = 1000 * 9.81 * 0.55, 0.55
+print("| run | H1–H4 rms / H | P1–P8 rms / ρgH | P1 peak (kPa), at t (s) | experiment |")
+print("|---|---|---|---|---|")
+for label, rows in sims:
+    t = np.array([float(r["t"]) for r in rows])
+    keep = ref["time_s"] <= t[-1]
+
+    def rms(col, refcol, scale):
+        e = np.interp(ref["time_s"][keep], t, np.array([float(r[col]) for r in rows])) - ref[refcol][keep]
+        return np.sqrt(np.mean(e * e)) / scale
+    hs = " / ".join(f"{rms(h, {'H1': 'H3', 'H3': 'H1'}.get(h, h) + '_m', Hw):.3f}" for h in ["H1", "H2", "H3", "H4"])
+    ps = " / ".join(f"{rms(p, p + '_Pa', rg):.2f}" for p in [f"P{k}" for k in range(1, 9)])
+    p1 = np.array([float(r["P1"]) for r in rows])
+    k, ke = int(np.argmax(p1)), int(np.argmax(ref["P1_Pa"][keep]))
+    print(f"| {label} | {hs} | {ps} | {p1[k] / 1000:.1f} at {t[k]:.3f} | {ref['P1_Pa'][keep][ke] / 1000:.1f} at {ref['time_s'][keep][ke]:.3f} |")

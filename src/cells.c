@@ -28,6 +28,7 @@ PetscErrorCode CellsDestroy(Cells *c)
   PetscCall(PetscFree2((*c)->list, (*c)->cell));
   PetscCall(PetscFree((*c)->nstart));
   PetscCall(PetscFree3((*c)->nbr, (*c)->w, (*c)->f));
+  PetscCall(PetscFree((*c)->wet));
   PetscCall(PetscFree(*c));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -231,11 +232,25 @@ SPH_INLINE PetscErrorCode NeighbourPassD(Cells bins, Particles P, PetscBool (*ke
   }
   for (PetscInt a = 1; a < ntot && uniform; a++) uniform = (PetscBool)(h[a] == h[0]);
   out->max_nbr = 0;
+  if (!keep) { /* the main list: a wall or dummy particle with no fluid in its cells' reach gets none (its
+                * list would hold no fluid, and only its fluid pairs are ever used: half the particles
+                * of a 3D tank are such walls) */
+    PetscInt nc = c->n[0] * c->n[1] * c->n[2];
+    if (nc > c->cap_wet) {
+      PetscCall(PetscFree(c->wet));
+      c->cap_wet = (3 * nc) / 2 + 16;
+      PetscCall(PetscMalloc1(c->cap_wet, &c->wet));
+    }
+    PetscCall(PetscArrayzero(c->wet, nc));
+    for (PetscInt a = 0; a < ntot; a++)
+      if (KindIsFluid(P->kind[a])) c->wet[c->cell[a]] = PETSC_TRUE;
+  }
   for (PetscInt a = 0; a < n; a++) {
     PetscInt  ca = c->cell[a], ia = ca % c->n[0], ja = ca / c->n[0], ka = 0, r0[9], r1[9], nrow = 0, ncand = 0;
     PetscReal xa[3] = {x[D * a], x[D * a + 1], D == 3 ? x[D * a + 2] : 0}, ha = h[a], rca = 2.0 * ha + skin, rc2a = rca * rca;
     PetscReal swa = KernelSigma(K, ha), sfa = swa / (ha * ha), iha = 1.0 / ha;
     PetscBool mixed = PETSC_FALSE; /* a pair of another h: its kernel values are already in place */
+    PetscBool dry   = (PetscBool)(!keep && KindIsWall(P->kind[a])); /* no fluid in reach, until a wet cell is seen */
     PetscInt  *nbr;
     PetscReal *w, *f;
     out->nstart[a] = cnt;
@@ -251,8 +266,10 @@ SPH_INLINE PetscErrorCode NeighbourPassD(Cells bins, Particles P, PetscBool (*ke
         r1[nrow] = cstart[row + i1 + 1];
         ncand += r1[nrow] - r0[nrow];
         nrow++;
+        for (PetscInt i = i0; i <= i1 && dry; i++) dry = (PetscBool)!c->wet[row + i];
       }
     }
+    if (dry) continue;
     PetscCall(ReserveNeighbours(out, cnt, ncand));
     nbr = out->nbr; w = out->w; f = out->f;
     for (PetscInt r = 0; r < nrow; r++) {

@@ -19,7 +19,7 @@ TMO=${BENCH_TIMEOUT:-1800}
 ONLY=${BENCH3D_ONLY:-throughput cg partition}
 SIZES=${BENCH3D_SIZES:-0.04 0.03 0.02 0.015 0.012 0.01 0.009}
 has() { [[ " $ONLY " == *" $1 "* ]]; }
-S2="-options_file cases/spheric_test2.opts -output_interval 0 -probe_interval 0"
+S2="-options_file cases/spheric_test2.opts -output_interval 0" # probes every 2 ms of physical time, as the case file
 FAILS=""
 run() { # NAME NP [sphfsi options...]
   local name=$1 np=$2; shift 2

@@ -15,6 +15,7 @@ struct _p_Cells {
   PetscInt   *nstart, *nbr, cap_nbr, cap_start, npart; /* neighbours of owned a < npart: nbr[nstart[a] .. nstart[a+1]) */
   PetscReal  *w, *f;                  /* per pair: W_ab and F_ab = (dW/dr)/r, so grad_a W_ab = F_ab (x_a - x_b) */
   PetscInt    max_nbr;
+  PetscBool  *wet; PetscInt cap_wet; /* per local cell: holds a fluid particle (the main list's walls) */
   const SPHKernel *kernel; /* the run's kernel (W, F of the pairs) */
 };
 

@@ -1,4 +1,5 @@
 #include <sphfsi/decomp.h>
+#include <sphfsi/options_used.h>
 #include <sphfsi/exchange.h>
 #include <metis.h>
 
@@ -38,10 +39,10 @@ PetscErrorCode DecompSetFromOptions(Decomp d)
   PetscInt sparse_ranks = 9; /* dense below: one round fewer (2 ranks: +6 % halo stage sparse) */
   PetscFunctionBeginUser;
   PetscOptionsBegin(d->comm, NULL, "Domain decomposition", "Decomp");
-  PetscCall(PetscOptionsReal("-rebalance_threshold", "Repartition when max/mean work per rank exceeds this (>= 1)", "", d->threshold, &d->threshold, NULL));
-  PetscCall(PetscOptionsInt("-rebalance_every", "Steps between load-imbalance checks (> 0)", "", d->check_every, &d->check_every, NULL));
-  PetscCall(PetscOptionsInt("-decomp_sparse_ranks", "From this many ranks on, migration and ghosts go to the ranks concerned only (a two-sided set-up, see -build_twosided) instead of MPI_Alltoallv, whose cost grows with the ranks", "", sparse_ranks, &sparse_ranks, NULL));
-  PetscCall(PetscOptionsBool("-decomp_split_solids", "With fluid and solids: balance the solid particles over the ranks as a second METIS constraint (the solid sub-steps are a phase of their own)", "", d->split_solids, &d->split_solids, NULL));
+  PetscCall(OptReal("-rebalance_threshold", "Repartition when max/mean work per rank exceeds this (>= 1)", "", d->threshold, &d->threshold, NULL));
+  PetscCall(OptInt("-rebalance_every", "Steps between load-imbalance checks (> 0)", "", d->check_every, &d->check_every, NULL));
+  PetscCall(OptInt("-decomp_sparse_ranks", "From this many ranks on, migration and ghosts go to the ranks concerned only (a two-sided set-up, see -build_twosided) instead of MPI_Alltoallv, whose cost grows with the ranks", "", sparse_ranks, &sparse_ranks, NULL));
+  PetscCall(OptBool("-decomp_split_solids", "With fluid and solids: balance the solid particles over the ranks as a second METIS constraint (the solid sub-steps are a phase of their own)", "", d->split_solids, &d->split_solids, NULL));
   PetscOptionsEnd();
   PetscCheck(d->threshold >= 1.0, d->comm, PETSC_ERR_ARG_OUTOFRANGE, "-rebalance_threshold %g must be >= 1", (double)d->threshold);
   PetscCheck(sparse_ranks > 0, d->comm, PETSC_ERR_ARG_OUTOFRANGE, "-decomp_sparse_ranks %" PetscInt_FMT " must be > 0", sparse_ranks);

@@ -1,4 +1,5 @@
 #include <sphfsi/guard.h>
+#include <sphfsi/options_used.h>
 #include <sphfsi/io.h>
 #include <signal.h>
 #include <stdarg.h>
@@ -62,8 +63,8 @@ PetscErrorCode GuardSetFromOptions(Sim sim)
   Guard g = sim->guard;
   PetscFunctionBeginUser;
   PetscOptionsBegin(sim->comm, NULL, "Run control: early stops and faults", "Guard");
-  PetscCall(PetscOptionsReal("-max_wall_time", "Wall seconds since start after which the run writes a checkpoint and stops (exit status 3); 0 = none", "", g->max_wall, &g->max_wall, NULL));
-  PetscCall(PetscOptionsReal("-dt_min", "Floor of the adaptive time step (s): below it the run stops as unstable (exit status 4); 0 = 1e-3 of the first step of each medium", "", g->dt_min, &g->dt_min, NULL));
+  PetscCall(OptReal("-max_wall_time", "Wall seconds since start after which the run writes a checkpoint and stops (exit status 3); 0 = none", "", g->max_wall, &g->max_wall, NULL));
+  PetscCall(OptReal("-dt_min", "Floor of the adaptive time step (s): below it the run stops as unstable (exit status 4); 0 = 1e-3 of the first step of each medium", "", g->dt_min, &g->dt_min, NULL));
   PetscOptionsEnd();
   PetscCheck(g->max_wall >= 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-max_wall_time %g must be >= 0 (seconds; 0 = no limit)", (double)g->max_wall);
   PetscCheck(g->dt_min >= 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dt_min %g must be >= 0 (0 = 1e-3 of the first step)", (double)g->dt_min);

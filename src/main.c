@@ -106,7 +106,7 @@ static PetscErrorCode CheckUnusedOptions(MPI_Comm comm, FluidScheme fluid)
   char      **names, **values, list[2048] = "";
   PetscFunctionBeginUser;
   PetscOptionsBegin(comm, NULL, "Options check", "");
-  PetscCall(PetscOptionsEList("-unused_options", "Options that this run does not read (misspelt, or of another scene or scheme): error or warn", "", modes, 2, modes[0], &mode, NULL));
+  PetscCall(OptEList("-unused_options", "Options that this run does not read (misspelt, or of another scene or scheme): error or warn", "", modes, 2, modes[0], &mode, NULL));
   PetscOptionsEnd();
   PetscCall(PetscOptionsLeftGet(NULL, &n, &names, &values));
   for (PetscInt k = 0; k < n; k++) {
@@ -163,7 +163,7 @@ int main(int argc, char **argv)
   PetscCall(PetscPopErrorHandler());
   if (!ierr) { /* OUTDIR/options_used: -options_file it to repeat the run */
     char header[256], chosen[512];
-    PetscCall(PetscSNPrintf(header, sizeof(header), "sphfsi %s (commit %s): the options of this run; -options_file this file repeats it (the defaults not listed are this version's: -help lists them)", SphfsiVersion(), SphfsiCommit()));
+    PetscCall(PetscSNPrintf(header, sizeof(header), "sphfsi %s (commit %s): the options of this run, given, chosen and defaulted; -options_file this file repeats it (PETSc's own solver options not listed keep this PETSc version's defaults)", SphfsiVersion(), SphfsiCommit()));
     /* the scene's values and -c0 (10x its speed) at full precision */
     PetscCall(PetscSNPrintf(chosen, sizeof(chosen), "-t_end %.17g\n-gravity %.17g,%.17g", (double)sim->t_end, (double)sim->g[0], (double)sim->g[1]));
     if (sim->dim == 3) PetscCall(PetscSNPrintf(chosen + strlen(chosen), sizeof(chosen) - strlen(chosen), ",%.17g", (double)sim->g[2]));

@@ -1,4 +1,5 @@
 #include <sphfsi/sim.h>
+#include <sphfsi/options_used.h>
 #include <sphfsi/scene.h>
 #include <sphfsi/wcsph.h>
 #include <sphfsi/isph.h>
@@ -88,19 +89,19 @@ PetscErrorCode SimSetFromOptions(Sim sim)
   PetscCall(SceneListNames(names, sizeof(names)));
   PetscOptionsBegin(sim->comm, NULL, "sphfsi: SPH for fluid-structure interaction", "Sim");
   PetscCall(PetscOptionsString("-case", "Scene to run", "", name, name, sizeof(name), &set));
-  PetscCall(PetscOptionsEList("-fluid", "Fluid pressure scheme", "", FluidSchemes, 2, FluidSchemes[sim->fluid], &fluid, NULL));
-  PetscCall(PetscOptionsEList("-kernel", "Smoothing kernel of every scheme and the solid: cubic (Eq. 12), wendland_c2, wendland_c4 (Dehnen & Aly 2012); support 2h", "", KernelTypes, 3, KernelTypes[ktype], &ktype, NULL));
-  PetscCall(PetscOptionsReal("-h_factor", "Smoothing length over particle spacing, h / dx (the paper: 1.3); wall rows default to cover 2h", "", hfac, &hfac, NULL));
-  PetscCall(PetscOptionsReal("-dx", "Particle spacing of the finest particles (m); default: the scene's", "", sim->dx, &sim->dx, &dx_set));
-  PetscCall(PetscOptionsReal("-t_end", "Physical end time (s); default: the scene's", "", sim->t_end, &sim->t_end, &t_set));
-  PetscCall(PetscOptionsReal("-dt", "Fixed time step (s); 0 = adaptive", "", sim->dt_fixed, &sim->dt_fixed, NULL));
-  PetscCall(PetscOptionsReal("-cfl", "Courant number of the adaptive time step", "", sim->cfl, &sim->cfl, NULL));
-  PetscCall(PetscOptionsInt("-max_steps", "Stop after this many steps", "", sim->max_steps, &sim->max_steps, NULL));
+  PetscCall(OptEList("-fluid", "Fluid pressure scheme", "", FluidSchemes, 2, FluidSchemes[sim->fluid], &fluid, NULL));
+  PetscCall(OptEList("-kernel", "Smoothing kernel of every scheme and the solid: cubic (Eq. 12), wendland_c2, wendland_c4 (Dehnen & Aly 2012); support 2h", "", KernelTypes, 3, KernelTypes[ktype], &ktype, NULL));
+  PetscCall(OptReal("-h_factor", "Smoothing length over particle spacing, h / dx (the paper: 1.3); wall rows default to cover 2h", "", hfac, &hfac, NULL));
+  PetscCall(OptReal("-dx", "Particle spacing of the finest particles (m); default: the scene's", "", sim->dx, &sim->dx, &dx_set));
+  PetscCall(OptReal("-t_end", "Physical end time (s); default: the scene's", "", sim->t_end, &sim->t_end, &t_set));
+  PetscCall(OptReal("-dt", "Fixed time step (s); 0 = adaptive", "", sim->dt_fixed, &sim->dt_fixed, NULL));
+  PetscCall(OptReal("-cfl", "Courant number of the adaptive time step", "", sim->cfl, &sim->cfl, NULL));
+  PetscCall(OptInt("-max_steps", "Stop after this many steps", "", sim->max_steps, &sim->max_steps, NULL));
   PetscCall(PetscOptionsString("-output_dir", "Output directory (default out/CASE)", "", sim->outdir, sim->outdir, sizeof(sim->outdir), NULL));
-  PetscCall(PetscOptionsReal("-output_interval", "Snapshot interval in physical time (s); 0 = none", "", sim->out_interval, &sim->out_interval, NULL));
-  PetscCall(PetscOptionsReal("-probe_interval", "probes.csv row interval in physical time (s); 0 = every step", "", sim->probe_interval, &sim->probe_interval, NULL));
-  PetscCall(PetscOptionsInt("-progress_every", "Seconds of wall time between progress lines; 0 = none", "", sim->progress_every, &sim->progress_every, NULL));
-  PetscCall(PetscOptionsReal("-checkpoint_interval", "Checkpoint interval in physical time (s), OUTDIR/checkpoint.h5, also at the end; 0 = none (a stop by signal or -max_wall_time writes one anyway)", "", sim->ckpt_interval, &sim->ckpt_interval, NULL));
+  PetscCall(OptReal("-output_interval", "Snapshot interval in physical time (s); 0 = none", "", sim->out_interval, &sim->out_interval, NULL));
+  PetscCall(OptReal("-probe_interval", "probes.csv row interval in physical time (s); 0 = every step", "", sim->probe_interval, &sim->probe_interval, NULL));
+  PetscCall(OptInt("-progress_every", "Seconds of wall time between progress lines; 0 = none", "", sim->progress_every, &sim->progress_every, NULL));
+  PetscCall(OptReal("-checkpoint_interval", "Checkpoint interval in physical time (s), OUTDIR/checkpoint.h5, also at the end; 0 = none (a stop by signal or -max_wall_time writes one anyway)", "", sim->ckpt_interval, &sim->ckpt_interval, NULL));
   PetscCall(PetscOptionsString("-restart", "Continue the run of this checkpoint (OUTDIR/checkpoint.h5 or last_good.h5), with the options it was written with", "", sim->restart, sim->restart, sizeof(sim->restart), NULL));
   PetscCall(PetscOptionsString("-refdata_dir", "Reference data for the errors in summary.json (default $SPHFSI_REFDATA, else PREFIX/share/sphfsi/refdata for an installed program, else ../shared/refdata)", "", sim->refdata_dir, sim->refdata_dir, sizeof(sim->refdata_dir), NULL));
   PetscOptionsEnd();
@@ -131,16 +132,16 @@ static PetscErrorCode FluidOptions(Sim sim)
   PetscFunctionBeginUser;
   if (sim->fl.c0 <= 0) sim->fl.c0 = 10.0 * sim->v_ref;
   PetscOptionsBegin(sim->comm, NULL, "Fluid", "Sim");
-  PetscCall(PetscOptionsReal("-rho0", "Fluid reference density (kg/m^3)", "", sim->fl.rho0, &sim->fl.rho0, NULL));
-  PetscCall(PetscOptionsReal("-mu", "Fluid dynamic viscosity (Pa s), Eq. 16", "", sim->fl.mu, &sim->fl.mu, NULL));
-  PetscCall(PetscOptionsReal("-eta", "Regularisation eta / h of the laminar viscosity (Eq. 16) and the pressure Laplacian (Eq. 22), r^2 / (r^2 + eta^2 h^2); the paper 0.1, which weakens the nearest pairs by 4 % at h = 2 dx (-lap_normalise restores the operator's lattice sum)", "", sim->fl.eta, &sim->fl.eta, NULL));
-  PetscCall(PetscOptionsBool("-lap_normalise", "Scale the laminar viscosity (Eq. 16) and the pressure Laplacian (Eq. 22) so that they are exact on the lattice for the run's kernel, h / dx and -eta (kernel.h)", "", norm, &norm, NULL));
-  PetscCall(PetscOptionsReal("-c0", "Artificial sound speed (m/s), Eq. 20; default 10x the scene's expected maximum speed", "", sim->fl.c0, &sim->fl.c0, NULL));
-  PetscCall(PetscOptionsReal("-alpha", "Artificial viscosity coefficient, Eq. 24", "", sim->fl.alpha, &sim->fl.alpha, NULL));
-  PetscCall(PetscOptionsReal("-delta", "Density diffusion coefficient (delta-SPH); 0 = off", "", sim->fl.delta, &sim->fl.delta, NULL));
-  PetscCall(PetscOptionsReal("-xsph", "XSPH epsilon, Eq. 44; 0 = off", "", sim->fl.xsph, &sim->fl.xsph, NULL));
-  PetscCall(PetscOptionsReal("-start_jitter", "Displace each particle of the fluid's start lattice at random by up to this fraction of dx in x and y (by its id: the same on any number of ranks); a perfect lattice gives way all at once where the flow squeezes it (Taylor-Green's stagnation points); 0 = the lattice", "", sim->start_jitter, &sim->start_jitter, NULL));
-  PetscCall(PetscOptionsBool("-shift_correct", "With particle shifting (-wcsph_shift, -isph_shift): correct a shifted particle's velocity to its new place, v += dr . grad v", "", sim->fl.shift_correct, &sim->fl.shift_correct, NULL));
+  PetscCall(OptReal("-rho0", "Fluid reference density (kg/m^3)", "", sim->fl.rho0, &sim->fl.rho0, NULL));
+  PetscCall(OptReal("-mu", "Fluid dynamic viscosity (Pa s), Eq. 16", "", sim->fl.mu, &sim->fl.mu, NULL));
+  PetscCall(OptReal("-eta", "Regularisation eta / h of the laminar viscosity (Eq. 16) and the pressure Laplacian (Eq. 22), r^2 / (r^2 + eta^2 h^2); the paper 0.1, which weakens the nearest pairs by 4 % at h = 2 dx (-lap_normalise restores the operator's lattice sum)", "", sim->fl.eta, &sim->fl.eta, NULL));
+  PetscCall(OptBool("-lap_normalise", "Scale the laminar viscosity (Eq. 16) and the pressure Laplacian (Eq. 22) so that they are exact on the lattice for the run's kernel, h / dx and -eta (kernel.h)", "", norm, &norm, NULL));
+  PetscCall(OptReal("-c0", "Artificial sound speed (m/s), Eq. 20; default 10x the scene's expected maximum speed", "", sim->fl.c0, &sim->fl.c0, NULL));
+  PetscCall(OptReal("-alpha", "Artificial viscosity coefficient, Eq. 24", "", sim->fl.alpha, &sim->fl.alpha, NULL));
+  PetscCall(OptReal("-delta", "Density diffusion coefficient (delta-SPH); 0 = off", "", sim->fl.delta, &sim->fl.delta, NULL));
+  PetscCall(OptReal("-xsph", "XSPH epsilon, Eq. 44; 0 = off", "", sim->fl.xsph, &sim->fl.xsph, NULL));
+  PetscCall(OptReal("-start_jitter", "Displace each particle of the fluid's start lattice at random by up to this fraction of dx in x and y (by its id: the same on any number of ranks); a perfect lattice gives way all at once where the flow squeezes it (Taylor-Green's stagnation points); 0 = the lattice", "", sim->start_jitter, &sim->start_jitter, NULL));
+  PetscCall(OptBool("-shift_correct", "With particle shifting (-wcsph_shift, -isph_shift): correct a shifted particle's velocity to its new place, v += dr . grad v", "", sim->fl.shift_correct, &sim->fl.shift_correct, NULL));
   PetscOptionsEnd();
   PetscCheck(sim->fl.rho0 > 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-rho0 %g must be > 0", (double)sim->fl.rho0);
   PetscCheck(sim->fl.mu >= 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-mu %g must be >= 0", (double)sim->fl.mu);

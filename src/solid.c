@@ -1,4 +1,5 @@
 #include <sphfsi/solid.h>
+#include <sphfsi/options_used.h>
 #include <sphfsi/solid_terms.h>
 #include <sphfsi/fluid_terms.h>
 #include <sphfsi/kernel.h>
@@ -29,31 +30,31 @@ PetscErrorCode SolidSetUp(Sim sim)
   s->quadrature = PETSC_TRUE;
   s->clamp_face = PETSC_TRUE;
   PetscOptionsBegin(sim->comm, NULL, "Elastic solid: hypo-elastic updated-Lagrangian (Eqs. 20, 23-40) or total-Lagrangian", "Solid");
-  PetscCall(PetscOptionsEList("-solid_formulation", "total (default): total-Lagrangian neo-Hookean with a second-order reference gradient (converges in bending); updated: the paper's hypo-elastic scheme (Jaumann rate, artificial stress)", "", SolidFormulations, 2, SolidFormulations[form], &form, NULL));
+  PetscCall(OptEList("-solid_formulation", "total (default): total-Lagrangian neo-Hookean with a second-order reference gradient (converges in bending); updated: the paper's hypo-elastic scheme (Jaumann rate, artificial stress)", "", SolidFormulations, 2, SolidFormulations[form], &form, NULL));
   s->formulation = (SolidFormulation)form;
-  PetscCall(PetscOptionsReal("-solid_damping", "Mass-proportional damping rate zeta (1/s): acc -= zeta v, to reach a static solution by dynamic relaxation (about twice the lowest angular frequency damps it critically); 0 = off", "", s->damping, &s->damping, NULL));
-  if (s->formulation == SOLID_TOTAL) PetscCall(PetscOptionsInt("-solid_order", "Total-Lagrangian: the reference gradient is exact for displacements of this polynomial order (1: kernel-gradient correction; 2: also exact for the bending field at a free surface or clamp)", "", s->order, &s->order, NULL));
-  if (s->formulation == SOLID_TOTAL && s->order == 2) PetscCall(PetscOptionsBool("-solid_cell_quadrature", "Total-Lagrangian, order 2: integrate each particle's cell to second order with the strain gradient of the fit (one point per particle leaves a plate n across (1 - 1/n^2) of its bending stiffness)", "", s->quadrature, &s->quadrature, NULL));
+  PetscCall(OptReal("-solid_damping", "Mass-proportional damping rate zeta (1/s): acc -= zeta v, to reach a static solution by dynamic relaxation (about twice the lowest angular frequency damps it critically); 0 = off", "", s->damping, &s->damping, NULL));
+  if (s->formulation == SOLID_TOTAL) PetscCall(OptInt("-solid_order", "Total-Lagrangian: the reference gradient is exact for displacements of this polynomial order (1: kernel-gradient correction; 2: also exact for the bending field at a free surface or clamp)", "", s->order, &s->order, NULL));
+  if (s->formulation == SOLID_TOTAL && s->order == 2) PetscCall(OptBool("-solid_cell_quadrature", "Total-Lagrangian, order 2: integrate each particle's cell to second order with the strain gradient of the fit (one point per particle leaves a plate n across (1 - 1/n^2) of its bending stiffness)", "", s->quadrature, &s->quadrature, NULL));
   if (s->order != 2) s->quadrature = PETSC_FALSE;
   if (s->order != 2) s->clamp_face = PETSC_FALSE; /* with the first-order fit the face points, dx/2 from the first column, made the root unstable (the cantilever at 5 across lost pairs at t = 0.08 s) */
-  if (s->formulation == SOLID_TOTAL && s->order == 2) PetscCall(PetscOptionsBool("-solid_clamp_face", "Total-Lagrangian, order 2: a clamp is a boundary, its particles next to the body stand for the face midway to it in the fits, and it stores no energy (off: the clamp is material held still)", "", s->clamp_face, &s->clamp_face, NULL));
-  if (s->formulation == SOLID_TOTAL) PetscCall(PetscOptionsReal("-solid_hourglass", "Total-Lagrangian: hourglass-control coefficient zeta, the energy zeta G / 2 of the bonds' deviation from the affine fit (solid_terms.h); 0 = off", "", s->hourglass, &s->hourglass, NULL));
-  PetscCall(PetscOptionsReal("-solid_rho", "Solid reference density (kg/m^3)", "", m->rho0, &m->rho0, NULL));
-  PetscCall(PetscOptionsReal("-solid_K", "Solid bulk modulus K (Pa); c0^2 = K / rho0, Eq. 20", "", m->K, &m->K, NULL));
-  PetscCall(PetscOptionsReal("-solid_G", "Solid shear modulus mu_s (Pa), Eq. 40", "", m->G, &m->G, NULL));
-  PetscCall(PetscOptionsReal("-solid_alpha", "Solid artificial viscosity coefficient, Eq. 24", "", m->alpha, &m->alpha, NULL));
-  PetscCall(PetscOptionsReal("-solid_art_stress", "Artificial stress coefficient e, Eqs. 25-31; 0 = off", "", m->eps, &m->eps, NULL));
-  PetscCall(PetscOptionsReal("-solid_art_stress_n", "Exponent n of f = W_ab / W(dx, h) in the artificial stress, Eq. 23", "", m->n, &m->n, NULL));
-  PetscCall(PetscOptionsEList("-solid_gradient", "Velocity gradient of the strain rate: standard (Eqs. 35-38) or corrected (Bonet-Lok, exact for linear fields)", "", SolidGradients, 2, SolidGradients[grad], &grad, NULL));
-  if (fluid) PetscCall(PetscOptionsBool("-solid_subcycle", "Multi-rate: sub-cycle the solid with its own step inside each fluid step (off: one step, the smaller, for both)", "", s->subcycle, &s->subcycle, NULL));
+  if (s->formulation == SOLID_TOTAL && s->order == 2) PetscCall(OptBool("-solid_clamp_face", "Total-Lagrangian, order 2: a clamp is a boundary, its particles next to the body stand for the face midway to it in the fits, and it stores no energy (off: the clamp is material held still)", "", s->clamp_face, &s->clamp_face, NULL));
+  if (s->formulation == SOLID_TOTAL) PetscCall(OptReal("-solid_hourglass", "Total-Lagrangian: hourglass-control coefficient zeta, the energy zeta G / 2 of the bonds' deviation from the affine fit (solid_terms.h); 0 = off", "", s->hourglass, &s->hourglass, NULL));
+  PetscCall(OptReal("-solid_rho", "Solid reference density (kg/m^3)", "", m->rho0, &m->rho0, NULL));
+  PetscCall(OptReal("-solid_K", "Solid bulk modulus K (Pa); c0^2 = K / rho0, Eq. 20", "", m->K, &m->K, NULL));
+  PetscCall(OptReal("-solid_G", "Solid shear modulus mu_s (Pa), Eq. 40", "", m->G, &m->G, NULL));
+  PetscCall(OptReal("-solid_alpha", "Solid artificial viscosity coefficient, Eq. 24", "", m->alpha, &m->alpha, NULL));
+  PetscCall(OptReal("-solid_art_stress", "Artificial stress coefficient e, Eqs. 25-31; 0 = off", "", m->eps, &m->eps, NULL));
+  PetscCall(OptReal("-solid_art_stress_n", "Exponent n of f = W_ab / W(dx, h) in the artificial stress, Eq. 23", "", m->n, &m->n, NULL));
+  PetscCall(OptEList("-solid_gradient", "Velocity gradient of the strain rate: standard (Eqs. 35-38) or corrected (Bonet-Lok, exact for linear fields)", "", SolidGradients, 2, SolidGradients[grad], &grad, NULL));
+  if (fluid) PetscCall(OptBool("-solid_subcycle", "Multi-rate: sub-cycle the solid with its own step inside each fluid step (off: one step, the smaller, for both)", "", s->subcycle, &s->subcycle, NULL));
   s->cfl = sim->cfl;
-  PetscCall(PetscOptionsReal("-solid_cfl", "Courant number of the solid's step, cfl h / (c0 + |v|) (default: -cfl)", "", s->cfl, &s->cfl, NULL));
-  PetscCall(PetscOptionsReal("-solid_skin", "Neighbour-list skin of the solid sub-steps, in particle spacings", "", s->skin, &s->skin, NULL));
+  PetscCall(OptReal("-solid_cfl", "Courant number of the solid's step, cfl h / (c0 + |v|) (default: -cfl)", "", s->cfl, &s->cfl, NULL));
+  PetscCall(OptReal("-solid_skin", "Neighbour-list skin of the solid sub-steps, in particle spacings", "", s->skin, &s->skin, NULL));
   s->implicit = (PetscBool)(fluid && sim->fluid == FLUID_ISPH);
-  if (fluid && sim->fluid == FLUID_ISPH) PetscCall(PetscOptionsBool("-fsi_implicit", "ISPH + solid: the solid rows of the pressure equation answer the solid's acceleration under that pressure (implicit interface; off = the solid seen as a wall at rest during the solve, unstable for light solids)", "", s->implicit, &s->implicit, NULL));
+  if (fluid && sim->fluid == FLUID_ISPH) PetscCall(OptBool("-fsi_implicit", "ISPH + solid: the solid rows of the pressure equation answer the solid's acceleration under that pressure (implicit interface; off = the solid seen as a wall at rest during the solve, unstable for light solids)", "", s->implicit, &s->implicit, NULL));
   s->transit = fluid && sim->fluid == FLUID_ISPH ? 0.85 : 0.0; /* K, G x 5 gate: 1.0 swings the load -138..360 N/m, 0.85 runs clean */
-  if (fluid && sim->fluid == FLUID_ISPH) PetscCall(PetscOptionsReal("-fsi_dt_transit", "ISPH + solid: the fluid step is at most this many times the time an elastic wave (c0 of the solid) takes to cross the solid's largest extent, since the pressure is frozen over the solid sub-steps (0 = no limit); a gate 5x stiffer than the rubber needs it", "", s->transit, &s->transit, NULL));
-  if (fluid) PetscCall(PetscOptionsBool("-fsi_repulsion", "Repulsive force Eq. 41 between fluid and solid particles (default: on with -fluid wcsph, off with isph)", "", s->repulsion, &s->repulsion, NULL));
+  if (fluid && sim->fluid == FLUID_ISPH) PetscCall(OptReal("-fsi_dt_transit", "ISPH + solid: the fluid step is at most this many times the time an elastic wave (c0 of the solid) takes to cross the solid's largest extent, since the pressure is frozen over the solid sub-steps (0 = no limit); a gate 5x stiffer than the rubber needs it", "", s->transit, &s->transit, NULL));
+  if (fluid) PetscCall(OptBool("-fsi_repulsion", "Repulsive force Eq. 41 between fluid and solid particles (default: on with -fluid wcsph, off with isph)", "", s->repulsion, &s->repulsion, NULL));
   PetscOptionsEnd();
   s->gradient = (SolidGradient)grad;
   PetscCheck(s->damping >= 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-solid_damping %g must be >= 0", (double)s->damping);

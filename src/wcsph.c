@@ -1,4 +1,5 @@
 #include <sphfsi/wcsph.h>
+#include <sphfsi/options_used.h>
 #include <sphfsi/boundary.h>
 #include <sphfsi/kernel.h>
 #include <sphfsi/fluid_terms.h>
@@ -11,8 +12,8 @@ PetscErrorCode WCSPHSetUp(Sim sim)
   FluidMaterial *fl = &sim->fl;
   PetscFunctionBeginUser;
   PetscOptionsBegin(sim->comm, NULL, "WCSPH fluid", "WCSPH");
-  PetscCall(PetscOptionsReal("-wcsph_shift", "Particle shifting coefficient A (D = A h |v| dt, Skillen et al. 2013; none on the free surface, div r < 1.5, and next to it); 0 = off", "", fl->shift, &fl->shift, NULL));
-  PetscCall(PetscOptionsBool("-wcsph_wall_clip", "Clip the wall pressure (Adami extrapolation) at 0: fluid in tension next to a wall is not held on it", "", fl->wall_clip, &fl->wall_clip, NULL));
+  PetscCall(OptReal("-wcsph_shift", "Particle shifting coefficient A (D = A h |v| dt, Skillen et al. 2013; none on the free surface, div r < 1.5, and next to it); 0 = off", "", fl->shift, &fl->shift, NULL));
+  PetscCall(OptBool("-wcsph_wall_clip", "Clip the wall pressure (Adami extrapolation) at 0: fluid in tension next to a wall is not held on it", "", fl->wall_clip, &fl->wall_clip, NULL));
   PetscOptionsEnd();
   PetscCheck(fl->shift >= 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-wcsph_shift %g must be >= 0", (double)fl->shift);
   fl->lat_divr = KernelLatticeSum(&sim->kernel, LATTICE_DIVR, 0);

@@ -18,6 +18,7 @@
  * of the solid particles whose reference position is in the box).  No reference: summary.json's
  * errors are empty.  docs/options.md lists the options with their checks. */
 #include <sphfsi/scene.h>
+#include <sphfsi/options_used.h>
 
 #define NBOX 8
 #define NTANK 4
@@ -122,7 +123,7 @@ static PetscErrorCode Create(Sim sim)
   PetscOptionsBegin(sim->comm, NULL, "Scene boxes: water, tanks, obstacles and solids as boxes given in the options", "");
   PetscCall(ReadBoxes(sim, PetscOptionsObject, "fluid_box", "Water at rest x0,y0,x1,y1[,spacing] (m)", c->fluid, &c->nfluid, PETSC_TRUE, PETSC_FALSE));
   rows = KernelSupportRows(&sim->kernel);
-  PetscCall(PetscOptionsInt("-wall_rows", "Rows of wall + dummy particles of a tank that does not give its own", "", rows, &rows, NULL));
+  PetscCall(OptInt("-wall_rows", "Rows of wall + dummy particles of a tank that does not give its own", "", rows, &rows, NULL));
   PetscCheck(rows >= 1, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-wall_rows %" PetscInt_FMT " must be >= 1", rows);
   for (PetscInt k = 1; k <= NTANK; k++) {
     PetscReal v[6];
@@ -140,21 +141,21 @@ static PetscErrorCode Create(Sim sim)
     T->rows = n >= 6 ? (PetscInt)v[5] : rows;
     PetscCheck(T->s > 0 && T->rows >= 1 && (n < 6 || v[5] == (PetscReal)T->rows), sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "%s: the spacing must be > 0 and the rows a whole number >= 1", name);
     PetscCall(PetscSNPrintf(name, sizeof(name), "-tank_%d_sides", (int)k));
-    PetscCall(PetscOptionsEList(name, "Side walls of the tank", "", sides, 4, sides[0], &side, NULL));
+    PetscCall(OptEList(name, "Side walls of the tank", "", sides, 4, sides[0], &side, NULL));
     T->left  = (PetscBool)(side == 0 || side == 1);
     T->right = (PetscBool)(side == 0 || side == 2);
   }
   PetscCall(ReadBoxes(sim, PetscOptionsObject, "solid_box", "Elastic solid x0,y0,x1,y1 (m), at -dx", c->solid, &c->nsolid, PETSC_FALSE, PETSC_FALSE));
   PetscCall(ReadBoxes(sim, PetscOptionsObject, "clamp_box", "Rigid clamp of a solid x0,y0,x1,y1 (m), at -dx", c->clamp, &c->nclamp, PETSC_FALSE, PETSC_FALSE));
   PetscCall(ReadBoxes(sim, PetscOptionsObject, "wall_box", "Obstacle of wall particles x0,y0,x1,y1 (m), at -dx", c->wall, &c->nwall, PETSC_FALSE, PETSC_TRUE));
-  PetscCall(PetscOptionsBool("-outflow", "Water that leaves the domain is removed (an open boundary)", "", sim->outflow, &sim->outflow, NULL));
+  PetscCall(OptBool("-outflow", "Water that leaves the domain is removed (an open boundary)", "", sim->outflow, &sim->outflow, NULL));
   n = 4;
   PetscCall(PetscOptionsRealArray("-domain", "Computational box x0,y0,x1,y1 (m); default: the tanks with their walls, open to twice their height", "", dom, &n, &dom_set));
   if (dom_set) PetscCall(CheckBox(sim, "-domain", dom, n, 4));
   for (PetscInt k = 1; k <= NGAUGE; k++) {
     PetscInt two = 2, four = 4;
     PetscCall(PetscSNPrintf(name, sizeof(name), "-gauge_level_%d", (int)k));
-    PetscCall(PetscOptionsReal(name, "Water level gauge at this x (m)", "", 0, &c->level[c->nlevel], &set));
+    PetscCall(OptReal(name, "Water level gauge at this x (m)", "", 0, &c->level[c->nlevel], &set));
     c->nlevel += set;
     PetscCall(PetscSNPrintf(name, sizeof(name), "-gauge_pressure_%d", (int)k));
     PetscCall(PetscOptionsRealArray(name, "Pressure gauge at x,y (m)", "", c->press[c->npress], &two, &set));

@@ -1,5 +1,6 @@
 /* Collapse of a water column of width a and height 2a (Martin & Moyce 1952) in a tank. */
 #include <sphfsi/scene.h>
+#include <sphfsi/options_used.h>
 #include <sphfsi/refdata.h>
 
 typedef struct {
@@ -18,11 +19,11 @@ static PetscErrorCode Create(Sim sim)
   PetscCall(SceneKeepSeries(sim, &c->height));
   c->a = 0.05715; c->H = -1; c->L = -1; c->top = -1; c->rows = KernelSupportRows(&sim->kernel);
   PetscOptionsBegin(sim->comm, NULL, "Scene dam_break: collapse of a water column", "");
-  PetscCall(PetscOptionsReal("-column_width", "Column width a (m)", "", c->a, &c->a, NULL));
-  PetscCall(PetscOptionsReal("-column_height", "Column height (m); default 2a", "", c->H, &c->H, NULL));
-  PetscCall(PetscOptionsReal("-tank_length", "Tank length from the wall behind the column (m); default 5.25a", "", c->L, &c->L, NULL));
-  PetscCall(PetscOptionsReal("-tank_height", "Tank wall height (m); default 3x the column height", "", c->top, &c->top, NULL));
-  PetscCall(PetscOptionsInt("-wall_rows", "Rows of wall + dummy particles", "", c->rows, &c->rows, NULL));
+  PetscCall(OptReal("-column_width", "Column width a (m)", "", c->a, &c->a, NULL));
+  PetscCall(OptReal("-column_height", "Column height (m); default 2a", "", c->H, &c->H, NULL));
+  PetscCall(OptReal("-tank_length", "Tank length from the wall behind the column (m); default 5.25a", "", c->L, &c->L, NULL));
+  PetscCall(OptReal("-tank_height", "Tank wall height (m); default 3x the column height", "", c->top, &c->top, NULL));
+  PetscCall(OptInt("-wall_rows", "Rows of wall + dummy particles", "", c->rows, &c->rows, NULL));
   PetscOptionsEnd();
   PetscCheck(c->a > 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-column_width %g must be > 0", (double)c->a);
   if (c->H < 0) c->H = 2 * c->a;

@@ -10,6 +10,7 @@
  * first impact peak p / (rho g H) and its time against the representative event 5, and the rms of
  * p / (rho g H) over t sqrt(g/H) in [2, t_end] (the experiment's t = 0 is the gate's release). */
 #include <sphfsi/scene.h>
+#include <sphfsi/options_used.h>
 #include <sphfsi/refdata.h>
 
 #define NGAUGE  4
@@ -38,9 +39,9 @@ static PetscErrorCode Create(Sim sim)
   for (PetscInt k = 0; k < NSENSOR; k++) PetscCall(SceneKeepSeries(sim, &c->pres[k]));
   c->L = 0.6; c->H = 0.3; c->Lt = 1.61; c->top = 1.0; c->sensor = 0.0045; c->rows = KernelSupportRows(&sim->kernel);
   PetscOptionsBegin(sim->comm, NULL, "Scene dam_break_lobovsky: Lobovsky et al. 2014 dam break, H = 0.3 m, with level gauges and wall pressure sensors", "");
-  PetscCall(PetscOptionsReal("-tank_height", "Tank wall height (m): room for the run-up on the far wall", "", c->top, &c->top, NULL));
-  PetscCall(PetscOptionsReal("-sensor_size", "Height of a pressure sensor's face on the wall (m), over which its pressure is averaged", "", c->sensor, &c->sensor, NULL));
-  PetscCall(PetscOptionsInt("-wall_rows", "Rows of wall + dummy particles", "", c->rows, &c->rows, NULL));
+  PetscCall(OptReal("-tank_height", "Tank wall height (m): room for the run-up on the far wall", "", c->top, &c->top, NULL));
+  PetscCall(OptReal("-sensor_size", "Height of a pressure sensor's face on the wall (m), over which its pressure is averaged", "", c->sensor, &c->sensor, NULL));
+  PetscCall(OptInt("-wall_rows", "Rows of wall + dummy particles", "", c->rows, &c->rows, NULL));
   PetscOptionsEnd();
   PetscCheck(c->top >= 2 * c->H, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-tank_height %g must be at least twice the column height %g (the run-up on the far wall)", (double)c->top, (double)c->H);
   PetscCheck(c->sensor >= 0 && c->sensor <= 0.006, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-sensor_size %g must be in [0, 0.006] m (the lowest sensor is 3 mm above the floor)", (double)c->sensor);

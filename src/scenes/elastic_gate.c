@@ -6,6 +6,7 @@
  * the gap between the gate's end and the floor, not the whole swing of the gate); fluid that leaves
  * the domain box is removed.  x points downstream, y up. */
 #include <sphfsi/scene.h>
+#include <sphfsi/options_used.h>
 #include <sphfsi/solid.h>
 #include <sphfsi/refdata.h>
 
@@ -29,16 +30,16 @@ static PetscErrorCode Create(Sim sim)
   sim->sl.rho0 = 1100; sim->sl.K = 2.0e7; sim->sl.G = 4.27e6; /* rubber, paper section 3.3 */
   sim->fl.mu   = 1.0e-3;
   PetscOptionsBegin(sim->comm, NULL, "Scene elastic_gate: water column released through an elastic gate (Antoci et al. 2007)", "");
-  PetscCall(PetscOptionsReal("-water_width", "Width of the water column behind the gate (m)", "", c->W, &c->W, NULL));
-  PetscCall(PetscOptionsReal("-water_depth", "Initial water depth (m)", "", c->H, &c->H, NULL));
-  PetscCall(PetscOptionsReal("-gate_length", "Gate length below its clamp (m)", "", c->L, &c->L, NULL));
-  PetscCall(PetscOptionsReal("-gate_thickness", "Gate thickness (m)", "", c->t, &c->t, NULL));
-  PetscCall(PetscOptionsReal("-tank_height", "Height of the tank walls (m)", "", c->top, &c->top, NULL));
-  PetscCall(PetscOptionsInt("-wall_rows", "Rows of wall + dummy particles", "", c->rows, &c->rows, NULL));
-  PetscCall(PetscOptionsInt("-clamp_rows", "Rows of clamp particles at the top of the gate", "", c->nclamp, &c->nclamp, NULL));
-  PetscCall(PetscOptionsReal("-dx_coarse", "Spacing of the fluid away from the gate (m); default -dx (uniform)", "", c->dxc, &c->dxc, NULL));
-  PetscCall(PetscOptionsReal("-fine_width", "Width of the fine fluid zone before the gate (m), with -dx_coarse", "", c->fine, &c->fine, NULL));
-  PetscCall(PetscOptionsReal("-floor_downstream", "Length of the floor downstream of the gate (m); 0 = the floor ends under the gate and the water falls freely past it", "", c->floor, &c->floor, NULL));
+  PetscCall(OptReal("-water_width", "Width of the water column behind the gate (m)", "", c->W, &c->W, NULL));
+  PetscCall(OptReal("-water_depth", "Initial water depth (m)", "", c->H, &c->H, NULL));
+  PetscCall(OptReal("-gate_length", "Gate length below its clamp (m)", "", c->L, &c->L, NULL));
+  PetscCall(OptReal("-gate_thickness", "Gate thickness (m)", "", c->t, &c->t, NULL));
+  PetscCall(OptReal("-tank_height", "Height of the tank walls (m)", "", c->top, &c->top, NULL));
+  PetscCall(OptInt("-wall_rows", "Rows of wall + dummy particles", "", c->rows, &c->rows, NULL));
+  PetscCall(OptInt("-clamp_rows", "Rows of clamp particles at the top of the gate", "", c->nclamp, &c->nclamp, NULL));
+  PetscCall(OptReal("-dx_coarse", "Spacing of the fluid away from the gate (m); default -dx (uniform)", "", c->dxc, &c->dxc, NULL));
+  PetscCall(OptReal("-fine_width", "Width of the fine fluid zone before the gate (m), with -dx_coarse", "", c->fine, &c->fine, NULL));
+  PetscCall(OptReal("-floor_downstream", "Length of the floor downstream of the gate (m); 0 = the floor ends under the gate and the water falls freely past it", "", c->floor, &c->floor, NULL));
   PetscOptionsEnd();
   PetscCheck(c->W > 0 && c->H > 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-water_width %g and -water_depth %g must be > 0", (double)c->W, (double)c->H);
   PetscCheck(c->t > 0 && c->L > c->t, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-gate_length %g must exceed -gate_thickness %g > 0", (double)c->L, (double)c->t);

@@ -1,6 +1,7 @@
 /* Water at rest in a tank: the floor pressure must be rho g H and nothing must move.  In 2D or 3D
  * (-dim 3: a square tank W x W, the water H deep, gravity along -z). */
 #include <sphfsi/scene.h>
+#include <sphfsi/options_used.h>
 #include <sphfsi/refdata.h>
 
 typedef struct {
@@ -18,10 +19,10 @@ static PetscErrorCode Create(Sim sim)
   PetscCall(SceneKeepSeries(sim, &c->pb));
   c->W = 0.1; c->H = 0.1; c->rows = KernelSupportRows(&sim->kernel);
   PetscOptionsBegin(sim->comm, NULL, "Scene hydrostatic: water at rest in a tank", "");
-  PetscCall(PetscOptionsReal("-tank_width", "Tank (and water) width (m)", "", c->W, &c->W, NULL));
-  PetscCall(PetscOptionsReal("-water_depth", "Water depth H (m)", "", c->H, &c->H, NULL));
-  PetscCall(PetscOptionsInt("-wall_rows", "Rows of wall + dummy particles", "", c->rows, &c->rows, NULL));
-  PetscCall(PetscOptionsInt("-dim", "Dimension: 2, or 3 for a square tank W x W with gravity along -z", "", sim->dim, &sim->dim, NULL));
+  PetscCall(OptReal("-tank_width", "Tank (and water) width (m)", "", c->W, &c->W, NULL));
+  PetscCall(OptReal("-water_depth", "Water depth H (m)", "", c->H, &c->H, NULL));
+  PetscCall(OptInt("-wall_rows", "Rows of wall + dummy particles", "", c->rows, &c->rows, NULL));
+  PetscCall(OptInt("-dim", "Dimension: 2, or 3 for a square tank W x W with gravity along -z", "", sim->dim, &sim->dim, NULL));
   PetscOptionsEnd();
   PetscCheck(sim->dim == 2 || sim->dim == 3, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dim %" PetscInt_FMT " must be 2 or 3", sim->dim);
   if (sim->dim == 3) { sim->g[1] = 0; sim->g[2] = -9.81; }

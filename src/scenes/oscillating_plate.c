@@ -4,6 +4,7 @@
  * Euler-Bernoulli) period and amplitude, omega^2 = E H^2 k^4 / (12 rho (1 - nu^2)),
  * E = 9 K G / (3 K + G), nu = (3 K - 2 G) / (2 (3 K + G)), A = V_f c0 / omega. */
 #include <sphfsi/scene.h>
+#include <sphfsi/options_used.h>
 #include <sphfsi/solid.h>
 #include <sphfsi/refdata.h>
 
@@ -27,11 +28,11 @@ static PetscErrorCode Create(Sim sim)
   c->L = 0.2; c->H = 0.02; c->vf = 0.01; c->kL = 1.875104069; c->ny = 10; c->nclamp = 4;
   sim->sl.rho0 = 1000; sim->sl.K = 3.25e6; sim->sl.G = 7.15e5; /* Gray et al. 2001; G = 7.15e5 (the paper's 7.15e6 is a misprint) */
   PetscOptionsBegin(sim->comm, NULL, "Scene oscillating_plate: clamped elastic plate in its first bending mode (Gray et al. 2001)", "");
-  PetscCall(PetscOptionsReal("-plate_length", "Plate length L outside the clamp (m)", "", c->L, &c->L, NULL));
-  PetscCall(PetscOptionsReal("-plate_thickness", "Plate thickness H (m)", "", c->H, &c->H, NULL));
-  PetscCall(PetscOptionsReal("-plate_vf", "Initial tip speed over the sound speed, V_f = v0L of Eq. 52", "", c->vf, &c->vf, NULL));
-  PetscCall(PetscOptionsInt("-plate_ny", "Particles across the thickness (sets dx = H / ny unless -dx is given)", "", c->ny, &c->ny, &ny_set));
-  PetscCall(PetscOptionsInt("-clamp_columns", "Columns of clamp particles at x < 0", "", c->nclamp, &c->nclamp, NULL));
+  PetscCall(OptReal("-plate_length", "Plate length L outside the clamp (m)", "", c->L, &c->L, NULL));
+  PetscCall(OptReal("-plate_thickness", "Plate thickness H (m)", "", c->H, &c->H, NULL));
+  PetscCall(OptReal("-plate_vf", "Initial tip speed over the sound speed, V_f = v0L of Eq. 52", "", c->vf, &c->vf, NULL));
+  PetscCall(OptInt("-plate_ny", "Particles across the thickness (sets dx = H / ny unless -dx is given)", "", c->ny, &c->ny, &ny_set));
+  PetscCall(OptInt("-clamp_columns", "Columns of clamp particles at x < 0", "", c->nclamp, &c->nclamp, NULL));
   PetscOptionsEnd();
   PetscCheck(c->L > 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-plate_length %g must be > 0", (double)c->L);
   PetscCheck(c->H > 0 && c->H < c->L, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-plate_thickness %g must be > 0 and less than the length %g", (double)c->H, (double)c->L);

@@ -3,6 +3,7 @@
  * Steady profile u(y) = F / (2 nu) y (Hc - y), u_max = F Hc^2 / (8 nu), Re = u_max Hc / nu.
  * Defaults: Hc = 1 mm, nu = 1e-6 m^2/s, Re = 0.0125, i.e. F = 1e-4 m/s^2, u_max = 1.25e-5 m/s. */
 #include <sphfsi/scene.h>
+#include <sphfsi/options_used.h>
 #include <sphfsi/refdata.h>
 #include <sphfsi/kernel.h>
 
@@ -28,8 +29,8 @@ static PetscErrorCode Create(Sim sim)
   c->Hc = 1e-3; c->Re = 0.0125; c->nu = 1e-6;
   c->rows = KernelSupportRows(&sim->kernel); /* wall rows covering the kernel support 2h */
   PetscOptionsBegin(sim->comm, NULL, "Scene poiseuille: body-force driven channel flow from rest (Morris et al. 1997); nu = 1e-6 m^2/s (mu = rho0 nu), F = 8 nu^2 Re / Hc^3 (Re 0.0125, Hc 1 mm: F = 1e-4 m/s^2, u_max = 1.25e-5 m/s)", "");
-  PetscCall(PetscOptionsReal("-channel_height", "Channel height Hc between the walls (m)", "", c->Hc, &c->Hc, NULL));
-  PetscCall(PetscOptionsReal("-re", "Reynolds number u_max Hc / nu; sets the body force F = 8 nu^2 Re / Hc^3", "", c->Re, &c->Re, NULL));
+  PetscCall(OptReal("-channel_height", "Channel height Hc between the walls (m)", "", c->Hc, &c->Hc, NULL));
+  PetscCall(OptReal("-re", "Reynolds number u_max Hc / nu; sets the body force F = 8 nu^2 Re / Hc^3", "", c->Re, &c->Re, NULL));
   PetscOptionsEnd();
   PetscCheck(c->Hc > 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-channel_height %g must be > 0", (double)c->Hc);
   PetscCheck(c->Re > 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-re %g must be > 0", (double)c->Re);

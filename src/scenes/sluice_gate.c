@@ -19,6 +19,7 @@
  * with Cc read from ../shared/refdata/sluice_gate_reference_coefficients.csv.  The reservoir drains,
  * so the relation is applied quasi-steadily to q(t) and h_up(t) in a window after the start-up. */
 #include <sphfsi/scene.h>
+#include <sphfsi/options_used.h>
 #include <sphfsi/refdata.h>
 
 typedef struct {
@@ -59,16 +60,16 @@ static PetscErrorCode Create(Sim sim)
   c->dxc = -1; c->fine = 0.02;
   c->win[0] = -1; c->win[1] = -1;
   PetscOptionsBegin(sim->comm, NULL, "Scene sluice_gate: a reservoir drains under a vertical gate", "");
-  PetscCall(PetscOptionsReal("-water_width", "Reservoir (water) width W between the left wall and the gate (m)", "", c->W, &c->W, NULL));
-  PetscCall(PetscOptionsReal("-water_depth", "Initial water depth H (m)", "", c->H, &c->H, NULL));
-  PetscCall(PetscOptionsReal("-gate_opening", "Opening a between the gate's bottom edge and the floor (m)", "", c->a, &c->a, NULL));
-  PetscCall(PetscOptionsReal("-channel_length", "Channel length downstream of the gate, closed at its far end (m); default 1.3 sqrt(2 g H) t_end + 4a, beyond the jet front at t_end", "", c->Lc, &c->Lc, NULL));
-  PetscCall(PetscOptionsReal("-tank_height", "Height of the walls and the gate top (m); default 1.25 H", "", c->top, &c->top, NULL));
-  PetscCall(PetscOptionsInt("-wall_rows", "Rows of wall + dummy particles of the tank", "", c->rows, &c->rows, NULL));
-  PetscCall(PetscOptionsInt("-gate_rows", "Gate thickness in particle rows (>= 4: no gate particle sees water on both sides)", "", c->gate_rows, &c->gate_rows, NULL));
-  PetscCall(PetscOptionsReal("-gate_bevel", "Angle (deg) from the horizontal of the chamfer under the gate's downstream side, which leaves a sharp upstream edge; 0 = square-cut bottom", "", c->bevel, &c->bevel, NULL));
-  PetscCall(PetscOptionsReal("-dx_coarse", "Spacing of the water away from the gate (m); -dx is the spacing next to it, in the channel and of the gate; default -dx (uniform)", "", c->dxc, &c->dxc, NULL));
-  PetscCall(PetscOptionsReal("-fine_width", "Width of the fine zone of water before the gate (m), with -dx_coarse", "", c->fine, &c->fine, NULL));
+  PetscCall(OptReal("-water_width", "Reservoir (water) width W between the left wall and the gate (m)", "", c->W, &c->W, NULL));
+  PetscCall(OptReal("-water_depth", "Initial water depth H (m)", "", c->H, &c->H, NULL));
+  PetscCall(OptReal("-gate_opening", "Opening a between the gate's bottom edge and the floor (m)", "", c->a, &c->a, NULL));
+  PetscCall(OptReal("-channel_length", "Channel length downstream of the gate, closed at its far end (m); default 1.3 sqrt(2 g H) t_end + 4a, beyond the jet front at t_end", "", c->Lc, &c->Lc, NULL));
+  PetscCall(OptReal("-tank_height", "Height of the walls and the gate top (m); default 1.25 H", "", c->top, &c->top, NULL));
+  PetscCall(OptInt("-wall_rows", "Rows of wall + dummy particles of the tank", "", c->rows, &c->rows, NULL));
+  PetscCall(OptInt("-gate_rows", "Gate thickness in particle rows (>= 4: no gate particle sees water on both sides)", "", c->gate_rows, &c->gate_rows, NULL));
+  PetscCall(OptReal("-gate_bevel", "Angle (deg) from the horizontal of the chamfer under the gate's downstream side, which leaves a sharp upstream edge; 0 = square-cut bottom", "", c->bevel, &c->bevel, NULL));
+  PetscCall(OptReal("-dx_coarse", "Spacing of the water away from the gate (m); -dx is the spacing next to it, in the channel and of the gate; default -dx (uniform)", "", c->dxc, &c->dxc, NULL));
+  PetscCall(OptReal("-fine_width", "Width of the fine zone of water before the gate (m), with -dx_coarse", "", c->fine, &c->fine, NULL));
   PetscCall(PetscOptionsRealArray("-q_window", "t0,t1: quasi-steady window (s) of the errors against the sluice relation; default 2 W / sqrt(g H) (the drawdown wave's round trip across the reservoir), t_end", "", c->win, &nwin, &win_set));
   PetscOptionsEnd();
   PetscCheck(c->W > 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-water_width %g must be > 0", (double)c->W);

@@ -9,6 +9,7 @@
  * Probes: s_err (rotate: max |S - Q S0 Q^T| / s0; otherwise max |S| / s0), d_min (smallest
  * distance between two solid particles / dx), e_kin, e_strain. */
 #include <sphfsi/scene.h>
+#include <sphfsi/options_used.h>
 #include <sphfsi/solid.h>
 
 typedef enum { BLOCK_TRANSLATE = 0, BLOCK_ROTATE, BLOCK_STRETCH } BlockMotion;
@@ -33,12 +34,12 @@ static PetscErrorCode Create(Sim sim)
   c->n = 20; c->size = 0.02; c->rate = -1; c->s0 = 1e4; c->jitter = 0;
   sim->sl.rho0 = 1000; sim->sl.K = 3.25e6; sim->sl.G = 7.15e5;
   PetscOptionsBegin(sim->comm, NULL, "Scene solid_block: free elastic block (objectivity and tensile-instability checks)", "");
-  PetscCall(PetscOptionsEList("-block_motion", "Motion of the block", "", BlockMotions, 3, BlockMotions[motion], &motion, NULL));
-  PetscCall(PetscOptionsReal("-block_size", "Side of the square block (m)", "", c->size, &c->size, NULL));
-  PetscCall(PetscOptionsInt("-block_n", "Particles along a side (dx = size / n unless -dx is given)", "", c->n, &c->n, NULL));
-  PetscCall(PetscOptionsReal("-block_rate", "U (m/s) for translate, omega (rad/s) for rotate, strain rate (1/s) for stretch; default 1, 10, 10", "", c->rate, &c->rate, NULL));
-  PetscCall(PetscOptionsReal("-block_s0", "Initial deviatoric stress S_xx = -S_yy (Pa) of the rotating block", "", c->s0, &c->s0, NULL));
-  PetscCall(PetscOptionsReal("-block_jitter", "Random displacement of the initial lattice, as a fraction of dx (fixed seed per particle id)", "", c->jitter, &c->jitter, NULL));
+  PetscCall(OptEList("-block_motion", "Motion of the block", "", BlockMotions, 3, BlockMotions[motion], &motion, NULL));
+  PetscCall(OptReal("-block_size", "Side of the square block (m)", "", c->size, &c->size, NULL));
+  PetscCall(OptInt("-block_n", "Particles along a side (dx = size / n unless -dx is given)", "", c->n, &c->n, NULL));
+  PetscCall(OptReal("-block_rate", "U (m/s) for translate, omega (rad/s) for rotate, strain rate (1/s) for stretch; default 1, 10, 10", "", c->rate, &c->rate, NULL));
+  PetscCall(OptReal("-block_s0", "Initial deviatoric stress S_xx = -S_yy (Pa) of the rotating block", "", c->s0, &c->s0, NULL));
+  PetscCall(OptReal("-block_jitter", "Random displacement of the initial lattice, as a fraction of dx (fixed seed per particle id)", "", c->jitter, &c->jitter, NULL));
   PetscOptionsEnd();
   c->motion = (BlockMotion)motion;
   if (c->rate < 0) c->rate = c->motion == BLOCK_TRANSLATE ? 1.0 : 10.0;

@@ -14,6 +14,7 @@
  * |p - p_exp| / (rho g H) over [0, t_end] and the peak (largest value over the run: the impact on
  * the front face) against the experiment's; levels as the rms and max of |h - h_exp| / H. */
 #include <sphfsi/scene.h>
+#include <sphfsi/options_used.h>
 #include <sphfsi/refdata.h>
 
 #define NLEVEL  4
@@ -49,8 +50,8 @@ static PetscErrorCode Create(Sim sim)
   for (PetscInt k = 0; k < NSENSOR; k++) PetscCall(SceneKeepSeries(sim, &c->pres[k]));
   c->L = 3.22; c->W = 1.0; c->top = 1.0; c->H = 0.55; c->Lw = 1.228; c->sensor = 0.009; c->rows = KernelSupportRows(&sim->kernel);
   PetscOptionsBegin(sim->comm, NULL, "Scene spheric_test2: SPHERIC Benchmark Test 2, a 3D dam break onto a box (Kleefsman et al. 2005)", "");
-  PetscCall(PetscOptionsReal("-sensor_size", "Side of a pressure sensor's square face (m), over which its pressure is averaged", "", c->sensor, &c->sensor, NULL));
-  PetscCall(PetscOptionsInt("-wall_rows", "Rows of wall + dummy particles", "", c->rows, &c->rows, NULL));
+  PetscCall(OptReal("-sensor_size", "Side of a pressure sensor's square face (m), over which its pressure is averaged", "", c->sensor, &c->sensor, NULL));
+  PetscCall(OptInt("-wall_rows", "Rows of wall + dummy particles", "", c->rows, &c->rows, NULL));
   PetscOptionsEnd();
   PetscCheck(c->sensor >= 0 && c->sensor <= 0.04, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-sensor_size %g must be in [0, 0.04] m (the sensors are 0.04 m apart)", (double)c->sensor);
   PetscCheck(c->rows >= 1, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-wall_rows %" PetscInt_FMT " must be >= 1", c->rows);

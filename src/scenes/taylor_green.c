@@ -7,6 +7,7 @@
  * With -dim 3 the same field fills a triply periodic cube of side L, uniform in z (w = 0): still an
  * exact solution, which checks the 3D operators and the periodic images in every direction. */
 #include <sphfsi/scene.h>
+#include <sphfsi/options_used.h>
 
 typedef struct {
   PetscReal L, U, Re;
@@ -27,8 +28,8 @@ static PetscErrorCode Create(Sim sim)
   PetscCall(SceneKeepReal(sim, &c->t_last));
   c->L = 1.0; c->U = 1.0; c->Re = 100;
   PetscOptionsBegin(sim->comm, NULL, "Scene taylor_green: decaying vortices in a periodic unit square (L = 1 m, U = 1 m/s)", "");
-  PetscCall(PetscOptionsReal("-re", "Reynolds number U L / nu; sets mu = rho0 U L / Re (a later -mu overrides)", "", c->Re, &c->Re, NULL));
-  PetscCall(PetscOptionsInt("-dim", "Dimension: 2, or 3 for the same vortices in a periodic cube (uniform in z)", "", sim->dim, &sim->dim, NULL));
+  PetscCall(OptReal("-re", "Reynolds number U L / nu; sets mu = rho0 U L / Re (a later -mu overrides)", "", c->Re, &c->Re, NULL));
+  PetscCall(OptInt("-dim", "Dimension: 2, or 3 for the same vortices in a periodic cube (uniform in z)", "", sim->dim, &sim->dim, NULL));
   PetscOptionsEnd();
   PetscCheck(sim->dim == 2 || sim->dim == 3, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dim %" PetscInt_FMT " must be 2 or 3", sim->dim);
   PetscCheck(c->Re > 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-re %g must be > 0", (double)c->Re);

@@ -5,6 +5,7 @@
  * pressure reaches the solid whole (Newton's third law of the fluid-solid pair forces) in both
  * fluid schemes. */
 #include <sphfsi/scene.h>
+#include <sphfsi/options_used.h>
 #include <sphfsi/solid.h>
 #include <sphfsi/refdata.h>
 #include <sphfsi/kernel.h>
@@ -26,10 +27,10 @@ static PetscErrorCode Create(Sim sim)
   c->W = 0.05; c->H = 0.05; c->T = 0.01; c->nclamp = 2;
   sim->sl.rho0 = 1100; sim->sl.K = 2.0e7; sim->sl.G = 4.27e6; /* the elastic gate's rubber */
   PetscOptionsBegin(sim->comm, NULL, "Scene water_on_plate: water at rest on a clamped elastic plate", "");
-  PetscCall(PetscOptionsReal("-tank_width", "Periodic width of the water and the plate (m)", "", c->W, &c->W, NULL));
-  PetscCall(PetscOptionsReal("-water_depth", "Water depth (m)", "", c->H, &c->H, NULL));
-  PetscCall(PetscOptionsReal("-plate_thickness", "Plate thickness (m), clamp rows included", "", c->T, &c->T, NULL));
-  PetscCall(PetscOptionsInt("-clamp_rows", "Rows of clamped particles at the plate's bottom", "", c->nclamp, &c->nclamp, NULL));
+  PetscCall(OptReal("-tank_width", "Periodic width of the water and the plate (m)", "", c->W, &c->W, NULL));
+  PetscCall(OptReal("-water_depth", "Water depth (m)", "", c->H, &c->H, NULL));
+  PetscCall(OptReal("-plate_thickness", "Plate thickness (m), clamp rows included", "", c->T, &c->T, NULL));
+  PetscCall(OptInt("-clamp_rows", "Rows of clamped particles at the plate's bottom", "", c->nclamp, &c->nclamp, NULL));
   PetscOptionsEnd();
   PetscCheck(c->W > 0 && c->H > 0 && c->T > 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-tank_width %g, -water_depth %g and -plate_thickness %g must be > 0", (double)c->W, (double)c->H, (double)c->T);
   if (sim->dx < 0) sim->dx = c->H / 20;

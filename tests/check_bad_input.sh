@@ -85,6 +85,9 @@ check "overlaps the walls of -tank_1"   -case boxes -dx 0.01 -tank_1 0,1,0,1 -fl
 check "-gauge_pressure_1 5.,0. is outside the domain" -case boxes -dx 0.01 -tank_1 0,1,0,1 -fluid_box_1 0,0,0.5,0.5 -gauge_pressure_1 5,0
 check "-fluid_box_1 takes 4 or 5 numbers" -case boxes -dx 0.01 -tank_1 0,1,0,1 -fluid_box_1 0,0,0.5
 check "needs -dx"                      -case boxes -tank_1 0,1,0,1 -fluid_box_1 0,0,0.5,0.5
+check "has no water"                   -case boxes -dim 3 -dx 0.01 -tank_1 0,1,0,1,0,1
+check "-fluid_box_1 takes 6 or 7 numbers" -case boxes -dim 3 -dx 0.01 -tank_1 0,1,0,1,0,1 -fluid_box_1 0,0,0.5,0.5
+check "a 3D tank has walls on all four sides" -case boxes -dim 3 -dx 0.01 -tank_1 0,1,0,1,0,1 -tank_1_sides left -fluid_box_1 0,0,0,0.5,0.5,0.5
 check "-solid_box_1 touches no -clamp_box" -case boxes -dx 0.01 -tank_1 0,1,0,1 -fluid_box_1 0,0,0.5,0.5 -solid_box_1 0.6,0,0.7,0.3
 echo "bad_input: $((n - bad)) of $n bad inputs rejected with a clear message"
 [ $bad -eq 0 ]

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# A case without C (issue 27): the dam break (both fluids) and the hydrostatic tank written as data
+# A case without C (issue 27): the dam break (both fluids) and the hydrostatic tank (2D, and 3D in both fluids) written as data
 # (cases/boxes/*.opts, -case boxes) give the same particles and the same state as the built-in scenes
 # after 0.05 s on the same ranks, bit for bit, and so does the elastic gate (two particle sizes, a
 # solid, its clamp, a wall box, outflow; both fluids) after 0.01 s; cases/dam_break_obstacle.opts
@@ -18,6 +18,8 @@ same() { # name, tolerance, end time, built-in case file, boxes case file, optio
 same dam_break_wcsph 0 0.05 cases/dam_break.opts cases/boxes/dam_break.opts -fluid wcsph
 same dam_break_isph 0 0.05 cases/dam_break.opts cases/boxes/dam_break.opts -fluid isph
 same hydrostatic_wcsph 0 0.05 cases/hydrostatic.opts cases/boxes/hydrostatic.opts -fluid wcsph
+same hydrostatic_3d_wcsph 0 0.05 cases/hydrostatic.opts cases/boxes/hydrostatic_3d.opts -dim 3 -dx 0.01 -fluid wcsph
+same hydrostatic_3d_isph 0 0.05 cases/hydrostatic.opts cases/boxes/hydrostatic_3d.opts -dim 3 -dx 0.01 -fluid isph
 same elastic_gate_isph 0 0.01 cases/elastic_gate.opts cases/boxes/elastic_gate.opts -fluid isph
 same elastic_gate_wcsph 0 0.01 cases/elastic_gate.opts cases/boxes/elastic_gate.opts -fluid wcsph
 timeout 300 $MPI $BIN -options_file cases/dam_break_obstacle.opts -t_end 0.02 -output_interval 0.01 -progress_every 0 -output_dir "$OUT/obstacle" > "$OUT/obstacle.log" 2>&1 || { echo "boxes: cases/dam_break_obstacle.opts failed: status $?"; bad=1; }

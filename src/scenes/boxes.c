@@ -16,8 +16,13 @@
  *   -gauge_level_K x, -gauge_pressure_K x,y, -gauge_solid_K x0,y0,x1,y1    K = 1..4: probes
  * Probes: front_x, v_max, then level_K, pressure_K, solid_dx_K / solid_dy_K (the mean displacement
  * of the solid particles whose reference position is in the box).  No reference: summary.json's
- * errors are empty.  docs/options.md lists the options with their checks. */
+ * errors are empty.  docs/options.md lists the options with their checks.
+ * -dim 3: the same primitives in 3D (z up): a box is x0,y0,z0,x1,y1,z1[,s]; a tank
+ * x0,x1,y0,y1,z0,z1[,s[,rows]] has its floor at z0 and walls on all four sides up to z1; obstacle
+ * faces left,right,front,back,bottom,top (x-, x+, y-, y+, z-, z+); -domain six numbers; a level
+ * gauge x,y; a pressure gauge x,y,z; no solids yet. */
 #include <sphfsi/scene.h>
+#include <sphfsi/dim.h>
 #include <sphfsi/options_used.h>
 
 #define NBOX 8
@@ -25,40 +30,67 @@
 #define NGAUGE 4
 
 typedef struct {
-  PetscReal b[4], s; /* box; lattice spacing (tanks: walls' spacing) */
+  PetscReal b[6], s; /* box: its low corner, then its high corner (2D x0,y0,x1,y1); lattice spacing (tanks: walls' spacing) */
   PetscInt  rows;    /* tanks: wall rows */
-  PetscBool left, right, face[4];
+  PetscBool left, right, face[6];
 } Box;
 
 typedef struct {
   Box       fluid[NBOX], tank[NTANK], solid[NBOX], clamp[NBOX], wall[NBOX];
   PetscInt  nfluid, ntank, nsolid, nclamp, nwall, nlevel, npress, nsgauge;
-  PetscReal level[NGAUGE], press[NGAUGE][2], sgauge[NGAUGE][4];
+  PetscReal level[NGAUGE][2], press[NGAUGE][3], sgauge[NGAUGE][4];
   char      names[SCENE_MAX_PROBES][32];
 } Boxes;
 
 extern SceneOps SceneBoxes; /* not const: Create fills in its probe names */
 
-/* n numbers read into b: 4 (or up to nmax) and a box with x1 > x0, y1 > y0 (x0,y0,x1,y1 order). */
-static PetscErrorCode CheckBox(Sim sim, const char *name, const PetscReal b[4], PetscInt n, PetscInt nmax)
+/* n numbers read into b: 2 D (or up to nmax) and a box whose high corner exceeds its low one. */
+static PetscErrorCode CheckBox(Sim sim, const char *name, const PetscReal b[], PetscInt n, PetscInt nmax)
 {
+  const PetscInt D = sim->dim;
+  PetscBool      empty = PETSC_FALSE;
   PetscFunctionBeginUser;
-  PetscCheck(n >= 4 && n <= nmax, sim->comm, PETSC_ERR_USER_INPUT, "%s takes %s numbers, not %d", name, nmax == 4 ? "4" : nmax == 5 ? "4 or 5" : "4 to 6", (int)n);
-  PetscCheck(b[2] > b[0] && b[3] > b[1], sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "%s %g,%g,%g,%g: x1 must exceed x0 and y1 y0", name, (double)b[0], (double)b[1], (double)b[2], (double)b[3]);
+  PetscCheck(n >= 2 * D && n <= nmax, sim->comm, PETSC_ERR_USER_INPUT, "%s takes %d%s numbers, not %d", name, (int)(2 * D), nmax == 2 * D ? "" : nmax == 2 * D + 1 ? (D == 3 ? " or 7" : " or 5") : (D == 3 ? " to 8" : " to 6"), (int)n);
+  for (PetscInt d = 0; d < D; d++) empty = (PetscBool)(empty || !(b[D + d] > b[d]));
+  if (D == 3) PetscCheck(!empty, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "%s %g,%g,%g,%g,%g,%g: x1, y1, z1 must exceed x0, y0, z0", name, (double)b[0], (double)b[1], (double)b[2], (double)b[3], (double)b[4], (double)b[5]);
+  else PetscCheck(!empty, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "%s %g,%g,%g,%g: x1 must exceed x0 and y1 y0", name, (double)b[0], (double)b[1], (double)b[2], (double)b[3]);
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-static PetscBool Overlap(const PetscReal a[4], const PetscReal b[4]) { return (PetscBool)(a[0] < b[2] && b[0] < a[2] && a[1] < b[3] && b[1] < a[3]); }
-static PetscBool Touch(const PetscReal a[4], const PetscReal b[4], PetscReal eps) { return (PetscBool)(a[0] <= b[2] + eps && b[0] <= a[2] + eps && a[1] <= b[3] + eps && b[1] <= a[3] + eps); }
-
-/* The rectangles a tank's particles fill: floor (with the corners) and side walls. */
-static PetscInt TankWalls(const Box *t, PetscReal r[3][4])
+static PetscBool Overlap(const PetscReal a[], const PetscReal b[], PetscInt D)
 {
-  const PetscReal d = t->rows * t->s;
+  PetscBool o = PETSC_TRUE;
+  for (PetscInt d = 0; d < D; d++) o = (PetscBool)(o && a[d] < b[D + d] && b[d] < a[D + d]);
+  return o;
+}
+
+static PetscBool Touch(const PetscReal a[], const PetscReal b[], PetscReal eps, PetscInt D)
+{
+  PetscBool t = PETSC_TRUE;
+  for (PetscInt d = 0; d < D; d++) t = (PetscBool)(t && a[d] <= b[D + d] + eps && b[d] <= a[D + d] + eps);
+  return t;
+}
+
+/* The boxes a tank's particles fill: the floor (with the corners) and the side walls. */
+static PetscInt TankWalls(const Box *t, PetscInt D, PetscReal r[5][6])
+{
+  const PetscReal d = t->rows * t->s, *b = t->b;
   PetscInt        n = 0;
-  r[n][0] = t->b[0] - (t->left ? d : 0); r[n][1] = t->b[1] - d; r[n][2] = t->b[2] + (t->right ? d : 0); r[n][3] = t->b[1]; n++;
-  if (t->left) { r[n][0] = t->b[0] - d; r[n][1] = t->b[1]; r[n][2] = t->b[0]; r[n][3] = t->b[3]; n++; }
-  if (t->right) { r[n][0] = t->b[2]; r[n][1] = t->b[1]; r[n][2] = t->b[2] + d; r[n][3] = t->b[3]; n++; }
+  if (D == 2) {
+    r[n][0] = b[0] - (t->left ? d : 0); r[n][1] = b[1] - d; r[n][2] = b[2] + (t->right ? d : 0); r[n][3] = b[1]; n++;
+    if (t->left) { r[n][0] = b[0] - d; r[n][1] = b[1]; r[n][2] = b[0]; r[n][3] = b[3]; n++; }
+    if (t->right) { r[n][0] = b[2]; r[n][1] = b[1]; r[n][2] = b[2] + d; r[n][3] = b[3]; n++; }
+    return n;
+  }
+  { /* 3D: floor; walls at x0 and x1 (full width), at y0 and y1 (between them) */
+    const PetscReal w[5][6] = {{b[0] - d, b[1] - d, b[2] - d, b[3] + d, b[4] + d, b[2]},
+                               {b[0] - d, b[1] - d, b[2], b[0], b[4] + d, b[5]},
+                               {b[3], b[1] - d, b[2], b[3] + d, b[4] + d, b[5]},
+                               {b[0], b[1] - d, b[2], b[3], b[1], b[5]},
+                               {b[0], b[4], b[2], b[3], b[4] + d, b[5]}};
+    for (; n < 5; n++)
+      for (PetscInt k = 0; k < 6; k++) r[n][k] = w[n][k];
+  }
   return n;
 }
 
@@ -66,29 +98,30 @@ static PetscInt TankWalls(const Box *t, PetscReal r[3][4])
  * faces: -PREFIX_K_faces, the faces that meet water (default all). */
 static PetscErrorCode ReadBoxes(Sim sim, PetscOptionItems *PetscOptionsObject, const char *prefix, const char *text, Box *list, PetscInt *count, PetscBool spacing, PetscBool faces)
 {
-  char name[40];
+  const PetscInt D = sim->dim, nb = 2 * D;
+  char           name[40];
   PetscFunctionBeginUser;
   for (PetscInt k = 1; k <= NBOX; k++) {
-    PetscReal v[5];
-    PetscInt  n = spacing ? 5 : 4;
+    PetscReal v[7];
+    PetscInt  n = spacing ? nb + 1 : nb;
     PetscBool set;
     Box      *B;
     PetscCall(PetscSNPrintf(name, sizeof(name), "-%s_%d", prefix, (int)k));
     PetscCall(PetscOptionsRealArray(name, text, "", v, &n, &set));
     if (!set) continue;
-    PetscCall(CheckBox(sim, name, v, n, spacing ? 5 : 4));
+    PetscCall(CheckBox(sim, name, v, n, spacing ? nb + 1 : nb));
     B = &list[(*count)++];
-    for (PetscInt i = 0; i < 4; i++) B->b[i] = v[i];
-    B->s = n == 5 ? v[4] : sim->dx;
+    for (PetscInt i = 0; i < nb; i++) B->b[i] = v[i];
+    B->s = n == nb + 1 ? v[nb] : sim->dx;
     PetscCheck(B->s > 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "%s: the spacing %g must be > 0", name, (double)B->s);
-    for (PetscInt i = 0; i < 4; i++) B->face[i] = PETSC_TRUE;
+    for (PetscInt i = 0; i < nb; i++) B->face[i] = PETSC_TRUE;
     if (faces) {
       char list[64] = "";
       PetscCall(PetscSNPrintf(name, sizeof(name), "-%s_%d_faces", prefix, (int)k));
-      PetscCall(PetscOptionsString(name, "Faces of the obstacle that meet water: left,right,bottom,top (their outer row is wall, the rest dummies)", "", list, list, sizeof(list), &set));
-      if (set) {
-        const char *fn[4] = {"left", "bottom", "right", "top"};
-        for (PetscInt i = 0; i < 4; i++) B->face[i] = (PetscBool)(strstr(list, fn[i]) != NULL);
+      PetscCall(PetscOptionsString(name, "Faces of the obstacle that meet water: left,right,bottom,top (3D also front,back) (their outer row is wall, the rest dummies)", "", list, list, sizeof(list), &set));
+      if (set) { /* the faces in the box's order: low faces, then high faces */
+        const char *fn2[4] = {"left", "bottom", "right", "top"}, *fn3[6] = {"left", "front", "bottom", "right", "back", "top"};
+        for (PetscInt i = 0; i < nb; i++) B->face[i] = (PetscBool)(strstr(list, D == 3 ? fn3[i] : fn2[i]) != NULL);
       }
     }
   }
@@ -112,8 +145,8 @@ static PetscErrorCode Create(Sim sim)
 {
   Boxes      *c;
   const char *sides[] = {"both", "left", "right", "none", "TankSides", "", NULL};
-  PetscReal   dom[4] = {0, 0, 0, 0}, top = -PETSC_MAX_REAL, low = PETSC_MAX_REAL;
-  PetscInt    n, rows;
+  PetscReal   dom[6] = {0, 0, 0, 0, 0, 0}, top = -PETSC_MAX_REAL, low = PETSC_MAX_REAL;
+  PetscInt    n, rows, D, up;
   PetscBool   set, dom_set;
   char        name[40];
   PetscFunctionBeginUser;
@@ -121,27 +154,33 @@ static PetscErrorCode Create(Sim sim)
   sim->scene_ctx = c;
   PetscCheck(sim->dx > 0, sim->comm, PETSC_ERR_USER_INPUT, "Scene boxes needs -dx (the particle spacing, m)");
   PetscOptionsBegin(sim->comm, NULL, "Scene boxes: water, tanks, obstacles and solids as boxes given in the options", "");
-  PetscCall(ReadBoxes(sim, PetscOptionsObject, "fluid_box", "Water at rest x0,y0,x1,y1[,spacing] (m)", c->fluid, &c->nfluid, PETSC_TRUE, PETSC_FALSE));
+  PetscCall(OptInt("-dim", "Dimension: 2, or 3 (z up; every box then has six numbers)", "", sim->dim, &sim->dim, NULL));
+  PetscCheck(sim->dim == 2 || sim->dim == 3, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dim %" PetscInt_FMT " must be 2 or 3", sim->dim);
+  D = sim->dim; up = D - 1;
+  if (D == 3) { sim->g[1] = 0; sim->g[2] = -9.81; }
+  PetscCall(ReadBoxes(sim, PetscOptionsObject, "fluid_box", "Water at rest x0,y0,x1,y1[,spacing] (3D: x0,y0,z0,x1,y1,z1[,spacing]) (m)", c->fluid, &c->nfluid, PETSC_TRUE, PETSC_FALSE));
   rows = KernelSupportRows(&sim->kernel);
   PetscCall(OptInt("-wall_rows", "Rows of wall + dummy particles of a tank that does not give its own", "", rows, &rows, NULL));
   PetscCheck(rows >= 1, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-wall_rows %" PetscInt_FMT " must be >= 1", rows);
   for (PetscInt k = 1; k <= NTANK; k++) {
-    PetscReal v[6];
-    PetscInt  side = 0;
-    Box      *T;
-    n = 6;
+    const PetscInt nb = 2 * D; /* x0,x1,y0,y1 (3D: ,z0,z1): each direction's range */
+    PetscReal      v[8];
+    PetscInt       side = 0;
+    Box           *T;
+    n = nb + 2;
     PetscCall(PetscSNPrintf(name, sizeof(name), "-tank_%d", (int)k));
-    PetscCall(PetscOptionsRealArray(name, "Tank x0,x1,y0,y1[,spacing[,rows]]: floor at y0 from x0 to x1, side walls up to y1 (m)", "", v, &n, &set));
+    PetscCall(PetscOptionsRealArray(name, "Tank x0,x1,y0,y1[,spacing[,rows]]: floor at y0 from x0 to x1, side walls up to y1 (m); 3D x0,x1,y0,y1,z0,z1[,spacing[,rows]]: floor at z0, walls on four sides up to z1", "", v, &n, &set));
     if (!set) continue;
     T = &c->tank[c->ntank++];
-    PetscCheck(n >= 4 && n <= 6, sim->comm, PETSC_ERR_USER_INPUT, "%s takes x0,x1,y0,y1[,spacing[,rows]], not %d numbers", name, (int)n);
-    T->b[0] = v[0]; T->b[1] = v[2]; T->b[2] = v[1]; T->b[3] = v[3];
-    PetscCall(CheckBox(sim, name, T->b, 4, 4));
-    T->s    = n >= 5 ? v[4] : sim->dx;
-    T->rows = n >= 6 ? (PetscInt)v[5] : rows;
-    PetscCheck(T->s > 0 && T->rows >= 1 && (n < 6 || v[5] == (PetscReal)T->rows), sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "%s: the spacing must be > 0 and the rows a whole number >= 1", name);
+    PetscCheck(n >= nb && n <= nb + 2, sim->comm, PETSC_ERR_USER_INPUT, "%s takes %s[,spacing[,rows]], not %d numbers", name, D == 3 ? "x0,x1,y0,y1,z0,z1" : "x0,x1,y0,y1", (int)n);
+    for (PetscInt d = 0; d < D; d++) { T->b[d] = v[2 * d]; T->b[D + d] = v[2 * d + 1]; }
+    PetscCall(CheckBox(sim, name, T->b, nb, nb));
+    T->s    = n >= nb + 1 ? v[nb] : sim->dx;
+    T->rows = n >= nb + 2 ? (PetscInt)v[nb + 1] : rows;
+    PetscCheck(T->s > 0 && T->rows >= 1 && (n < nb + 2 || v[nb + 1] == (PetscReal)T->rows), sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "%s: the spacing must be > 0 and the rows a whole number >= 1", name);
     PetscCall(PetscSNPrintf(name, sizeof(name), "-tank_%d_sides", (int)k));
-    PetscCall(OptEList(name, "Side walls of the tank", "", sides, 4, sides[0], &side, NULL));
+    PetscCall(OptEList(name, "Side walls of the tank (2D)", "", sides, 4, sides[0], &side, NULL));
+    PetscCheck(D == 2 || side == 0, sim->comm, PETSC_ERR_ARG_INCOMP, "%s: a 3D tank has walls on all four sides (both)", name);
     T->left  = (PetscBool)(side == 0 || side == 1);
     T->right = (PetscBool)(side == 0 || side == 2);
   }
@@ -149,17 +188,18 @@ static PetscErrorCode Create(Sim sim)
   PetscCall(ReadBoxes(sim, PetscOptionsObject, "clamp_box", "Rigid clamp of a solid x0,y0,x1,y1 (m), at -dx", c->clamp, &c->nclamp, PETSC_FALSE, PETSC_FALSE));
   PetscCall(ReadBoxes(sim, PetscOptionsObject, "wall_box", "Obstacle of wall particles x0,y0,x1,y1 (m), at -dx", c->wall, &c->nwall, PETSC_FALSE, PETSC_TRUE));
   PetscCall(OptBool("-outflow", "Water that leaves the domain is removed (an open boundary)", "", sim->outflow, &sim->outflow, NULL));
-  n = 4;
-  PetscCall(PetscOptionsRealArray("-domain", "Computational box x0,y0,x1,y1 (m); default: the tanks with their walls, open to twice their height", "", dom, &n, &dom_set));
-  if (dom_set) PetscCall(CheckBox(sim, "-domain", dom, n, 4));
+  n = 2 * D;
+  PetscCall(PetscOptionsRealArray("-domain", "Computational box x0,y0,x1,y1 (3D: x0,y0,z0,x1,y1,z1) (m); default: the tanks with their walls, open to twice their height", "", dom, &n, &dom_set));
+  if (dom_set) PetscCall(CheckBox(sim, "-domain", dom, n, 2 * D));
   for (PetscInt k = 1; k <= NGAUGE; k++) {
-    PetscInt two = 2, four = 4;
+    PetscInt nl = D - 1, np = D, four = 4;
     PetscCall(PetscSNPrintf(name, sizeof(name), "-gauge_level_%d", (int)k));
-    PetscCall(OptReal(name, "Water level gauge at this x (m)", "", 0, &c->level[c->nlevel], &set));
+    PetscCall(PetscOptionsRealArray(name, "Water level gauge at this x (m) (3D: x,y)", "", c->level[c->nlevel], &nl, &set));
+    PetscCheck(!set || nl == D - 1, sim->comm, PETSC_ERR_USER_INPUT, "%s takes %s", name, D == 3 ? "2 numbers x,y" : "1 number x");
     c->nlevel += set;
     PetscCall(PetscSNPrintf(name, sizeof(name), "-gauge_pressure_%d", (int)k));
-    PetscCall(PetscOptionsRealArray(name, "Pressure gauge at x,y (m)", "", c->press[c->npress], &two, &set));
-    PetscCheck(!set || two == 2, sim->comm, PETSC_ERR_USER_INPUT, "%s takes 2 numbers x,y", name);
+    PetscCall(PetscOptionsRealArray(name, "Pressure gauge at x,y (3D: x,y,z) (m)", "", c->press[c->npress], &np, &set));
+    PetscCheck(!set || np == D, sim->comm, PETSC_ERR_USER_INPUT, "%s takes %s", name, D == 3 ? "3 numbers x,y,z" : "2 numbers x,y");
     c->npress += set;
     PetscCall(PetscSNPrintf(name, sizeof(name), "-gauge_solid_%d", (int)k));
     PetscCall(PetscOptionsRealArray(name, "Mean displacement of the solid particles whose reference position is in x0,y0,x1,y1 (m)", "", c->sgauge[c->nsgauge], &four, &set));
@@ -172,49 +212,60 @@ static PetscErrorCode Create(Sim sim)
   sim->has_solid = (PetscBool)(c->nsolid > 0);
   for (PetscInt i = 0; i < c->nsolid; i++) {
     PetscBool held = PETSC_FALSE;
-    for (PetscInt j = 0; j < c->nclamp; j++) held = (PetscBool)(held || Touch(c->solid[i].b, c->clamp[j].b, 1e-9 * sim->dx));
+    for (PetscInt j = 0; j < c->nclamp; j++) held = (PetscBool)(held || Touch(c->solid[i].b, c->clamp[j].b, 1e-9 * sim->dx, D));
     PetscCheck(held, sim->comm, PETSC_ERR_ARG_INCOMP, "-solid_box_%d touches no -clamp_box: a free solid is not supported; clamp it (a -clamp_box_K sharing an edge with it)", (int)i + 1);
   }
   for (PetscInt i = 0; i < c->nfluid; i++) {
-    const Box *F = &c->fluid[i];
-    PetscCheck(F->b[2] - F->b[0] >= F->s && F->b[3] - F->b[1] >= F->s, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-fluid_box_%d is thinner than its spacing %g: choose a smaller spacing", (int)i + 1, (double)F->s);
-    for (PetscInt j = 0; j < i; j++) PetscCheck(!Overlap(F->b, c->fluid[j].b), sim->comm, PETSC_ERR_ARG_INCOMP, "-fluid_box_%d overlaps -fluid_box_%d", (int)i + 1, (int)j + 1);
-    for (PetscInt j = 0; j < c->nwall; j++) PetscCheck(!Overlap(F->b, c->wall[j].b), sim->comm, PETSC_ERR_ARG_INCOMP, "-fluid_box_%d overlaps -wall_box_%d: water and wall cannot share space", (int)i + 1, (int)j + 1);
-    for (PetscInt j = 0; j < c->nsolid; j++) PetscCheck(!Overlap(F->b, c->solid[j].b), sim->comm, PETSC_ERR_ARG_INCOMP, "-fluid_box_%d overlaps -solid_box_%d", (int)i + 1, (int)j + 1);
-    for (PetscInt j = 0; j < c->nclamp; j++) PetscCheck(!Overlap(F->b, c->clamp[j].b), sim->comm, PETSC_ERR_ARG_INCOMP, "-fluid_box_%d overlaps -clamp_box_%d", (int)i + 1, (int)j + 1);
+    const Box *F    = &c->fluid[i];
+    PetscBool  thin = PETSC_FALSE;
+    for (PetscInt d = 0; d < D; d++) thin = (PetscBool)(thin || F->b[D + d] - F->b[d] < F->s);
+    PetscCheck(!thin, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-fluid_box_%d is thinner than its spacing %g: choose a smaller spacing", (int)i + 1, (double)F->s);
+    for (PetscInt j = 0; j < i; j++) PetscCheck(!Overlap(F->b, c->fluid[j].b, D), sim->comm, PETSC_ERR_ARG_INCOMP, "-fluid_box_%d overlaps -fluid_box_%d", (int)i + 1, (int)j + 1);
+    for (PetscInt j = 0; j < c->nwall; j++) PetscCheck(!Overlap(F->b, c->wall[j].b, D), sim->comm, PETSC_ERR_ARG_INCOMP, "-fluid_box_%d overlaps -wall_box_%d: water and wall cannot share space", (int)i + 1, (int)j + 1);
+    for (PetscInt j = 0; j < c->nsolid; j++) PetscCheck(!Overlap(F->b, c->solid[j].b, D), sim->comm, PETSC_ERR_ARG_INCOMP, "-fluid_box_%d overlaps -solid_box_%d", (int)i + 1, (int)j + 1);
+    for (PetscInt j = 0; j < c->nclamp; j++) PetscCheck(!Overlap(F->b, c->clamp[j].b, D), sim->comm, PETSC_ERR_ARG_INCOMP, "-fluid_box_%d overlaps -clamp_box_%d", (int)i + 1, (int)j + 1);
     for (PetscInt j = 0; j < c->ntank; j++) {
-      PetscReal r[3][4];
-      PetscInt  nr = TankWalls(&c->tank[j], r);
-      for (PetscInt q = 0; q < nr; q++) PetscCheck(!Overlap(F->b, r[q]), sim->comm, PETSC_ERR_ARG_INCOMP, "-fluid_box_%d overlaps the walls of -tank_%d: water and wall cannot share space", (int)i + 1, (int)j + 1);
+      PetscReal r[5][6];
+      PetscInt  nr = TankWalls(&c->tank[j], D, r);
+      for (PetscInt q = 0; q < nr; q++) PetscCheck(!Overlap(F->b, r[q], D), sim->comm, PETSC_ERR_ARG_INCOMP, "-fluid_box_%d overlaps the walls of -tank_%d: water and wall cannot share space", (int)i + 1, (int)j + 1);
     }
-    top = PetscMax(top, F->b[3]);
-    low = PetscMin(low, F->b[1]);
+    top = PetscMax(top, F->b[D + up]);
+    low = PetscMin(low, F->b[up]);
   }
   if (dom_set) {
-    sim->dom_lo[0] = dom[0]; sim->dom_lo[1] = dom[1];
-    sim->dom_hi[0] = dom[2]; sim->dom_hi[1] = dom[3];
+    for (PetscInt d = 0; d < D; d++) { sim->dom_lo[d] = dom[d]; sim->dom_hi[d] = dom[D + d]; }
   } else {
-    PetscCheck(c->ntank > 0, sim->comm, PETSC_ERR_USER_INPUT, "Scene boxes without a -tank_1 needs -domain x0,y0,x1,y1");
-    sim->dom_lo[0] = sim->dom_lo[1] = PETSC_MAX_REAL;
-    sim->dom_hi[0] = sim->dom_hi[1] = -PETSC_MAX_REAL;
-    for (PetscInt j = 0; j < c->ntank; j++) {
-      const Box *T = &c->tank[j];
+    PetscCheck(c->ntank > 0, sim->comm, PETSC_ERR_USER_INPUT, "Scene boxes without a -tank_1 needs -domain %s", D == 3 ? "x0,y0,z0,x1,y1,z1" : "x0,y0,x1,y1");
+    for (PetscInt d = 0; d < D; d++) { sim->dom_lo[d] = PETSC_MAX_REAL; sim->dom_hi[d] = -PETSC_MAX_REAL; }
+    for (PetscInt j = 0; j < c->ntank; j++) { /* the tank with its walls, open to twice its height */
+      const Box      *T = &c->tank[j];
       const PetscReal d = (T->rows + 0.5) * T->s;
-      sim->dom_lo[0] = PetscMin(sim->dom_lo[0], T->b[0] - d);
-      sim->dom_hi[0] = PetscMax(sim->dom_hi[0], T->b[2] + d);
-      sim->dom_lo[1] = PetscMin(sim->dom_lo[1], T->b[1] - d);
-      sim->dom_hi[1] = PetscMax(sim->dom_hi[1], T->b[1] + 2 * (T->b[3] - T->b[1]));
+      for (PetscInt q = 0; q < D; q++) {
+        sim->dom_lo[q] = PetscMin(sim->dom_lo[q], T->b[q] - d);
+        sim->dom_hi[q] = PetscMax(sim->dom_hi[q], q == up ? T->b[up] + 2 * (T->b[D + up] - T->b[up]) : T->b[D + q] + d);
+      }
     }
   }
   for (PetscInt i = 0; i < c->nfluid; i++) {
     const PetscReal *b = c->fluid[i].b;
-    PetscCheck(b[0] >= sim->dom_lo[0] && b[2] <= sim->dom_hi[0] && b[1] >= sim->dom_lo[1] && b[3] <= sim->dom_hi[1], sim->comm, PETSC_ERR_ARG_INCOMP, "-fluid_box_%d reaches outside the domain [%g, %g] x [%g, %g]", (int)i + 1, (double)sim->dom_lo[0], (double)sim->dom_hi[0], (double)sim->dom_lo[1], (double)sim->dom_hi[1]);
+    PetscBool        in = PETSC_TRUE;
+    for (PetscInt d = 0; d < D; d++) in = (PetscBool)(in && b[d] >= sim->dom_lo[d] && b[D + d] <= sim->dom_hi[d]);
+    if (D == 3) PetscCheck(in, sim->comm, PETSC_ERR_ARG_INCOMP, "-fluid_box_%d reaches outside the domain [%g, %g] x [%g, %g] x [%g, %g]", (int)i + 1, (double)sim->dom_lo[0], (double)sim->dom_hi[0], (double)sim->dom_lo[1], (double)sim->dom_hi[1], (double)sim->dom_lo[2], (double)sim->dom_hi[2]);
+    else PetscCheck(in, sim->comm, PETSC_ERR_ARG_INCOMP, "-fluid_box_%d reaches outside the domain [%g, %g] x [%g, %g]", (int)i + 1, (double)sim->dom_lo[0], (double)sim->dom_hi[0], (double)sim->dom_lo[1], (double)sim->dom_hi[1]);
   }
-  for (PetscInt k = 0; k < c->nlevel; k++) PetscCheck(c->level[k] > sim->dom_lo[0] && c->level[k] < sim->dom_hi[0], sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-gauge_level_%d %g is outside the domain [%g, %g]", (int)k + 1, (double)c->level[k], (double)sim->dom_lo[0], (double)sim->dom_hi[0]);
-  for (PetscInt k = 0; k < c->npress; k++) PetscCheck(c->press[k][0] > sim->dom_lo[0] && c->press[k][0] < sim->dom_hi[0] && c->press[k][1] > sim->dom_lo[1] && c->press[k][1] < sim->dom_hi[1], sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-gauge_pressure_%d %g,%g is outside the domain", (int)k + 1, (double)c->press[k][0], (double)c->press[k][1]);
+  for (PetscInt k = 0; k < c->nlevel; k++) {
+    PetscBool in = PETSC_TRUE;
+    for (PetscInt d = 0; d < D - 1; d++) in = (PetscBool)(in && c->level[k][d] > sim->dom_lo[d] && c->level[k][d] < sim->dom_hi[d]);
+    PetscCheck(in, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-gauge_level_%d %g is outside the domain [%g, %g]", (int)k + 1, (double)c->level[k][0], (double)sim->dom_lo[0], (double)sim->dom_hi[0]);
+  }
+  for (PetscInt k = 0; k < c->npress; k++) {
+    PetscBool in = PETSC_TRUE;
+    for (PetscInt d = 0; d < D; d++) in = (PetscBool)(in && c->press[k][d] > sim->dom_lo[d] && c->press[k][d] < sim->dom_hi[d]);
+    PetscCheck(in, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-gauge_pressure_%d %g,%g%s is outside the domain", (int)k + 1, (double)c->press[k][0], (double)c->press[k][1], D == 3 ? ",..." : "");
+  }
   PetscCheck(!c->nsgauge || c->nsolid, sim->comm, PETSC_ERR_ARG_INCOMP, "-gauge_solid_1 needs a -solid_box_1");
   /* c0 = 10 x the speed of a fall from the highest water surface to the lowest water */
-  if (sim->has_fluid) sim->v_ref = PetscSqrtReal(2 * PetscSqrtReal(sim->g[0] * sim->g[0] + sim->g[1] * sim->g[1]) * (top - low));
+  if (sim->has_fluid) sim->v_ref = PetscSqrtReal(2 * PetscSqrtReal(VDot(sim->g, sim->g, D)) * (top - low));
   /* probes: front_x, v_max, then the gauges */
   n = 0;
   PetscCall(ProbeName(c, &n, "front_x", 0));
@@ -234,15 +285,17 @@ static PetscErrorCode Populate(Sim sim)
 {
   Boxes *c = (Boxes *)sim->scene_ctx;
   PetscFunctionBeginUser;
+  const PetscInt D = sim->dim, up = D - 1;
   for (PetscInt i = 0; i < c->nfluid; i++) { /* at rest: hydrostatic below the lattice's top */
     const Box *F     = &c->fluid[i];
     PetscInt   first = sim->P->n;
     PetscCall(SceneAddBox(sim, KIND_FLUID, F->b, F->s, sim->fl.rho0));
-    PetscCall(SceneHydrostaticDensity(sim, first, F->b[1] + RoundToInt((F->b[3] - F->b[1]) / F->s) * F->s));
+    PetscCall(SceneHydrostaticDensity(sim, first, F->b[up] + RoundToInt((F->b[D + up] - F->b[up]) / F->s) * F->s));
   }
   for (PetscInt i = 0; i < c->ntank; i++) {
     const Box *T = &c->tank[i];
-    PetscCall(SceneAddTank(sim, T->b[0], T->b[2], T->b[1], T->b[3], T->s, T->rows, T->left, T->right));
+    if (D == 3) PetscCall(SceneAddTankBox(sim, T->b, T->b + 3, T->b[5], T->s, T->rows));
+    else PetscCall(SceneAddTank(sim, T->b[0], T->b[2], T->b[1], T->b[3], T->s, T->rows, T->left, T->right));
   }
   for (PetscInt i = 0; i < c->nsolid; i++) PetscCall(SceneAddBox(sim, KIND_SOLID, c->solid[i].b, sim->dx, sim->sl.rho0));
   for (PetscInt i = 0; i < c->nclamp; i++) PetscCall(SceneAddBox(sim, KIND_CLAMP, c->clamp[i].b, sim->dx, sim->sl.rho0));
@@ -255,15 +308,18 @@ static PetscErrorCode Probe(Sim sim, PetscReal *vals)
   Boxes     *c = (Boxes *)sim->scene_ctx;
   Particles  P = sim->P;
   PetscReal *x = PField(P, FIELD_X), *x0 = P->f[FIELD_X0].on ? PField(P, FIELD_X0) : NULL, m[1 + NGAUGE], s[3 * NGAUGE];
-  PetscInt   n = 2;
+  PetscInt   n = 2, D = P->dim;
   PetscFunctionBeginUser;
   for (PetscInt k = 0; k <= c->nlevel; k++) m[k] = -PETSC_MAX_REAL;
   for (PetscInt k = 0; k < 3 * c->nsgauge; k++) s[k] = 0;
   for (PetscInt a = 0; a < P->n; a++) {
     if (KindIsFluid(P->kind[a])) {
-      m[0] = PetscMax(m[0], x[2 * a]);
-      for (PetscInt k = 0; k < c->nlevel; k++)
-        if (PetscAbsReal(x[2 * a] - c->level[k]) < 1.5 * sim->dx) m[1 + k] = PetscMax(m[1 + k], x[2 * a + 1]);
+      m[0] = PetscMax(m[0], x[D * a]);
+      for (PetscInt k = 0; k < c->nlevel; k++) { /* the highest water within 1.5 dx of the gauge's vertical */
+        PetscBool near = PETSC_TRUE;
+        for (PetscInt d = 0; d < D - 1; d++) near = (PetscBool)(near && PetscAbsReal(x[D * a + d] - c->level[k][d]) < 1.5 * sim->dx);
+        if (near) m[1 + k] = PetscMax(m[1 + k], x[D * a + D - 1]);
+      }
     } else if (P->kind[a] == KIND_SOLID && x0)
       for (PetscInt k = 0; k < c->nsgauge; k++) {
         const PetscReal *g = c->sgauge[k];

@@ -235,13 +235,7 @@ static void CopyParticle(Particles P, PetscInt to, PetscInt from)
   }
 }
 
-/* "(x, y)" or "(x, y, z)"; the grid's box "[x0, x1] x [y0, y1]" (x [z0, z1]) */
-static void FormatPoint(char *buf, size_t len, PetscInt D, const PetscReal *x)
-{
-  if (D == 3) snprintf(buf, len, "(%g, %g, %g)", (double)x[0], (double)x[1], (double)x[2]);
-  else snprintf(buf, len, "(%g, %g)", (double)x[0], (double)x[1]);
-}
-
+/* The grid's box "[x0, x1] x [y0, y1]" (x [z0, z1]) */
 static void FormatBox(char *buf, size_t len, const Grid *g)
 {
   if (g->dim == 3) snprintf(buf, len, "[%g, %g] x [%g, %g] x [%g, %g]", (double)g->lo[0], (double)g->hi[0], (double)g->lo[1], (double)g->hi[1], (double)g->lo[2], (double)g->hi[2]);
@@ -267,7 +261,7 @@ PetscErrorCode DecompMigrate(Decomp d, Particles P)
     c = GridCellOf(g, x + D * a);
     if (c < 0) {
       char at[96], box[160];
-      FormatPoint(at, sizeof(at), D, x + D * a);
+      GridFormatPoint(at, sizeof(at), D, x + D * a);
       FormatBox(box, sizeof(box), g);
       if (!nbad) PetscCall(PetscPrintf(PETSC_COMM_SELF, "[%d] particle id %" PetscInt_FMT " (%s) at %s is outside the domain %s\n", d->rank, P->id[a], ParticleKindNames[P->kind[a]], at, box));
       nbad++;
@@ -291,7 +285,7 @@ PetscErrorCode DecompMigrate(Decomp d, Particles P)
     PetscCall(PetscMalloc1(5 * size, &all));
     PetscCallMPI(MPI_Allgather(mine, 5, MPIU_REAL, all, 5, MPIU_REAL, d->comm));
     while (all[5 * r] < 0) r++;
-    FormatPoint(at, sizeof(at), D, all + 5 * r + 2);
+    GridFormatPoint(at, sizeof(at), D, all + 5 * r + 2);
     FormatBox(box, sizeof(box), g);
     PetscCall(PetscFree(dest));
     PetscCall(PetscFree4(scnt, rcnt, sdisp, rdisp));

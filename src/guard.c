@@ -144,15 +144,7 @@ typedef struct {
 #define WHERE_REALS 7
 
 /* "(x, y)" or "(x, y, z)" of a report */
-static const char *WherePoint(Sim sim, const Where *w, char buf[96])
-{
-  if (sim->dim == 3) snprintf(buf, 96, "(%g, %g, %g)", (double)w->x[0], (double)w->x[1], (double)w->x[2]);
-  else snprintf(buf, 96, "(%g, %g)", (double)w->x[0], (double)w->x[1]);
-  return buf;
-}
-
-/* |u| of a vector of the run's dimension */
-static PetscReal Norm(Sim sim, const PetscReal *u) { return PetscSqrtReal(u[0] * u[0] + u[1] * u[1] + (sim->dim == 3 ? u[2] * u[2] : 0)); }
+static const char *WherePoint(Sim sim, const Where *w, char buf[96]) { return GridFormatPoint(buf, 96, sim->dim, w->x); }
 
 static void WhereOf(Sim sim, PetscInt a, PetscInt field, PetscReal val, Where *w)
 {
@@ -198,7 +190,7 @@ PetscErrorCode GuardCheckDt(Sim sim, PetscInt medium, PetscReal dt)
   }
   /* where: the owned particle of this medium with the largest acceleration */
   for (PetscInt a = 0; a < P->n && acc; a++) {
-    PetscReal an = Norm(sim, acc + sim->dim * a);
+    PetscReal an = PetscSqrtReal(VDot(acc + sim->dim * a, acc + sim->dim * a, sim->dim));
     if ((medium ? P->kind[a] == KIND_SOLID : KindIsFluid(P->kind[a])) && an > amax) { amax = an; worst = a; }
   }
   {
@@ -213,7 +205,7 @@ PetscErrorCode GuardCheckDt(Sim sim, PetscInt medium, PetscReal dt)
     for (PetscInt b = 0; b < P->n; b++)
       if (P->id[b] == (PetscInt)w.id) a = b;
     char      at[96];
-    if (a >= 0) vn = Norm(sim, v + sim->dim * a);
+    if (a >= 0) vn = PetscSqrtReal(VDot(v + sim->dim * a, v + sim->dim * a, sim->dim));
     PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &vn, 1, MPIU_REAL, MPIU_MAX, sim->comm));
     PetscCall(GuardFault(sim, PETSC_TRUE, "the %s time step %g s fell below its floor %g s (%s) at step %" PetscInt_FMT ", t = %g; largest acceleration %g m/s^2 (speed %g m/s) at particle id %d (%s) at %s: the run is unstable (try a smaller -cfl; -dt_min sets the floor)", medium ? "solid" : "fluid", (double)dt, (double)floor, g->dt_min > 0 ? "-dt_min" : "1e-3 of the first step", sim->step, (double)sim->t, (double)w.val, (double)vn, (int)w.id, ParticleKindNames[(PetscInt)w.kind], WherePoint(sim, &w, at)));
   } else PetscCall(GuardFault(sim, PETSC_TRUE, "the %s time step %g s fell below its floor %g s at step %" PetscInt_FMT ", t = %g: the run is unstable (try a smaller -cfl)", medium ? "solid" : "fluid", (double)dt, (double)floor, sim->step, (double)sim->t));

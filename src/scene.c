@@ -257,8 +257,7 @@ PetscErrorCode SceneProbePressure(Sim sim, const PetscReal x0[], PetscReal *pval
     VSub(x0, x + D * a, d, D);
     w = KernelW(&sim->kernel, PetscSqrtReal(VDot(d, d, D)), h[a]);
     if (w <= 0) continue;
-    gd = sim->g[0] * d[0] + sim->g[1] * d[1];
-    if (D == 3) gd += sim->g[2] * d[2];
+    gd = VDot(sim->g, d, D);
     s[0] += w * (p[a] + rho[a] * gd);
     s[1] += w;
   }

@@ -3,6 +3,7 @@
  * A 2D grid is one layer of cells: n[2] = 1 and z is never read. */
 #pragma once
 #include <sphfsi/base.h>
+#include <stdio.h>
 
 typedef struct {
   PetscInt  dim;          /* 2 or 3 */
@@ -62,6 +63,14 @@ static inline PetscInt GridCellNeighbours(const Grid *g, PetscInt c, PetscInt nb
         if (!out) nb[cnt++] = GridIndex(g, cc[0], cc[1], cc[2]);
       }
   return cnt;
+}
+
+/* "(x, y)" or "(x, y, z)" of a point of dimension D, for messages; returns buf. */
+static inline const char *GridFormatPoint(char *buf, size_t len, PetscInt D, const PetscReal *x)
+{
+  if (D == 3) snprintf(buf, len, "(%g, %g, %g)", (double)x[0], (double)x[1], (double)x[2]);
+  else snprintf(buf, len, "(%g, %g)", (double)x[0], (double)x[1]);
+  return buf;
 }
 
 /* Wrap a position into the box in its periodic directions. */

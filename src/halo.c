@@ -7,7 +7,7 @@ PetscErrorCode HaloCreate(MPI_Comm comm, Halo *h)
   PetscFunctionBeginUser;
   PetscCall(PetscNew(h));
   (*h)->comm = comm;
-  for (PetscInt w = 1; w <= 25; w++) {
+  for (PetscInt w = 1; w <= HALO_MAX_WIDTH; w++) {
     PetscCallMPI(MPI_Type_contiguous((PetscMPIInt)w, MPIU_REAL, &(*h)->unit[w]));
     PetscCallMPI(MPI_Type_commit(&(*h)->unit[w]));
   }
@@ -19,11 +19,17 @@ PetscErrorCode HaloDestroy(Halo *h)
   PetscFunctionBeginUser;
   if (!*h) PetscFunctionReturn(PETSC_SUCCESS);
   PetscCall(PetscSFDestroy(&(*h)->sf));
+  PetscCall(PetscSFDestroy(&(*h)->sf_kinds));
+  PetscCall(PetscFree((*h)->kinds_ghost));
   PetscCall(PetscFree((*h)->shift));
-  for (PetscInt w = 1; w <= 25; w++) PetscCallMPI(MPI_Type_free(&(*h)->unit[w]));
+  for (PetscInt w = 1; w <= HALO_MAX_WIDTH; w++) PetscCallMPI(MPI_Type_free(&(*h)->unit[w]));
   PetscCall(PetscFree(*h));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
+
+/* Fields that are positions, which a periodic image shifts: the current and the reference
+ * configuration (a solid across a periodic boundary). */
+static PetscBool IsPosition(PetscInt f) { return (PetscBool)(f == FIELD_X || f == FIELD_X0); }
 
 /* Ghost record: root index, shift code, id, kind, halo fields (positions shifted). */
 static PetscInt GhostRecordSize(Particles P)
@@ -131,7 +137,7 @@ PetscErrorCode HaloBuild(Halo h, Decomp d, Particles P)
     rec_[q++] = (PetscReal)P->id[a]; rec_[q++] = (PetscReal)P->kind[a];
     for (PetscInt f = 0; f < FIELD_COUNT; f++) {
       if (!P->f[f].on || !P->f[f].halo) continue;
-      for (PetscInt w = 0; w < P->f[f].width; w++) rec_[q++] = P->f[f].a[a * P->f[f].width + w] + (f == FIELD_X ? s[w] : 0.0);
+      for (PetscInt w = 0; w < P->f[f].width; w++) rec_[q++] = P->f[f].a[a * P->f[f].width + w] + (IsPosition(f) ? s[w] : 0.0);
     }
   }
   PetscCall(PetscFree(fill));
@@ -161,6 +167,8 @@ PetscErrorCode HaloBuild(Halo h, Decomp d, Particles P)
       }
     }
   P->ng = nrecv;
+  PetscCall(PetscSFDestroy(&h->sf_kinds)); /* a new ghost set: the kinds' SF is rebuilt when used */
+  h->kinds = NULL;
   PetscCall(PetscSFDestroy(&h->sf));
   PetscCall(PetscSFCreate(d->comm, &h->sf));
   /* leaves are contiguous: leafdata starts at the first ghost, never aliasing the roots */
@@ -184,7 +192,7 @@ PetscErrorCode HaloRefresh(Halo h, Particles P, PetscInt nf, const FieldId f[])
   for (PetscInt k = 0; k < nf; k++) {
     Field *F = &P->f[f[k]];
     PetscCall(PetscSFBcastEnd(h->sf, h->unit[F->width], F->a, F->a + P->n * F->width, MPI_REPLACE));
-    if (f[k] == FIELD_X) {
+    if (IsPosition(f[k])) {
       /* periodic images: the same shift the build applied */
       for (PetscInt j = 0; j < P->ng; j++) {
         PetscInt code = h->shift[j];
@@ -192,6 +200,50 @@ PetscErrorCode HaloRefresh(Halo h, Particles P, PetscInt nf, const FieldId f[])
         for (PetscInt d = 0; d < P->dim; d++) F->a[P->dim * (P->n + j) + d] += h->period[d] * ShiftComponent(code, d);
       }
     }
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* The SF from the owners to the ghosts of the kinds keep accepts. */
+static PetscErrorCode KindsSF(Halo h, Particles P, PetscBool (*keep)(PetscInt))
+{
+  const PetscSFNode *all;
+  PetscSFNode       *remote;
+  PetscInt           nl, n = 0;
+  PetscFunctionBeginUser;
+  PetscCall(PetscSFDestroy(&h->sf_kinds));
+  PetscCall(PetscFree(h->kinds_ghost));
+  PetscCall(PetscSFGetGraph(h->sf, NULL, &nl, NULL, &all));
+  PetscCall(PetscMalloc1(P->ng + 1, &h->kinds_ghost));
+  PetscCall(PetscMalloc1(P->ng + 1, &remote));
+  for (PetscInt j = 0; j < P->ng; j++)
+    if (keep(P->kind[P->n + j])) { h->kinds_ghost[n] = j; remote[n++] = all[j]; }
+  PetscCall(PetscSFCreate(h->comm, &h->sf_kinds));
+  PetscCall(PetscSFSetGraph(h->sf_kinds, P->n, n, h->kinds_ghost, PETSC_COPY_VALUES, remote, PETSC_OWN_POINTER));
+  PetscCall(PetscSFSetUp(h->sf_kinds));
+  h->nkinds = n;
+  h->kinds  = keep;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode HaloRefreshKinds(Halo h, Particles P, PetscBool (*keep)(PetscInt), PetscInt nf, const FieldId f[])
+{
+  PetscFunctionBeginUser;
+  if (!h->sf_kinds || h->kinds != keep) PetscCall(KindsSF(h, P, keep));
+  for (PetscInt k = 0; k < nf; k++) {
+    Field *F = &P->f[f[k]];
+    PetscCheck(F->on, h->comm, PETSC_ERR_ARG_WRONGSTATE, "Halo refresh of field %s, which this scene does not allocate", F->name);
+    PetscCall(PetscSFBcastBegin(h->sf_kinds, h->unit[F->width], F->a, F->a + P->n * F->width, MPI_REPLACE));
+  }
+  for (PetscInt k = 0; k < nf; k++) {
+    Field *F = &P->f[f[k]];
+    PetscCall(PetscSFBcastEnd(h->sf_kinds, h->unit[F->width], F->a, F->a + P->n * F->width, MPI_REPLACE));
+    if (IsPosition(f[k]))
+      for (PetscInt i = 0; i < h->nkinds; i++) {
+        PetscInt j = h->kinds_ghost[i], code = h->shift[j];
+        if (code == HALO_NO_SHIFT) continue;
+        for (PetscInt d = 0; d < P->dim; d++) F->a[P->dim * (P->n + j) + d] += h->period[d] * ShiftComponent(code, d);
+      }
   }
   PetscFunctionReturn(PETSC_SUCCESS);
 }

@@ -233,14 +233,14 @@ static PetscErrorCode Reset(PPE ppe, Sim sim)
  * so the fluid's added mass enters the solve.  A solid held at rest during the solve (as a wall)
  * makes the staggered coupling amplify by M_added / m_solid each step, which blows up for the
  * rubber gate (about 10); in equilibrium both agree.  Returns the right-hand side; fills cols/vals. */
-static PetscReal MovingSolidRow(PPE ppe, Sim sim, PetscInt a, PetscReal va, PetscInt *nc)
+SPH_INLINE PetscReal MovingSolidRow(PPE ppe, Sim sim, PetscInt a, PetscReal va, PetscInt *nc, const PetscInt D)
 {
   Particles        P = sim->P;
   Cells            C = sim->cells;
   const PetscReal *row = PField(P, FIELD_ROW), *fs = PField(P, FIELD_FS), *x = PField(P, FIELD_X), *am = PField(P, FIELD_AMEAN);
   const PetscReal *rho = PField(P, FIELD_RHO), *m = PField(P, FIELD_M), *h = PField(P, FIELD_H), *fv = PField(P, FIELD_FVIEW), *p = PField(P, FIELD_P);
   const PetscReal  rho0 = sim->fl.rho0;
-  PetscReal        ma, ra, pa, R[2] = {0, 0}, diag = 0, ediag = 0, kappa, rhs_last = 0;
+  PetscReal        ma, ra, pa, R[3] = {0, 0, 0}, diag = 0, ediag = 0, kappa, rhs_last = 0, gam[3];
   PetscInt         n = 1;
 
   FluidView(fv, P->kind[a], a, m, rho, p, &ma, &ra, &pa);
@@ -250,18 +250,22 @@ static PetscReal MovingSolidRow(PPE ppe, Sim sim, PetscInt a, PetscReal va, Pets
      * against the solid's own waves (a stiff plate under water barely moves in a step) */
     const SolidMaterial *sm = &sim->sl;
     PetscReal            k = (sm->K + 4.0 * sm->G / 3.0) * h[a] / sim->kernel.h_factor;
+    if (D == 3) k *= h[a] / sim->kernel.h_factor; /* the 2D k is per unit depth and was measured so; a 3D particle is a layer dx deep (a slab repeats the 2D run) */
     kappa = ma / (m[a] + 0.25 * sim->dt * sim->dt * k);
   }
   for (PetscInt pass = 0; pass < 2; pass++)
     for (PetscInt k = C->nstart[a]; k < C->nstart[a + 1]; k++) {
       PetscInt  b = C->nbr[k];
       NbrRole   role = Role(P, row, fs, ppe->pin, a, b);
-      PetscReal dx, dy, c, e;
+      PetscReal d[3], c, e;
       if (role == NBR_SKIP) continue;
-      dx = x[2 * a] - x[2 * b]; dy = x[2 * a + 1] - x[2 * b + 1];
-      c  = PPECoefficient(m[b], ra, rho[b], C->f[k], dx * dx + dy * dy, PairH(h[a], h[b]), sim->fl.eta, sim->fl.lap_kappa);
-      if (!pass) { R[0] += c * dx; R[1] += c * dy; continue; }
-      e = rho0 * kappa * m[b] * C->f[k] * (R[0] * dx + R[1] * dy); /* -rho0 R . A(P) = sum_f e (P_f / rho_f^2 + P_s / rho_s^2) */
+      VSub(x + D * a, x + D * b, d, D);
+      c = PPECoefficient(m[b], ra, rho[b], C->f[k], VDot(d, d, D), PairH(h[a], h[b]), sim->fl.eta, sim->fl.lap_kappa);
+      if (!pass) {
+        for (PetscInt i = 0; i < D; i++) R[i] += c * d[i];
+        continue;
+      }
+      e = rho0 * kappa * m[b] * C->f[k] * VDot(R, d, D); /* -rho0 R . A(P) = sum_f e (P_f / rho_f^2 + P_s / rho_s^2) */
       diag += c; ediag += e;
       rhs_last += e * (role == NBR_KNOWN ? 0 : p[b]) / (rho[b] * rho[b]);
       if (role == NBR_KNOWN) continue;
@@ -270,7 +274,8 @@ static PetscReal MovingSolidRow(PPE ppe, Sim sim, PetscInt a, PetscReal va, Pets
   rhs_last += ediag * pa / (ra * ra); /* -rho0 R . A(P_last) */
   ppe->vals[0] = diag != 0 ? va * (-diag + ediag / (ra * ra)) : va / (rho0 * h[a] * h[a]);
   *nc          = n;
-  return -va * (rho0 * ((sim->g[0] - am[2 * a]) * R[0] + (sim->g[1] - am[2 * a + 1]) * R[1]) - rhs_last);
+  VSub(sim->g, am + D * a, gam, D);
+  return -va * (rho0 * VDot(gam, R, D) - rhs_last);
 }
 
 /* The unit normal of wall (or solid) particle a into the fluid: towards the kernel-weighted centre
@@ -329,7 +334,7 @@ SPH_INLINE PetscErrorCode AssembleRowsD(PPE ppe, Sim sim, const PetscReal *src, 
     if (!ppe->symmetric && P->kind[a] == KIND_SOLID) {
       ppe->cols[0] = ga;
       ppe->hyd[r]  = 0;
-      bb[r]        = MovingSolidRow(ppe, sim, a, va, &nc);
+      bb[r]        = MovingSolidRow(ppe, sim, a, va, &nc, D);
       PetscCall(SplitCSRAppendRow(&ppe->csr, nc, ppe->cols, ppe->vals));
       if (sparse) PetscCall(SplitCSRAppendRow(&ppe->csrp, nc, ppe->cols, ppe->vals));
       continue;

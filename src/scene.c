@@ -48,13 +48,43 @@ PetscErrorCode SceneListNames(char *buf, size_t len)
 /* One particle at p (sim->dim coordinates) of spacing dx: mass rho0 dx^dim; the next id. */
 static PetscErrorCode AddPoint(Sim sim, ParticleKind kind, const PetscReal p[], PetscReal dx, PetscReal rho0)
 {
-  PetscInt  id = sim->next_id++;
-  PetscReal m  = rho0 * dx * dx;
+  PetscReal m = rho0 * dx * dx;
   PetscFunctionBeginUser;
+  if (sim->extrude.n > 0) { /* p is a point of the 2D layout */
+    m *= sim->extrude.dz;
+    for (PetscInt k = 0; k < sim->extrude.n; k++) {
+      PetscInt        id = sim->next_id++;
+      const PetscReal q[3] = {p[0], p[1], sim->extrude.z0 + (k + 0.5) * sim->extrude.dz};
+      if (id % sim->size == sim->rank) PetscCall(ParticlesAdd(sim->P, id, kind, q, m, sim->kernel.h_factor * dx, rho0));
+    }
+    PetscFunctionReturn(PETSC_SUCCESS);
+  }
   if (sim->dim == 3) m *= dx;
-  if (id % sim->size == sim->rank) PetscCall(ParticlesAdd(sim->P, id, kind, p, m, sim->kernel.h_factor * dx, rho0));
+  {
+    PetscInt id = sim->next_id++;
+    if (id % sim->size == sim->rank) PetscCall(ParticlesAdd(sim->P, id, kind, p, m, sim->kernel.h_factor * dx, rho0));
+  }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
+
+PetscErrorCode SceneExtrudeBegin(Sim sim, PetscInt n, PetscReal z0, PetscReal dz)
+{
+  PetscFunctionBeginUser;
+  PetscCheck(sim->dim == 3 && n >= 1 && dz > 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "Extrusion needs a 3D scene, >= 1 layer and a spacing > 0");
+  sim->extrude.n  = n;
+  sim->extrude.z0 = z0;
+  sim->extrude.dz = dz;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode SceneExtrudeEnd(Sim sim)
+{
+  PetscFunctionBeginUser;
+  sim->extrude.n = 0;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscInt SceneLayoutDim(Sim sim) { return sim->extrude.n > 0 ? 2 : sim->dim; }
 
 static PetscErrorCode AddOne(Sim sim, ParticleKind kind, PetscReal x, PetscReal y, PetscReal dx, PetscReal rho0)
 {
@@ -78,7 +108,7 @@ static PetscReal IdUniform(PetscInt id, unsigned salt)
 PetscErrorCode SceneAddBlock(Sim sim, ParticleKind kind, const PetscReal lo[], const PetscInt n[], PetscReal dx, PetscReal rho0)
 {
   const PetscReal jit = kind == KIND_FLUID ? sim->start_jitter * dx : 0;
-  const PetscInt  D = sim->dim, nz = D == 3 ? n[2] : 1;
+  const PetscInt  D = SceneLayoutDim(sim), nz = D == 3 ? n[2] : 1;
   PetscFunctionBeginUser;
   for (PetscInt k = 0; k < nz; k++)
     for (PetscInt j = 0; j < n[1]; j++)
@@ -100,7 +130,7 @@ PetscErrorCode SceneAddLattice(Sim sim, ParticleKind kind, PetscReal x0, PetscRe
 
 PetscErrorCode SceneAddBox(Sim sim, ParticleKind kind, const PetscReal b[], PetscReal dx, PetscReal rho0)
 {
-  const PetscInt D = sim->dim;
+  const PetscInt D = SceneLayoutDim(sim);
   PetscReal      first[3] = {0, 0, 0};
   PetscInt       n[3]     = {1, 1, 1};
   PetscFunctionBeginUser;
@@ -114,12 +144,12 @@ PetscErrorCode SceneAddBox(Sim sim, ParticleKind kind, const PetscReal b[], Pets
 
 PetscErrorCode SceneAddWallBox(Sim sim, const PetscReal b[], PetscReal dx, const PetscBool faces[])
 {
-  const PetscInt D = sim->dim;
+  const PetscInt D = SceneLayoutDim(sim);
   PetscInt       first = sim->P->n;
   PetscFunctionBeginUser;
   PetscCall(SceneAddBox(sim, KIND_WALL, b, dx, sim->fl.rho0));
   for (PetscInt a = first; a < sim->P->n; a++) { /* this rank's share of the lattice */
-    const PetscReal *x = PField(sim->P, FIELD_X) + D * a;
+    const PetscReal *x = PField(sim->P, FIELD_X) + sim->dim * a;
     PetscBool        wet = PETSC_FALSE;
     for (PetscInt d = 0; d < D; d++) wet = (PetscBool)(wet || (faces[d] && x[d] < b[d] + dx) || (faces[D + d] && x[d] > b[D + d] - dx));
     if (!wet) sim->P->kind[a] = KIND_DUMMY;
@@ -234,7 +264,7 @@ PetscErrorCode SceneHydrostaticDensity(Sim sim, PetscInt first, PetscReal y_surf
 {
   Particles      P = sim->P;
   PetscReal     *x = PField(P, FIELD_X), *rho = PField(P, FIELD_RHO), *p = PField(P, FIELD_P);
-  const PetscInt up = P->dim - 1;
+  const PetscInt up = SceneLayoutDim(sim) - 1;
   PetscFunctionBeginUser;
   for (PetscInt a = first; a < P->n; a++) {
     if (!KindIsFluid(P->kind[a])) continue;

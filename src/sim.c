@@ -236,8 +236,6 @@ PetscErrorCode SimSetUp(Sim sim)
   PetscCall(sim->scene->create(sim));
   PetscCheck(sim->dx > 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dx %g must be > 0", (double)sim->dx);
   PetscCheck(sim->dim == 2 || sim->dim == 3, sim->comm, PETSC_ERR_PLIB, "Scene %s set dimension %" PetscInt_FMT, sim->scene->name, sim->dim);
-  /* issue 26 lands in increments: the machinery and both fluids are three-dimensional so far */
-  PetscCheck(sim->dim == 2 || !sim->has_solid, sim->comm, PETSC_ERR_ARG_INCOMP, "3D runs have no solid yet: the scene %s has one", sim->scene->name);
   { /* a -dx so fine that the lattice counts overflow would leave an empty scene: say so first */
     PetscReal lattice = 1;
     char      box[128] = "";

@@ -8,6 +8,7 @@
 #include <sphfsi/boundary.h>
 #include <sphfsi/isph.h>
 #include <sphfsi/solid_impl.h>
+#include <sphfsi/dim.h>
 
 const char *const SolidGradients[]    = {"standard", "corrected", "SolidGradient", "SOLID_GRAD_", NULL};
 const char *const SolidFormulations[] = {"updated", "total", "SolidFormulation", "SOLID_", NULL};
@@ -95,12 +96,13 @@ PetscErrorCode SolidSetUp(Sim sim)
   PetscCall(CellsCreateList(&sim->kernel, &s->nl));
   { /* |sum V grad W| of a particle on a flat surface of a lattice of spacing 1 */
     PetscReal g = 0, hh = sim->kernel.h_factor;
-    PetscInt  nr = KernelSupportRows(&sim->kernel);
-    for (PetscInt j = 0; j <= nr; j++)
-      for (PetscInt i = -nr; i <= nr; i++) {
-        PetscReal r = PetscSqrtReal((PetscReal)(i * i + j * j));
-        g += KernelF(&sim->kernel, r, hh) * j;
-      }
+    PetscInt  nr = KernelSupportRows(&sim->kernel), nk = sim->dim == 3 ? nr : 0;
+    for (PetscInt k = -nk; k <= nk; k++) /* one layer in 2D */
+      for (PetscInt j = 0; j <= nr; j++)
+        for (PetscInt i = -nr; i <= nr; i++) {
+          PetscReal r = PetscSqrtReal((PetscReal)(i * i + j * j + k * k));
+          g += KernelF(&sim->kernel, r, hh) * j;
+        }
     s->nrm_min = 0.5 * PetscAbsReal(g);
   }
   PetscFunctionReturn(PETSC_SUCCESS);
@@ -118,97 +120,10 @@ PetscErrorCode SolidDestroy(Solid *s)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-/* Pressure (Eq. 20) and artificial stress (Eqs. 25-34) of owned and ghost solids: both are
- * functions of the particle's own density and stress, so ghosts compute theirs. */
-static PetscErrorCode PressureAndArtificialStress(Sim sim)
-{
-  Particles            P = sim->P;
-  Solid                s = sim->solid;
-  const SolidMaterial *m = &sim->sl;
-  const PetscReal     *rho = PField(P, FIELD_RHO), *S = PField(P, FIELD_S);
-  PetscReal           *p = PField(P, FIELD_P);
-  PetscInt             N = P->n + P->ng;
-
-  PetscFunctionBeginUser;
-  if (m->eps > 0 && s->cap_R < N) {
-    PetscCall(PetscFree(s->R));
-    s->cap_R = P->cap;
-    PetscCall(PetscMalloc1(3 * s->cap_R, &s->R));
-  }
-  for (PetscInt a = 0; a < N; a++) {
-    if (!KindIsSolid(P->kind[a])) continue;
-    p[a] = SolidEOSPressure(m, rho[a]);
-    if (m->eps > 0) ArtificialStress(m->eps, S[3 * a] - p[a], S[3 * a + 1], S[3 * a + 2] - p[a], rho[a], s->R + 3 * a);
-  }
-  PetscFunctionReturn(PETSC_SUCCESS);
-}
-
-/* (L v)_i for the 2x2 row-major L, or v itself without correction */
-static inline void Apply(const PetscReal *L, PetscReal gx, PetscReal gy, PetscReal out[2])
-{
-  if (L) { out[0] = L[0] * gx + L[1] * gy; out[1] = L[2] * gx + L[3] * gy; }
-  else { out[0] = gx; out[1] = gy; }
-}
-
-/* Eq. 23 for owned solids over their solid neighbours: stress, artificial viscosity (Eq. 24) and
- * artificial stress; the fluid's loads (FluidLoad); gravity.  Walls do not act; clamps do not
- * accelerate: what would, the support takes (Solid.support).  With the corrected gradient each
- * particle's stress acts through its own corrected kernel gradient, sigma_a L_a grad W +
- * sigma_b L_b grad W (pair terms with the mean), which keeps the pair forces opposite. */
-static PetscErrorCode Momentum(Sim sim)
-{
-  Particles            P = sim->P;
-  Cells                C = sim->solid->nl;
-  const SolidMaterial *m = &sim->sl;
-  const PetscReal     *x = PField(P, FIELD_X), *v = PField(P, FIELD_V), *rho = PField(P, FIELD_RHO), *p = PField(P, FIELD_P);
-  const PetscReal     *mass = PField(P, FIELD_M), *h = PField(P, FIELD_H), *S = PField(P, FIELD_S), *R = sim->solid->R, *L = PField(P, FIELD_KCORR);
-  PetscReal           *acc = PField(P, FIELD_ACC), support[2] = {0, 0}, load[2] = {0, 0};
-
-  PetscFunctionBeginUser;
-  for (PetscInt a = 0; a < P->n; a++) {
-    PetscReal ax = 0, ay = 0, ra = rho[a], ia = 1.0 / (ra * ra), wdx, fl[2] = {0, 0};
-    PetscReal sxx = (S[3 * a] - p[a]) * ia, sxy = S[3 * a + 1] * ia, syy = (S[3 * a + 2] - p[a]) * ia;
-    if (!KindIsSolid(P->kind[a])) continue;
-    wdx = R ? KernelW(&sim->kernel, h[a] / sim->kernel.h_factor, h[a]) : 1;
-    for (PetscInt k = C->nstart[a]; k < C->nstart[a + 1]; k++) {
-      PetscInt  b = C->nbr[k];
-      PetscReal dx = x[2 * a] - x[2 * b], dy = x[2 * a + 1] - x[2 * b + 1], r2 = dx * dx + dy * dy;
-      PetscReal gx = C->f[k] * dx, gy = C->f[k] * dy, rb = rho[b], ib = 1.0 / (rb * rb), ga[2], gb[2], gm[2], txx, txy, tyy;
-      if (C->f[k] == 0) continue; /* in the skin */
-      if (KindIsFluid(P->kind[b])) { FluidLoad(sim, a, b, C->f[k], fl); continue; }
-      if (!KindIsSolid(P->kind[b])) continue;
-      {
-        PetscReal hab = PairH(h[a], h[b]);
-        PetscReal pi  = ArtificialViscosity(m->alpha, m->c0, hab, 0.5 * (ra + rb), (v[2 * a] - v[2 * b]) * dx + (v[2 * a + 1] - v[2 * b + 1]) * dy, r2);
-        Apply(L ? L + 4 * a : NULL, gx, gy, ga);
-        Apply(L ? L + 4 * b : NULL, gx, gy, gb);
-        gm[0] = 0.5 * (ga[0] + gb[0]); gm[1] = 0.5 * (ga[1] + gb[1]);
-        /* sigma_a / rho_a^2 through ga, sigma_b / rho_b^2 through gb, Pi (and R) through the mean */
-        ax += mass[b] * (sxx * ga[0] + sxy * ga[1] + ((S[3 * b] - p[b]) * gb[0] + S[3 * b + 1] * gb[1]) * ib - pi * gm[0]);
-        ay += mass[b] * (sxy * ga[0] + syy * ga[1] + (S[3 * b + 1] * gb[0] + (S[3 * b + 2] - p[b]) * gb[1]) * ib - pi * gm[1]);
-        if (R) {
-          PetscReal fn = PetscPowReal(C->w[k] / wdx, m->n);
-          txx = fn * (R[3 * a] + R[3 * b]);
-          txy = fn * (R[3 * a + 1] + R[3 * b + 1]);
-          tyy = fn * (R[3 * a + 2] + R[3 * b + 2]);
-          ax += mass[b] * (txx * gm[0] + txy * gm[1]);
-          ay += mass[b] * (txy * gm[0] + tyy * gm[1]);
-        }
-      }
-    }
-    SolidAccelerate(sim, a, ax, ay, fl, acc, support, load);
-  }
-  sim->solid->support[0] = support[0];
-  sim->solid->support[1] = support[1];
-  sim->solid->load[0]    = load[0];
-  sim->solid->load[1]    = load[1];
-  PetscFunctionReturn(PETSC_SUCCESS);
-}
-
 /* Outward normal of solid surface particles, -sum_b V_b grad_a W / |.| over solid neighbours (the
  * kernel form of Eqs. 42-43's tangent turned by 90 degrees: it needs no ordering of the surface
  * particles); zero inside the body. */
-static PetscErrorCode Normals(Sim sim)
+SPH_INLINE PetscErrorCode NormalsD(Sim sim, const PetscInt D)
 {
   Particles        P = sim->P;
   Cells            C = sim->solid->nl;
@@ -218,25 +133,27 @@ static PetscErrorCode Normals(Sim sim)
 
   PetscFunctionBeginUser;
   for (PetscInt a = 0; a < P->n; a++) {
-    PetscReal gx = 0, gy = 0, gn, dxa = h[a] / sim->kernel.h_factor;
-    nrm[2 * a] = nrm[2 * a + 1] = 0;
+    PetscReal g[3] = {0, 0, 0}, gn, dxa = h[a] / sim->kernel.h_factor;
+    for (PetscInt i = 0; i < D; i++) nrm[D * a + i] = 0;
     if (!KindIsSolid(P->kind[a])) continue;
     for (PetscInt k = C->nstart[a]; k < C->nstart[a + 1]; k++) {
       PetscInt b = C->nbr[k];
       if (!KindIsSolid(P->kind[b])) continue;
-      gx -= m[b] / rho[b] * C->f[k] * (x[2 * a] - x[2 * b]);
-      gy -= m[b] / rho[b] * C->f[k] * (x[2 * a + 1] - x[2 * b + 1]);
+      for (PetscInt i = 0; i < D; i++) g[i] -= m[b] / rho[b] * C->f[k] * (x[D * a + i] - x[D * b + i]);
     }
-    gn = PetscSqrtReal(gx * gx + gy * gy);
-    if (gn * dxa > sim->solid->nrm_min) { nrm[2 * a] = gx / gn; nrm[2 * a + 1] = gy / gn; }
+    gn = PetscSqrtReal(VDot(g, g, D));
+    if (gn * dxa > sim->solid->nrm_min)
+      for (PetscInt i = 0; i < D; i++) nrm[D * a + i] = g[i] / gn;
   }
   PetscCall(PetscLogStagePush(sim->stage[STAGE_HALO]));
-  PetscCall(HaloRefresh(sim->halo, P, 1, refresh));
+  PetscCall(HaloRefreshKinds(sim->halo, P, SolidKeep, 1, refresh));
   PetscCall(PetscLogStagePop());
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-static PetscBool KeepSolid(PetscInt kind) { return KindIsSolid(kind); }
+static PetscErrorCode Normals(Sim sim) { return SPH_DIM_DISPATCH(sim->dim, NormalsD, sim); }
+
+PetscBool SolidKeep(PetscInt kind) { return KindIsSolid(kind); }
 
 PetscErrorCode SolidPrepare(Sim sim)
 {
@@ -245,13 +162,13 @@ PetscErrorCode SolidPrepare(Sim sim)
   const PetscReal *x = PField(P, FIELD_X);
   PetscFunctionBeginUser;
   PetscCall(PetscLogStagePush(sim->stage[STAGE_NEIGHBOUR]));
-  PetscCall(CellsBuildSubList(sim->cells, P, KeepSolid, s->skin * sim->dx, s->nl));
-  if (2 * P->n > s->cap_xref) {
+  PetscCall(CellsBuildSubList(sim->cells, P, SolidKeep, s->skin * sim->dx, s->nl));
+  if (P->dim * P->n > s->cap_xref) {
     PetscCall(PetscFree(s->xref));
     s->cap_xref = 3 * P->n + 16;
     PetscCall(PetscMalloc1(s->cap_xref, &s->xref));
   }
-  PetscCall(PetscArraycpy(s->xref, x, 2 * P->n));
+  PetscCall(PetscArraycpy(s->xref, x, P->dim * P->n));
   if (s->formulation == SOLID_TOTAL) PetscCall(SolidTotalPrepare(sim));
   PetscCall(PetscLogStagePop());
   if (sim->has_fluid) { /* the fluid's last half kick came after its rebuild: the loads need its ghosts' velocities */
@@ -271,12 +188,14 @@ static PetscErrorCode SolidRefresh(Sim sim)
   Particles        P = sim->P;
   const PetscReal *x = PField(P, FIELD_X);
   const FieldId    state[] = {FIELD_X, FIELD_RHO, FIELD_S};
+  const PetscInt   D = P->dim;
   PetscReal        d2 = 0, lim = 0.5 * s->skin * sim->dx;
   PetscFunctionBeginUser;
   for (PetscInt a = 0; a < P->n; a++)
     if (P->kind[a] == KIND_SOLID) {
-      PetscReal dx = x[2 * a] - s->xref[2 * a], dy = x[2 * a + 1] - s->xref[2 * a + 1];
-      d2 = PetscMax(d2, dx * dx + dy * dy);
+      PetscReal d[3] = {0, 0, 0};
+      VSub(x + D * a, s->xref + D * a, d, D);
+      d2 = PetscMax(d2, VDot(d, d, D));
     }
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &d2, 1, MPIU_REAL, MPIU_MAX, sim->comm));
   if (d2 >= lim * lim) {
@@ -285,7 +204,7 @@ static PetscErrorCode SolidRefresh(Sim sim)
     s->nrebuild++;
   } else {
     PetscCall(PetscLogStagePush(sim->stage[STAGE_HALO]));
-    PetscCall(HaloRefresh(sim->halo, P, 3, state));
+    PetscCall(HaloRefreshKinds(sim->halo, P, SolidKeep, 3, state));
     PetscCall(PetscLogStagePop());
   }
   PetscFunctionReturn(PETSC_SUCCESS);
@@ -302,60 +221,9 @@ PetscErrorCode SolidRates(Sim sim)
     PetscCall(PetscLogStagePop());
     PetscFunctionReturn(PETSC_SUCCESS);
   }
-  PetscCall(PressureAndArtificialStress(sim));
   if (sim->solid->repulsion) PetscCall(Normals(sim));
-  if (sim->solid->gradient == SOLID_GRAD_CORRECTED) {
-    const FieldId kc[] = {FIELD_KCORR};
-    PetscCall(SPHGradientCorrection(sim->P, sim->solid->nl, KeepSolid, PField(sim->P, FIELD_KCORR)));
-    PetscCall(PetscLogStagePush(sim->stage[STAGE_HALO]));
-    PetscCall(HaloRefresh(sim->halo, sim->P, 1, kc));
-    PetscCall(PetscLogStagePop());
-  }
-  PetscCall(Momentum(sim));
+  PetscCall(SolidUpdatedRates(sim));
   PetscCall(PetscLogStagePop());
-  PetscFunctionReturn(PETSC_SUCCESS);
-}
-
-/* Velocity gradient g_ij = dv_i/dx_j of owned solid a from its solid neighbours: Eqs. 35-38 use
- * g = sum V_b (v_b - v_a) (x) grad_a W; corrected, grad_a W becomes L_a grad_a W. */
-static void VelocityGradient(Sim sim, PetscInt a, PetscReal g[4])
-{
-  Particles        P = sim->P;
-  Cells            C = sim->solid->nl;
-  const PetscReal *x = PField(P, FIELD_X), *v = PField(P, FIELD_V), *rho = PField(P, FIELD_RHO), *m = PField(P, FIELD_M), *L = PField(P, FIELD_KCORR);
-
-  g[0] = g[1] = g[2] = g[3] = 0;
-  for (PetscInt k = C->nstart[a]; k < C->nstart[a + 1]; k++) {
-    PetscInt  b = C->nbr[k];
-    PetscReal gw[2], V, dvx, dvy;
-    if (!KindIsSolid(P->kind[b]) || C->f[k] == 0) continue;
-    Apply(L ? L + 4 * a : NULL, C->f[k] * (x[2 * a] - x[2 * b]), C->f[k] * (x[2 * a + 1] - x[2 * b + 1]), gw);
-    V   = m[b] / rho[b];
-    dvx = V * (v[2 * b] - v[2 * a]); dvy = V * (v[2 * b + 1] - v[2 * a + 1]);
-    g[0] += dvx * gw[0]; g[1] += dvx * gw[1]; g[2] += dvy * gw[0]; g[3] += dvy * gw[1];
-  }
-}
-
-/* Density (continuity, Eq. 18 as -rho div v) and deviatoric stress (Eqs. 35-40) of owned solids
- * and clamps over dt, from the current velocities at the positions of the last SolidRates.  The
- * density changes after the loop: neighbours' volumes m/rho must be those of the step's start,
- * owned or ghost alike, or the answer would depend on the decomposition. */
-static PetscErrorCode Deform(Sim sim, PetscReal dt)
-{
-  Particles  P = sim->P;
-  PetscReal *rho = PField(P, FIELD_RHO), *S = PField(P, FIELD_S), *drho = PField(P, FIELD_DRHO);
-
-  PetscFunctionBeginUser;
-  for (PetscInt a = 0; a < P->n; a++) {
-    PetscReal g[4];
-    if (!KindIsSolid(P->kind[a])) continue;
-    VelocityGradient(sim, a, g);
-    drho[a] = -rho[a] * (g[0] + g[3]);
-    /* D_xy = (du/dy + dv/dx) / 2, spin W_xy = (du/dy - dv/dx) / 2 (Eqs. 37-38) */
-    JaumannUpdate(sim->sl.G, dt, g[0], 0.5 * (g[1] + g[2]), g[3], 0.5 * (g[1] - g[2]), S + 3 * a);
-  }
-  for (PetscInt a = 0; a < P->n; a++)
-    if (KindIsSolid(P->kind[a])) rho[a] += dt * drho[a];
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -367,11 +235,16 @@ PetscErrorCode SolidTransitLimit(Sim sim, PetscReal *dt)
   if (!s || s->transit <= 0) PetscFunctionReturn(PETSC_SUCCESS);
   if (s->extent <= 0) { /* bounding box of the moving solids at the first call (SimSetUp: as built) */
     const PetscReal *x = PField(sim->P, FIELD_X);
-    PetscReal        b[4] = {PETSC_MAX_REAL, PETSC_MAX_REAL, PETSC_MAX_REAL, PETSC_MAX_REAL}; /* -xmin, -ymin, ... as maxima */
+    const PetscInt   D = sim->dim;
+    PetscReal        b[6]; /* xmin, ymin[, zmin], then -xmax, ...: all as minima */
+    for (PetscInt i = 0; i < 2 * D; i++) b[i] = PETSC_MAX_REAL;
     for (PetscInt a = 0; a < sim->P->n; a++)
-      if (sim->P->kind[a] == KIND_SOLID) { b[0] = PetscMin(b[0], x[2 * a]); b[1] = PetscMin(b[1], x[2 * a + 1]); b[2] = PetscMin(b[2], -x[2 * a]); b[3] = PetscMin(b[3], -x[2 * a + 1]); }
-    PetscCall(MPIU_Allreduce(MPI_IN_PLACE, b, 4, MPIU_REAL, MPIU_MIN, sim->comm));
-    s->extent = b[0] < PETSC_MAX_REAL ? PetscMax(-b[2] - b[0], -b[3] - b[1]) + sim->dx : 0;
+      if (sim->P->kind[a] == KIND_SOLID)
+        for (PetscInt i = 0; i < D; i++) { b[i] = PetscMin(b[i], x[D * a + i]); b[D + i] = PetscMin(b[D + i], -x[D * a + i]); }
+    PetscCall(MPIU_Allreduce(MPI_IN_PLACE, b, (PetscMPIInt)(2 * D), MPIU_REAL, MPIU_MIN, sim->comm));
+    s->extent = 0;
+    for (PetscInt i = 0; i < D; i++) s->extent = PetscMax(s->extent, -b[D + i] - b[i]);
+    s->extent = b[0] < PETSC_MAX_REAL ? s->extent + sim->dx : 0;
     if (s->extent <= 0) s->transit = 0; /* no moving solid */
   }
   if (s->transit > 0) *dt = s->transit * s->extent / sim->sl.c0;
@@ -386,7 +259,7 @@ PetscErrorCode SolidTimeStep(Sim sim, PetscReal *dt)
 
   PetscFunctionBeginUser;
   for (PetscInt a = 0; a < P->n; a++)
-    if (P->kind[a] == KIND_SOLID) lim = PetscMin(lim, SimAcousticStepLimit(sim->solid->cfl, h[a], sim->sl.c0, v + 2 * a, acc + 2 * a, 2));
+    if (P->kind[a] == KIND_SOLID) lim = PetscMin(lim, SimAcousticStepLimit(sim->solid->cfl, h[a], sim->sl.c0, v + P->dim * a, acc + P->dim * a, P->dim));
   PetscCall(MPIU_Allreduce(&lim, dt, 1, MPIU_REAL, MPIU_MIN, sim->comm));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -399,16 +272,17 @@ static void Kick(Sim sim, PetscReal dt)
   Solid            s = sim->solid;
   PetscReal       *v = PField(P, FIELD_V), *am = PField(P, FIELD_AMEAN), w = sim->dt > 0 ? dt / sim->dt : 0;
   const PetscReal *acc = PField(P, FIELD_ACC);
+  const PetscInt   D   = P->dim;
   for (PetscInt a = 0; a < P->n; a++) {
     if (P->kind[a] != KIND_SOLID) continue;
-    v[2 * a] += dt * acc[2 * a];
-    v[2 * a + 1] += dt * acc[2 * a + 1];
-    if (am) { am[2 * a] += w * acc[2 * a]; am[2 * a + 1] += w * acc[2 * a + 1]; }
+    for (PetscInt i = 0; i < D; i++) v[D * a + i] += dt * acc[D * a + i];
+    if (am)
+      for (PetscInt i = 0; i < D; i++) am[D * a + i] += w * acc[D * a + i];
   }
-  s->support_mean[0] += w * s->support[0];
-  s->support_mean[1] += w * s->support[1];
-  s->load_mean[0] += w * s->load[0];
-  s->load_mean[1] += w * s->load[1];
+  for (PetscInt i = 0; i < D; i++) {
+    s->support_mean[i] += w * s->support[i];
+    s->load_mean[i] += w * s->load[i];
+  }
 }
 
 PetscErrorCode SolidBeginSubsteps(Sim sim)
@@ -416,9 +290,8 @@ PetscErrorCode SolidBeginSubsteps(Sim sim)
   Particles  P = sim->P;
   PetscReal *am = PField(P, FIELD_AMEAN);
   PetscFunctionBeginUser;
-  sim->solid->support_mean[0] = sim->solid->support_mean[1] = 0;
-  sim->solid->load_mean[0] = sim->solid->load_mean[1] = 0;
-  if (am) PetscCall(PetscArrayzero(am, 2 * P->n));
+  for (PetscInt i = 0; i < 3; i++) sim->solid->support_mean[i] = sim->solid->load_mean[i] = 0;
+  if (am) PetscCall(PetscArrayzero(am, P->dim * P->n));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -435,16 +308,15 @@ PetscErrorCode SolidStep(Sim sim, PetscReal dt)
   if (sim->scene->prescribe) PetscCall(sim->scene->prescribe(sim));
   PetscCall(PetscLogStagePop());
   PetscCall(PetscLogStagePush(sim->stage[STAGE_HALO]));
-  PetscCall(HaloRefresh(sim->halo, P, 1, vel));
+  PetscCall(HaloRefreshKinds(sim->halo, P, SolidKeep, 1, vel)); /* only the solids were kicked */
   PetscCall(PetscLogStagePop());
   PetscCall(PetscLogStagePush(sim->stage[STAGE_SOLID]));
-  if (sim->solid->formulation == SOLID_UPDATED) PetscCall(Deform(sim, dt)); /* total: F follows from the positions */
+  if (sim->solid->formulation == SOLID_UPDATED) PetscCall(SolidUpdatedDeform(sim, dt)); /* total: F follows from the positions */
   {
     PetscReal *x = PField(P, FIELD_X), *v = PField(P, FIELD_V);
     for (PetscInt a = 0; a < P->n; a++) {
       if (P->kind[a] != KIND_SOLID) continue;
-      x[2 * a] += dt * v[2 * a];
-      x[2 * a + 1] += dt * v[2 * a + 1];
+      for (PetscInt i = 0; i < P->dim; i++) x[P->dim * a + i] += dt * v[P->dim * a + i];
     }
   }
   PetscCall(PetscLogStagePop());
@@ -464,12 +336,19 @@ PetscErrorCode SolidEnergy(Sim sim, PetscReal *ekin, PetscReal *estrain)
   PetscReal            e[2] = {0, 0};
 
   PetscFunctionBeginUser;
+  const PetscInt       D = P->dim;
   for (PetscInt a = 0; a < P->n; a++) {
-    PetscReal sxx, sxy, syy, szz, pa = p[a];
+    PetscReal SS, pa = p[a];
     if (!KindIsSolid(P->kind[a])) continue;
-    sxx = S[3 * a]; sxy = S[3 * a + 1]; syy = S[3 * a + 2]; szz = -(sxx + syy);
-    e[0] += 0.5 * mass[a] * (v[2 * a] * v[2 * a] + v[2 * a + 1] * v[2 * a + 1]);
-    e[1] += mass[a] / rho[a] * ((m->G > 0 ? (sxx * sxx + syy * syy + szz * szz + 2 * sxy * sxy) / (4 * m->G) : 0) + pa * pa / (2 * m->K));
+    if (D == 2) { /* plane strain: S_zz = -(S_xx + S_yy) */
+      PetscReal sxx = S[3 * a], sxy = S[3 * a + 1], syy = S[3 * a + 2], szz = -(sxx + syy);
+      SS = sxx * sxx + syy * syy + szz * szz + 2 * sxy * sxy;
+    } else {
+      const PetscReal *Sa = S + 6 * a;
+      SS = Sa[0] * Sa[0] + Sa[3] * Sa[3] + Sa[5] * Sa[5] + 2 * (Sa[1] * Sa[1] + Sa[2] * Sa[2] + Sa[4] * Sa[4]);
+    }
+    e[0] += 0.5 * mass[a] * VDot(v + D * a, v + D * a, D);
+    e[1] += mass[a] / rho[a] * ((m->G > 0 ? SS / (4 * m->G) : 0) + pa * pa / (2 * m->K));
   }
   if (sim->solid->formulation == SOLID_TOTAL) e[1] = SolidTotalStrainEnergy(sim);
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, e, 2, MPIU_REAL, MPI_SUM, sim->comm));

@@ -78,6 +78,11 @@ check "-gravity: component 2 is not finite" -case dam_break -gravity 0,nan
 check "-gravity takes 2 components in this 2D scene" -case dam_break -gravity 0,0,-9.81
 check "-dim 4 must be 2 or 3" -case hydrostatic -dim 4
 check "-dim 4 must be 2 or 3" -case taylor_green -dim 4
+check "-dim 4 must be 2 or 3" -case oscillating_plate -dim 4
+check "takes a uniform lattice"  -case elastic_gate -dim 3 -dx 0.0016667 -dx_coarse 0.0033333
+check "fewer than 6 particles"   -case elastic_gate -dim 3 -dx 0.0016667 -gate_width 0.005
+check "must hold >= 3 particles" -case oscillating_plate -dim 3 -plate_ny 4 -plate_width 0.01
+check "not used by this run: -gate_width" -case elastic_gate -gate_width 0.02
 # issue 27: bad geometry of a case given as data (-case boxes)
 check "has no water"                   -case boxes -dx 0.01 -tank_1 0,1,0,1
 check "-fluid_box_1 overlaps -wall_box_1" -case boxes -dx 0.01 -tank_1 0,1,0,1 -fluid_box_1 0,0,0.5,0.5 -wall_box_1 0.4,0,0.6,0.1

@@ -109,8 +109,10 @@ if [ "${1:-}" != "--unit-only" ]; then
   run user_path bash tests/check_user_path.sh "$MPI" "$OUT/user_path"
   # A case without C: the built-in dam break and tank written as data (-case boxes) run bit for bit alike
   run boxes bash tests/check_boxes.sh "$MPI" "$OUT/boxes"
-  # Three dimensions (WCSPH so far): a 3D tank at rest, 1 and 2 ranks equal, restart equal
+  # Three dimensions, the fluids: a 3D tank at rest, 1 and 2 ranks equal, restart equal, Taylor-Green in a cube
   run three_d bash tests/check_3d.sh "$MPI" "$OUT/three_d"
+  # Three dimensions, the solid and FSI: the cantilever against beam theory, slabs against the 2D plate and gate
+  run three_d_solid bash tests/check_3d_solid.sh "$MPI" "$OUT/three_d_solid"
   # make install for users who do not run from the source tree
   run install bash tests/check_install.sh "$MPI" "$OUT/install"
 fi

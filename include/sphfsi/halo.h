@@ -4,15 +4,23 @@
 #include <sphfsi/decomp.h>
 #include <petscsf.h>
 
+/* the widest field: FIELD_GRAD0 in 3D, 9 x 9 */
+#define HALO_MAX_WIDTH 81
+
 typedef struct _p_Halo *Halo;
 struct _p_Halo {
   MPI_Comm    comm;
   PetscSF     sf;       /* roots: owned particles; leaves: ghost slots n .. n+ng */
   PetscInt   *shift;    /* per ghost: periodic image code 9 (sz+1) + 3 (sy+1) + (sx+1); 13 = none */
   PetscInt    cap_shift;
-  MPI_Datatype unit[26]; /* contiguous blocks of 1..25 reals (the widest field, FIELD_GRAD0) */
+  MPI_Datatype unit[HALO_MAX_WIDTH + 1]; /* contiguous blocks of 1..HALO_MAX_WIDTH reals */
   PetscInt    nghost_sent;
   PetscReal   period[3]; /* domain lengths, for periodic shifts */
+  /* the ghosts of some kinds only (HaloRefreshKinds): rebuilt after each HaloBuild on first use */
+  PetscSF     sf_kinds;
+  PetscBool (*kinds)(PetscInt);
+  PetscInt   *kinds_ghost; /* their ghost offsets (0 .. ng) */
+  PetscInt    nkinds;
 };
 
 PetscErrorCode HaloCreate(MPI_Comm comm, Halo *h);
@@ -21,3 +29,6 @@ PetscErrorCode HaloDestroy(Halo *h);
 PetscErrorCode HaloBuild(Halo h, Decomp d, Particles P);
 /* Copy the owners' current values of these fields into the ghosts. */
 PetscErrorCode HaloRefresh(Halo h, Particles P, PetscInt nf, const FieldId f[]);
+/* The same for the ghosts whose kind `keep` accepts (the solid's sub-steps, between fluid steps,
+ * change only the solids: refreshing the fluid's ghosts too costs most of a 3D FSI sub-step). */
+PetscErrorCode HaloRefreshKinds(Halo h, Particles P, PetscBool (*keep)(PetscInt), PetscInt nf, const FieldId f[]);

@@ -33,6 +33,13 @@ PetscErrorCode SceneKeepReal(Sim sim, PetscReal *r);
 PetscErrorCode SceneListNames(char *buf, size_t len);
 
 /* Helpers for scenes */
+/* A 3D scene from a 2D layout: between Begin and End, the builders below take x, y points and boxes
+ * of the 2D layout (as in a 2D scene) and each point becomes n points at z = z0 + (k + 1/2) dz (its
+ * mass rho0 dx^2 dz), in the order of the 2D layout, layer by layer. */
+PetscErrorCode SceneExtrudeBegin(Sim sim, PetscInt n, PetscReal z0, PetscReal dz);
+PetscErrorCode SceneExtrudeEnd(Sim sim);
+/* The dimension of the layout the builders take: 2 while extruding, else the scene's. */
+PetscInt SceneLayoutDim(Sim sim);
 /* Add a lattice of n[0] x n[1] (x n[2] in 3D) particles of spacing dx whose first centre is lo,
  * ids from sim->next_id (x fastest); each rank keeps every size-th particle. */
 PetscErrorCode SceneAddBlock(Sim sim, ParticleKind kind, const PetscReal lo[], const PetscInt n[], PetscReal dx, PetscReal rho0);

@@ -53,6 +53,7 @@ struct _p_Sim {
   PetscBool     outflow;    /* fluid leaving the domain box is removed (open boundary) */
   PetscBool     confined;   /* the fluid has no free surface (Taylor-Green, Poiseuille) */
   PetscReal     start_jitter; /* -start_jitter: random displacement of the fluid's start lattice (dx) */
+  struct { PetscInt n; PetscReal z0, dz; } extrude; /* a 3D slab built from a 2D layout (SceneExtrudeBegin) */
   /* time */
   PetscReal t, t_end, dt, dt_fixed, cfl;
   PetscInt  step, max_steps;

@@ -38,11 +38,11 @@ struct _p_Solid {
   PetscBool     implicit;  /* ISPH: the solid's rows of the pressure equation answer its acceleration (ppe.c) */
   PetscReal     transit;   /* ISPH: fluid step <= transit * (solid extent) / c0_solid; 0 = no limit */
   PetscReal     extent;    /* largest side of the moving solids' bounding box at the start (0: not yet known) */
-  PetscReal    *R;     /* artificial stress (xx, xy, yy) of owned + ghost particles, Eqs. 32-34 */
+  PetscReal    *R;     /* artificial stress (symmetric, dim.h's order) of owned + ghost particles, Eqs. 32-34 */
   PetscInt      cap_R;
-  PetscReal     support[2];      /* force of the supports on the owned clamp particles at the last rates (N/m; reduce to sum) */
-  PetscReal     support_mean[2]; /* its mean over the sub-steps of the last fluid step */
-  PetscReal     load[2], load_mean[2]; /* the fluid's force on the owned moving solid particles, the same way */
+  PetscReal     support[3];      /* force of the supports on the owned clamp particles at the last rates (N/m in 2D, N in 3D; reduce to sum) */
+  PetscReal     support_mean[3]; /* its mean over the sub-steps of the last fluid step */
+  PetscReal     load[3], load_mean[3]; /* the fluid's force on the owned moving solid particles, the same way */
   PetscInt      nsub_last, nsub_max; /* solid sub-steps in the last / any fluid step (progress line, summary) */
 };
 
@@ -69,6 +69,6 @@ PetscErrorCode SolidTimeStep(Sim sim, PetscReal *dt);
 PetscErrorCode SolidStep(Sim sim, PetscReal dt);
 /* Kinetic and strain energy of owned solids at the state of the last SolidRates (collective):
  * strain energy density
- * S:S / (4 G) + P^2 / (2 K), S_zz = -(S_xx + S_yy) in plane strain. */
+ * S:S / (4 G) + P^2 / (2 K), S_zz = -(S_xx + S_yy) in plane strain (2D). */
 PetscErrorCode SolidEnergy(Sim sim, PetscReal *ekin, PetscReal *estrain);
 PetscErrorCode SolidView(Sim sim, PetscViewer v);

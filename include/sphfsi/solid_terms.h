@@ -1,6 +1,6 @@
 /* Per-particle and per-pair terms of the hypo-elastic solid (section 2.4). */
 #pragma once
-#include <sphfsi/base.h>
+#include <sphfsi/dim.h>
 
 /* Eqs. 25-34 (Monaghan 2000; Gray, Monaghan & Swift 2001): artificial stress R (xx, xy, yy) of a
  * particle of total stress sigma = -P I + S.  In the principal frame (Eq. 29) a tensile principal
@@ -29,6 +29,89 @@ static inline void JaumannUpdate(PetscReal G, PetscReal dt, PetscReal Dxx, Petsc
   S[0] = rxx + 2.0 * a * sxy;
   S[1] = sxy;
   S[2] = ryy - 2.0 * a * sxy;
+}
+
+/* Eq. 40 in 3D: the same implicit update for the symmetric S (xx, xy, xz, yy, yz, zz) with the
+ * spin W = (g - g^T) / 2 of the velocity gradient g (row-major 3 x 3) and D = (g + g^T) / 2:
+ * S' - dt (W S' - S' W) = S + dt 2 G (D - tr(D)/3 I), a 6 x 6 linear system solved by
+ * elimination with partial pivoting (it is I plus O(dt |W|), so always solvable). */
+static inline void JaumannUpdate3(PetscReal G, PetscReal dt, const PetscReal g[9], PetscReal S[6])
+{
+  static const PetscInt sym[3][3] = {{0, 1, 2}, {1, 3, 4}, {2, 4, 5}};
+  PetscReal             W[3][3], A[6][7], tr3 = (g[0] + g[4] + g[8]) / 3.0;
+  for (PetscInt i = 0; i < 3; i++)
+    for (PetscInt j = 0; j < 3; j++) W[i][j] = 0.5 * (g[3 * i + j] - g[3 * j + i]);
+  for (PetscInt m = 0; m < 6; m++) { /* column m: the operator on the unit symmetric tensor of component m */
+    PetscReal E[3][3] = {{0}};
+    for (PetscInt i = 0; i < 3; i++)
+      for (PetscInt j = 0; j < 3; j++) E[i][j] = sym[i][j] == m;
+    for (PetscInt i = 0; i < 3; i++)
+      for (PetscInt j = i; j < 3; j++) {
+        PetscReal c = 0;
+        for (PetscInt k = 0; k < 3; k++) c += W[i][k] * E[k][j] - E[i][k] * W[k][j];
+        A[sym[i][j]][m] = E[i][j] - dt * c;
+      }
+  }
+  for (PetscInt i = 0; i < 3; i++)
+    for (PetscInt j = i; j < 3; j++) A[sym[i][j]][6] = S[sym[i][j]] + dt * 2.0 * G * (0.5 * (g[3 * i + j] + g[3 * j + i]) - (i == j ? tr3 : 0));
+  for (PetscInt c = 0; c < 6; c++) {
+    PetscInt piv = c;
+    for (PetscInt i = c + 1; i < 6; i++) if (PetscAbsReal(A[i][c]) > PetscAbsReal(A[piv][c])) piv = i;
+    for (PetscInt j = 0; j < 7; j++) { PetscReal t = A[c][j]; A[c][j] = A[piv][j]; A[piv][j] = t; }
+    for (PetscInt i = c + 1; i < 6; i++) {
+      PetscReal r = A[i][c] / A[c][c];
+      for (PetscInt j = c; j < 7; j++) A[i][j] -= r * A[c][j];
+    }
+  }
+  for (PetscInt i = 5; i >= 0; i--) {
+    PetscReal t = A[i][6];
+    for (PetscInt j = i + 1; j < 6; j++) t -= A[i][j] * S[j];
+    S[i] = t / A[i][i];
+  }
+}
+
+/* Eigenvalues lam and unit eigenvectors (columns of V, row-major) of the symmetric 3 x 3 M (xx, xy,
+ * xz, yy, yz, zz) by cyclic Jacobi rotations. */
+static inline void Sym3Eigen(const PetscReal M[6], PetscReal lam[3], PetscReal V[9])
+{
+  PetscReal A[3][3] = {{M[0], M[1], M[2]}, {M[1], M[3], M[4]}, {M[2], M[4], M[5]}};
+  for (PetscInt i = 0; i < 9; i++) V[i] = (i % 4 == 0);
+  for (PetscInt sweep = 0; sweep < 30; sweep++) {
+    PetscReal off = A[0][1] * A[0][1] + A[0][2] * A[0][2] + A[1][2] * A[1][2], scale = A[0][0] * A[0][0] + A[1][1] * A[1][1] + A[2][2] * A[2][2];
+    if (off <= 1e-30 * scale || off == 0) break;
+    for (PetscInt p = 0; p < 2; p++)
+      for (PetscInt q = p + 1; q < 3; q++) {
+        PetscReal th, t, c, s;
+        if (A[p][q] == 0) continue;
+        th = (A[q][q] - A[p][p]) / (2.0 * A[p][q]);
+        t  = (th >= 0 ? 1.0 : -1.0) / (PetscAbsReal(th) + PetscSqrtReal(th * th + 1.0));
+        c  = 1.0 / PetscSqrtReal(t * t + 1.0); s = t * c;
+        for (PetscInt k = 0; k < 3; k++) { /* A <- A J, then J^T A; V <- V J */
+          PetscReal akp = A[k][p], akq = A[k][q];
+          A[k][p] = c * akp - s * akq; A[k][q] = s * akp + c * akq;
+        }
+        for (PetscInt k = 0; k < 3; k++) {
+          PetscReal apk = A[p][k], aqk = A[q][k];
+          A[p][k] = c * apk - s * aqk; A[q][k] = s * apk + c * aqk;
+        }
+        for (PetscInt k = 0; k < 3; k++) {
+          PetscReal vkp = V[3 * k + p], vkq = V[3 * k + q];
+          V[3 * k + p] = c * vkp - s * vkq; V[3 * k + q] = s * vkp + c * vkq;
+        }
+      }
+  }
+  for (PetscInt i = 0; i < 3; i++) lam[i] = A[i][i];
+}
+
+/* Eqs. 25-34 in 3D: the principal frame of sigma = -P I + S by its eigenvectors n_i; each tensile
+ * principal stress gets -e sigma_i / rho^2, and R = sum_i r_i n_i (x) n_i (xx, xy, xz, yy, yz, zz). */
+static inline void ArtificialStress3(PetscReal e, const PetscReal sigma[6], PetscReal rho, PetscReal R[6])
+{
+  static const PetscInt row[6] = {0, 0, 0, 1, 1, 2}, col[6] = {0, 1, 2, 1, 2, 2};
+  PetscReal             lam[3], V[9], r[3];
+  Sym3Eigen(sigma, lam, V);
+  for (PetscInt i = 0; i < 3; i++) r[i] = lam[i] > 0 ? -e * lam[i] / (rho * rho) : 0.0;
+  for (PetscInt m = 0; m < 6; m++) R[m] = r[0] * V[3 * row[m]] * V[3 * col[m]] + r[1] * V[3 * row[m] + 1] * V[3 * col[m] + 1] + r[2] * V[3 * row[m] + 2] * V[3 * col[m] + 2];
 }
 
 /* Total-Lagrangian solid (solid_total.c).  Compressible neo-Hookean material in plane strain
@@ -69,8 +152,62 @@ static inline void NeoHookeanCauchy(PetscReal K, PetscReal G, const PetscReal F[
   dev[0] = sxx + *p; dev[1] = sxy; dev[2] = syy + *p;
 }
 
+/* The same material in 3D: F and S row-major 3 x 3; returns J = det F (<= 0: S untouched). */
+static inline PetscReal NeoHookean3PK2(PetscReal K, PetscReal G, const PetscReal F[9], PetscReal S[9])
+{
+  static const PetscInt row[6] = {0, 0, 0, 1, 1, 2}, col[6] = {0, 1, 2, 1, 2, 2};
+  PetscReal             C[6], Ci[6], J, iJ2, l;
+  J = F[0] * (F[4] * F[8] - F[5] * F[7]) - F[1] * (F[3] * F[8] - F[5] * F[6]) + F[2] * (F[3] * F[7] - F[4] * F[6]);
+  if (J <= 0) return J;
+  for (PetscInt m = 0; m < 6; m++) C[m] = F[row[m]] * F[col[m]] + F[3 + row[m]] * F[3 + col[m]] + F[6 + row[m]] * F[6 + col[m]]; /* C = F^T F */
+  iJ2   = 1.0 / (J * J); /* det C = J^2; C^-1 = cofactors / det C */
+  Ci[0] = (C[3] * C[5] - C[4] * C[4]) * iJ2; Ci[1] = (C[2] * C[4] - C[1] * C[5]) * iJ2; Ci[2] = (C[1] * C[4] - C[2] * C[3]) * iJ2;
+  Ci[3] = (C[0] * C[5] - C[2] * C[2]) * iJ2; Ci[4] = (C[1] * C[2] - C[0] * C[4]) * iJ2; Ci[5] = (C[0] * C[3] - C[1] * C[1]) * iJ2;
+  l = (K - 2.0 * G / 3.0) * PetscLogReal(J);
+  for (PetscInt m = 0; m < 6; m++) {
+    PetscReal v = (row[m] == col[m] ? G : 0.0) + (l - G) * Ci[m];
+    S[3 * row[m] + col[m]] = S[3 * col[m] + row[m]] = v;
+  }
+  return J;
+}
+
+static inline PetscReal NeoHookean3Energy(PetscReal K, PetscReal G, const PetscReal F[9])
+{
+  PetscReal J = F[0] * (F[4] * F[8] - F[5] * F[7]) - F[1] * (F[3] * F[8] - F[5] * F[6]) + F[2] * (F[3] * F[7] - F[4] * F[6]), lj = J > 0 ? PetscLogReal(J) : 0, trC = 0;
+  for (PetscInt i = 0; i < 9; i++) trC += F[i] * F[i];
+  return 0.5 * G * (trC - 3) - G * lj + 0.5 * (K - 2.0 * G / 3.0) * lj * lj;
+}
+
+/* sigma = F S F^T / J as pressure and deviator (xx, xy, xz, yy, yz, zz). */
+static inline void NeoHookean3Cauchy(const PetscReal F[9], const PetscReal S[9], PetscReal *p, PetscReal dev[6])
+{
+  static const PetscInt row[6] = {0, 0, 0, 1, 1, 2}, col[6] = {0, 1, 2, 1, 2, 2};
+  PetscReal             P[9], J = F[0] * (F[4] * F[8] - F[5] * F[7]) - F[1] * (F[3] * F[8] - F[5] * F[6]) + F[2] * (F[3] * F[7] - F[4] * F[6]);
+  for (PetscInt i = 0; i < 3; i++)
+    for (PetscInt j = 0; j < 3; j++) P[3 * i + j] = F[3 * i] * S[j] + F[3 * i + 1] * S[3 + j] + F[3 * i + 2] * S[6 + j];
+  for (PetscInt m = 0; m < 6; m++) dev[m] = (P[3 * row[m]] * F[3 * col[m]] + P[3 * row[m] + 1] * F[3 * col[m] + 1] + P[3 * row[m] + 2] * F[3 * col[m] + 2]) / J;
+  *p = -(dev[0] + dev[3] + dev[5]) / 3;
+  dev[0] += *p; dev[3] += *p; dev[5] += *p;
+}
+
+/* The material in D dimensions: plane strain in 2D, the full law in 3D. */
+SPH_INLINE PetscReal NeoHookeanPK2D(PetscReal K, PetscReal G, const PetscReal *F, PetscReal *S, const PetscInt D) { return D == 2 ? NeoHookeanPK2(K, G, F, S) : NeoHookean3PK2(K, G, F, S); }
+SPH_INLINE PetscReal NeoHookeanEnergyD(PetscReal K, PetscReal G, const PetscReal *F, const PetscInt D) { return D == 2 ? NeoHookeanEnergy(K, G, F) : NeoHookean3Energy(K, G, F); }
+SPH_INLINE void      NeoHookeanCauchyD(PetscReal K, PetscReal G, const PetscReal *F, const PetscReal *S, PetscReal *p, PetscReal *dev, const PetscInt D)
+{
+  if (D == 2) NeoHookeanCauchy(K, G, F, S, p, dev);
+  else NeoHookean3Cauchy(F, S, p, dev);
+}
+
+/* Index of the pair (j, k) in a symmetric tensor's upper triangle (dim.h's order). */
+SPH_INLINE PetscInt SymIndex(PetscInt j, PetscInt k, const PetscInt D)
+{
+  static const PetscInt s3[3][3] = {{0, 1, 2}, {1, 3, 4}, {2, 4, 5}};
+  return D == 2 ? j + k : s3[j][k];
+}
+
 /* Second-order quadrature of a particle's cell (side dx) for the strain energy, which one point
- * per particle integrates only to first order: int_cell W = V [W + dx^2 / 24 (W_XX + W_YY)] with,
+ * per particle integrates only to first order: int_cell W = V [W + dx^2 / 24 sum_k W_kk] with,
  * for the strain E = (F^T F - I) / 2 of small magnitude, W_kk = E_k : C : E_k, E_k = sym(F^T dF/dX_k),
  * C Hooke's tensor (lambda = K - 2 G / 3, G).  A bent plate of n particles across stores
  * (1 - 1 / n^2) of its bending energy at one point per particle; this adds the missing part.
@@ -98,6 +235,52 @@ static inline PetscReal CellQuadrature(PetscReal K, PetscReal G, PetscReal kappa
   return W;
 }
 
+/* The same in 3D: Dd (3 x 6, row-major) holds h x_i,jk in dim.h's symmetric order (XX, XY, XZ, YY,
+ * YZ, ZZ).  Written for any D; the 2D instance above is kept as it was, since the compiler
+ * contracts this loop form's sums differently and 2D results must not change. */
+static inline PetscReal CellQuadrature3(PetscReal K, PetscReal G, PetscReal kappa, PetscReal h, const PetscReal *F, const PetscReal *Dd, PetscReal *dF, PetscReal *dD)
+{
+  const PetscInt D = 3;
+  const PetscInt NS = D * (D + 1) / 2;
+  PetscReal      l = K - 2.0 * G / 3.0, W = 0, ih = 1.0 / h;
+  for (PetscInt k = 0; k < D; k++) {
+    PetscReal Gm[9], E[9], S[9], tr = 0, w; /* Gamma_k = dF/dX_k, row-major */
+    for (PetscInt i = 0; i < D; i++)
+      for (PetscInt j = 0; j < D; j++) Gm[D * i + j] = Dd[NS * i + SymIndex(j, k, D)] * ih;
+    for (PetscInt j = 0; j < D; j++)
+      for (PetscInt q = j; q < D; q++) {
+        PetscReal t = F[j] * Gm[q]; /* (F^T Gamma)_jq, symmetrised off the diagonal */
+        for (PetscInt i = 1; i < D; i++) t += F[D * i + j] * Gm[D * i + q];
+        if (q != j) {
+          for (PetscInt i = 0; i < D; i++) t += F[D * i + q] * Gm[D * i + j];
+          t *= 0.5;
+        }
+        E[D * j + q] = E[D * q + j] = t;
+      }
+    for (PetscInt j = 0; j < D; j++) tr += E[D * j + j];
+    for (PetscInt j = 0; j < D; j++)
+      for (PetscInt q = 0; q < D; q++) S[D * j + q] = j == q ? l * tr + 2 * G * E[D * j + q] : 2 * G * E[D * j + q];
+    w = E[0] * S[0] + 2 * E[1] * S[1] + 2 * E[2] * S[2] + E[4] * S[4] + 2 * E[5] * S[5] + E[8] * S[8]; /* E : S */
+    W += kappa * w;
+    if (!dF) continue;
+    /* dW/dF += 2 kappa Gamma S;  dW/dGamma = 2 kappa F S, into Dd by Gamma's layout */
+    for (PetscInt i = 0; i < D; i++)
+      for (PetscInt j = 0; j < D; j++) {
+        PetscReal gs = Gm[D * i] * S[j], fs = F[D * i] * S[j];
+        for (PetscInt m = 1; m < D; m++) { gs += Gm[D * i + m] * S[D * m + j]; fs += F[D * i + m] * S[D * m + j]; }
+        dF[D * i + j] += 2 * kappa * gs;
+        dD[NS * i + SymIndex(j, k, D)] += 2 * kappa * fs * ih;
+      }
+  }
+  return W;
+}
+
+/* The quadrature in D dimensions. */
+SPH_INLINE PetscReal CellQuadratureD(PetscReal K, PetscReal G, PetscReal kappa, PetscReal h, const PetscReal *F, const PetscReal *Dd, PetscReal *dF, PetscReal *dD, const PetscInt D)
+{
+  return D == 2 ? CellQuadrature(K, G, kappa, h, F, Dd, dF, dD) : CellQuadrature3(K, G, kappa, h, F, Dd, dF, dD);
+}
+
 /* Hourglass control of total-Lagrangian SPH as a potential.  The corrected F_a is the weighted
  * least-squares fit of the bonds, x_ab ~ F_a X_ab with weights w_ab = -V_b F0_ab (X = X_b - X_a,
  * x = x_b - x_a), so the energy of what no affine map explains,
@@ -108,16 +291,20 @@ static inline PetscReal CellQuadrature(PetscReal K, PetscReal G, PetscReal kappa
  * momenta are conserved), and O((dx / L)^2) against the strain energy of a smooth field.  It is
  * close to Ganzenmueller's (2015) hourglass force, which projects the same error on the bond and
  * is not the gradient of an energy.  `coef` = zeta G V_b (-F0_ab) / rho0. */
-static inline void HourglassAcc(PetscReal coef, const PetscReal Fa[4], const PetscReal Fb[4], const PetscReal X[2], const PetscReal x[2], PetscReal acc[2])
+SPH_INLINE void HourglassAcc(PetscReal coef, const PetscReal *Fa, const PetscReal *Fb, const PetscReal *X, const PetscReal *x, PetscReal *acc, const PetscInt D)
 {
-  acc[0] -= coef * ((Fa[0] + Fb[0]) * X[0] + (Fa[1] + Fb[1]) * X[1] - 2 * x[0]);
-  acc[1] -= coef * ((Fa[2] + Fb[2]) * X[0] + (Fa[3] + Fb[3]) * X[1] - 2 * x[1]);
+  for (PetscInt i = 0; i < D; i++) {
+    PetscReal s = (Fa[D * i] + Fb[D * i]) * X[0] + (Fa[D * i + 1] + Fb[D * i + 1]) * X[1];
+    if (D == 3) s += (Fa[D * i + 2] + Fb[D * i + 2]) * X[2];
+    acc[i] -= coef * (s - 2 * x[i]);
+  }
 }
 
 /* Its energy per unit reference volume of a from one bond, zeta G / 2 w |F_a X - x|^2 (`coef` =
  * zeta G w / 2). */
-static inline PetscReal HourglassEnergy(PetscReal coef, const PetscReal Fa[4], const PetscReal X[2], const PetscReal x[2])
+SPH_INLINE PetscReal HourglassEnergy(PetscReal coef, const PetscReal *Fa, const PetscReal *X, const PetscReal *x, const PetscInt D)
 {
-  PetscReal ex = Fa[0] * X[0] + Fa[1] * X[1] - x[0], ey = Fa[2] * X[0] + Fa[3] * X[1] - x[1];
-  return coef * (ex * ex + ey * ey);
+  PetscReal e[3];
+  for (PetscInt i = 0; i < D; i++) e[i] = VDot(Fa + D * i, X, D) - x[i];
+  return coef * VDot(e, e, D);
 }

@@ -4,7 +4,9 @@
  * it rests on the floor and closes the outflow.  The water pushes the gate open and runs out along
  * the floor, which goes on downstream of the gate (the experiment's tank bottom: the opening is then
  * the gap between the gate's end and the floor, not the whole swing of the gate); fluid that leaves
- * the domain box is removed.  x points downstream, y up. */
+ * the domain box is removed.  x points downstream, y up.
+ * -dim 3: the same layout extruded in z (SceneExtrudeBegin) over -gate_width, periodic across it
+ * (a slab of the 2D case, which it must reproduce), on a uniform lattice. */
 #include <sphfsi/scene.h>
 #include <sphfsi/options_used.h>
 #include <sphfsi/solid.h>
@@ -14,6 +16,8 @@ typedef struct {
   PetscReal W, H, L, t, top;   /* water width and depth, gate length and thickness, wall top */
   PetscReal dxc, fine;         /* coarse spacing away from the gate; width of the fine zone before it */
   PetscReal floor;             /* length of the floor downstream of the gate */
+  PetscReal width;             /* 3D: the slab's width in z, periodic (m) */
+  PetscInt  nz;                /* 3D: particle layers across it */
   PetscInt  rows, nclamp;      /* wall rows (coarse spacing); clamp rows of the gate inside its support */
   Series    dx_tip, dy_tip;
 } Gate;
@@ -40,7 +44,11 @@ static PetscErrorCode Create(Sim sim)
   PetscCall(OptReal("-dx_coarse", "Spacing of the fluid away from the gate (m); default -dx (uniform)", "", c->dxc, &c->dxc, NULL));
   PetscCall(OptReal("-fine_width", "Width of the fine fluid zone before the gate (m), with -dx_coarse", "", c->fine, &c->fine, NULL));
   PetscCall(OptReal("-floor_downstream", "Length of the floor downstream of the gate (m); 0 = the floor ends under the gate and the water falls freely past it", "", c->floor, &c->floor, NULL));
+  PetscCall(OptInt("-dim", "Dimension: 2, or 3 for a slab of the 2D case, periodic across -gate_width", "", sim->dim, &sim->dim, NULL));
+  c->width = -1;
+  if (sim->dim == 3) PetscCall(OptReal("-gate_width", "3D: width of the periodic slab in z (m); default 10 dx (the periodic grid needs 3 cells of 2 h + skin)", "", c->width, &c->width, NULL));
   PetscOptionsEnd();
+  PetscCheck(sim->dim == 2 || sim->dim == 3, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dim %" PetscInt_FMT " must be 2 or 3", sim->dim);
   PetscCheck(c->W > 0 && c->H > 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-water_width %g and -water_depth %g must be > 0", (double)c->W, (double)c->H);
   PetscCheck(c->t > 0 && c->L > c->t, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-gate_length %g must exceed -gate_thickness %g > 0", (double)c->L, (double)c->t);
   PetscCheck(c->L < c->H, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-gate_length %g must be less than -water_depth %g (the rigid wall above the gate holds the rest)", (double)c->L, (double)c->H);
@@ -51,6 +59,7 @@ static PetscErrorCode Create(Sim sim)
   if (sim->dx < 0) sim->dx = 0.001;
   PetscCheck(c->t / sim->dx > 2.999, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dx %g leaves fewer than 3 particles across the gate thickness %g", (double)sim->dx, (double)c->t);
   if (c->dxc < 0) c->dxc = sim->dx;
+  PetscCheck(sim->dim == 2 || c->dxc == sim->dx, sim->comm, PETSC_ERR_ARG_INCOMP, "-dim 3 takes a uniform lattice: drop -dx_coarse %g (or set it to -dx %g)", (double)c->dxc, (double)sim->dx);
   PetscCall(SceneZonesSetUp(sim, c->dxc, &c->W, &c->fine, &c->H));
   if (sim->t_end < 0) sim->t_end = 0.4;
   sim->has_solid = PETSC_TRUE;
@@ -60,6 +69,16 @@ static PetscErrorCode Create(Sim sim)
   sim->dom_hi[0] = c->W + c->t + PetscMax(0.1, c->floor + 2 * c->dxc); /* fluid beyond leaves */
   sim->dom_lo[1] = -0.1;
   sim->dom_hi[1] = c->top + sim->dx;
+  if (sim->dim == 3) {
+    if (c->width < 0) c->width = 10 * sim->dx;
+    c->nz = RoundToInt(c->width / sim->dx);
+    PetscCheck(c->nz >= 6, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-gate_width %g holds fewer than 6 particles", (double)c->width);
+    c->width         = c->nz * sim->dx;
+    sim->g[2]        = 0;
+    sim->dom_lo[2]   = 0;
+    sim->dom_hi[2]   = c->width;
+    sim->periodic[2] = PETSC_TRUE;
+  }
   PetscCall(ParticlesEnableField(sim->P, FIELD_X0, PETSC_FALSE));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -70,6 +89,7 @@ static PetscErrorCode Populate(Sim sim)
   PetscReal dx = sim->dx, xg = c->W; /* gate's upstream face */
   PetscInt  nt = RoundToInt(c->t / dx), nl = RoundToInt(c->L / dx), ntop = RoundToInt(c->top / dx);
   PetscFunctionBeginUser;
+  if (sim->dim == 3) PetscCall(SceneExtrudeBegin(sim, c->nz, 0, dx));
   PetscCall(SceneAddZonedWater(sim, c->dxc, c->W, c->fine, c->H, c->top, c->rows, xg + nt * dx + RoundToInt(c->floor / dx) * dx, PETSC_FALSE));
   /* the gate and its clamp */
   PetscCall(SceneAddLattice(sim, KIND_SOLID, xg + 0.5 * dx, 0.5 * dx, nt, nl, dx, sim->sl.rho0));
@@ -80,26 +100,28 @@ static PetscErrorCode Populate(Sim sim)
     PetscCall(SceneAddWallBox(sim, above, dx, faces));
   }
   PetscCall(SceneHydrostaticDensity(sim, 0, RoundToInt(c->H / dx) * dx));
+  PetscCall(SceneExtrudeEnd(sim));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
 /* tip_dx, tip_dy: mean displacement of the gate's bottom row; water_level: the fluid's volume in a
  * strip 4 dx wide at the back wall over the strip's width (a drop stuck to the wall above the
  * surface moves it by dx / 4 only); load_x: the water's horizontal force on the gate (N/m; mean over
- * the last step's solid sub-steps). */
+ * the last step's solid sub-steps).  In 3D, per unit width of the slab. */
 static PetscErrorCode Probe(Sim sim, PetscReal *vals)
 {
   Gate      *c = (Gate *)sim->scene_ctx;
   Particles  P = sim->P;
   PetscReal *x = PField(P, FIELD_X), *x0 = PField(P, FIELD_X0), *m = PField(P, FIELD_M), s[4] = {0, 0, 0, 0}, strip = 4 * sim->dx;
+  PetscInt   D = sim->dim;
   PetscFunctionBeginUser;
   for (PetscInt a = 0; a < P->n; a++) {
-    if (P->kind[a] == KIND_SOLID && x0[2 * a + 1] < sim->dx) {
-      s[0] += x[2 * a] - x0[2 * a];
-      s[1] += x[2 * a + 1] - x0[2 * a + 1];
+    if (P->kind[a] == KIND_SOLID && x0[D * a + 1] < sim->dx) {
+      s[0] += x[D * a] - x0[D * a];
+      s[1] += x[D * a + 1] - x0[D * a + 1];
       s[2] += 1;
     }
-    if (KindIsFluid(P->kind[a]) && x[2 * a] < strip) s[3] += m[a] / sim->fl.rho0;
+    if (KindIsFluid(P->kind[a]) && x[D * a] < strip) s[3] += m[a] / sim->fl.rho0;
   }
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, s, 4, MPIU_REAL, MPI_SUM, sim->comm));
   vals[0] = s[2] > 0 ? s[0] / s[2] : 0;
@@ -107,6 +129,7 @@ static PetscErrorCode Probe(Sim sim, PetscReal *vals)
   vals[2] = s[3] / strip;
   vals[3] = sim->solid->load_mean[0];
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &vals[3], 1, MPIU_REAL, MPI_SUM, sim->comm));
+  if (D == 3) { vals[2] /= c->width; vals[3] /= c->width; }
   PetscCall(SeriesAppend(&c->dx_tip, sim->t, vals[0]));
   PetscCall(SeriesAppend(&c->dy_tip, sim->t, vals[1]));
   PetscFunctionReturn(PETSC_SUCCESS);

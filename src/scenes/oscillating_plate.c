@@ -1,15 +1,20 @@
 /* Oscillating plate (paper section 3.2; Gray, Monaghan & Swift 2001): a plate of length L and
  * thickness H, clamped at x < 0 and free at x = L, no gravity, started with the velocity of its
  * first bending mode (Eqs. 52-53, kL = 1.875).  Reference: thin-plate (plane-strain
- * Euler-Bernoulli) period and amplitude, omega^2 = E H^2 k^4 / (12 rho (1 - nu^2)),
- * E = 9 K G / (3 K + G), nu = (3 K - 2 G) / (2 (3 K + G)), A = V_f c0 / omega. */
+ * Euler-Bernoulli) period and amplitude, omega^2 = E' H^2 k^4 / (12 rho), E' = E / (1 - nu^2),
+ * E = 9 K G / (3 K + G), nu = (3 K - 2 G) / (2 (3 K + G)), A = V_f c0 / omega.
+ * -dim 3: a cantilever beam of square section H x H (-plate_width), bending in y, with free sides:
+ * Euler-Bernoulli with E' = E.  The clamp's face (x = 0, the root of the beam theory) is where the
+ * total-Lagrangian solid's clamp face points sit; the beam's own correction, Timoshenko's shear
+ * and rotary inertia (+0.6 % on the period at L = 10 H), is reported beside it. */
 #include <sphfsi/scene.h>
 #include <sphfsi/options_used.h>
 #include <sphfsi/solid.h>
 #include <sphfsi/refdata.h>
 
 typedef struct {
-  PetscReal L, H, vf, kL;
+  PetscReal L, H, W, vf, kL; /* W: the width in z (3D) */
+  PetscBool periodic;         /* 3D: periodic in z, a slab of the plate in plane strain */
   PetscInt  ny, nx, nclamp;
   Series    tip;            /* tip_y history for the period and amplitude */
   PetscReal e0, de_max;     /* initial total energy and the largest relative drift */
@@ -33,7 +38,12 @@ static PetscErrorCode Create(Sim sim)
   PetscCall(OptReal("-plate_vf", "Initial tip speed over the sound speed, V_f = v0L of Eq. 52", "", c->vf, &c->vf, NULL));
   PetscCall(OptInt("-plate_ny", "Particles across the thickness (sets dx = H / ny unless -dx is given)", "", c->ny, &c->ny, &ny_set));
   PetscCall(OptInt("-clamp_columns", "Columns of clamp particles at x < 0", "", c->nclamp, &c->nclamp, NULL));
+  PetscCall(OptInt("-dim", "Dimension: 2 (a plate in plane strain), or 3 for a beam of section H x -plate_width", "", sim->dim, &sim->dim, NULL));
+  c->W = c->H;
+  if (sim->dim == 3) PetscCall(OptReal("-plate_width", "3D: the beam's width in z (m; default: its thickness, a square section)", "", c->W, &c->W, NULL));
+  if (sim->dim == 3) PetscCall(OptBool("-plate_periodic", "3D: periodic across the width (a slab of the plate in plane strain, the 2D case's reference)", "", c->periodic, &c->periodic, NULL));
   PetscOptionsEnd();
+  PetscCheck(sim->dim == 2 || sim->dim == 3, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dim %" PetscInt_FMT " must be 2 or 3", sim->dim);
   PetscCheck(c->L > 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-plate_length %g must be > 0", (double)c->L);
   PetscCheck(c->H > 0 && c->H < c->L, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-plate_thickness %g must be > 0 and less than the length %g", (double)c->H, (double)c->L);
   PetscCheck(c->vf >= 0 && c->vf < 0.1, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-plate_vf %g must be in [0, 0.1) (small deflections)", (double)c->vf);
@@ -45,7 +55,7 @@ static PetscErrorCode Create(Sim sim)
   c->nx          = RoundToInt(c->L / sim->dx);
   sim->has_fluid = PETSC_FALSE;
   sim->has_solid = PETSC_TRUE;
-  sim->g[0] = sim->g[1] = 0;
+  sim->g[0] = sim->g[1] = sim->g[2] = 0;
   if (sim->t_end < 0) sim->t_end = 0.8; /* about 3 analytic periods */
   /* the tip sweeps |y| < ~A = V_f L c0 / (omega L) ~ 0.12 L at V_f = 0.01 */
   sim->dom_lo[0] = -(c->nclamp + 2) * sim->dx;
@@ -55,6 +65,16 @@ static PetscErrorCode Create(Sim sim)
   if (c->vf == 0) { /* a static load (-gravity) may bend it far: room for any bend of the plate */
     sim->dom_hi[1] = c->L + c->H;
     sim->dom_lo[1] = -sim->dom_hi[1];
+  }
+  if (sim->dim == 3) {
+    PetscCheck(c->W >= 3 * sim->dx * (1 - 1e-9), sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-plate_width %g must hold >= 3 particles (dx %g)", (double)c->W, (double)sim->dx);
+    sim->dom_hi[2] = 0.5 * c->W + 0.1 * c->L; /* bending is in y: z moves only by Poisson's ratio */
+    sim->dom_lo[2] = -sim->dom_hi[2];
+    if (c->periodic) {
+      sim->dom_hi[2]   = 0.5 * RoundToInt(c->W / sim->dx) * sim->dx;
+      sim->dom_lo[2]   = -sim->dom_hi[2];
+      sim->periodic[2] = PETSC_TRUE;
+    }
   }
   PetscCall(ParticlesEnableField(sim->P, FIELD_X0, PETSC_FALSE));
   PetscFunctionReturn(PETSC_SUCCESS);
@@ -72,14 +92,14 @@ static PetscErrorCode Populate(Sim sim)
   Plate     *c  = (Plate *)sim->scene_ctx;
   PetscReal  dx = sim->dx, y0 = -0.5 * c->H + 0.5 * dx, k = c->kL / c->L, fL = Mode(k, c->L, c->L);
   Particles  P  = sim->P;
-  PetscInt   n0;
-  PetscReal *x, *v;
+  PetscInt   n0, D = sim->dim, nz = RoundToInt(c->W / dx);
+  PetscReal *x, *v, z0 = -0.5 * nz * dx + 0.5 * dx;
   PetscFunctionBeginUser;
-  PetscCall(SceneAddLattice(sim, KIND_CLAMP, -(c->nclamp - 0.5) * dx, y0, c->nclamp, c->ny, dx, sim->sl.rho0));
+  PetscCall(SceneAddBlock(sim, KIND_CLAMP, (PetscReal[]){-(c->nclamp - 0.5) * dx, y0, z0}, (PetscInt[]){c->nclamp, c->ny, nz}, dx, sim->sl.rho0));
   n0 = P->n;
-  PetscCall(SceneAddLattice(sim, KIND_SOLID, 0.5 * dx, y0, c->nx, c->ny, dx, sim->sl.rho0));
+  PetscCall(SceneAddBlock(sim, KIND_SOLID, (PetscReal[]){0.5 * dx, y0, z0}, (PetscInt[]){c->nx, c->ny, nz}, dx, sim->sl.rho0));
   x = PField(P, FIELD_X); v = PField(P, FIELD_V);
-  for (PetscInt a = n0; a < P->n; a++) v[2 * a + 1] = c->vf * sim->sl.c0 * Mode(k, c->L, x[2 * a]) / fL; /* Eq. 52 */
+  for (PetscInt a = n0; a < P->n; a++) v[D * a + 1] = c->vf * sim->sl.c0 * Mode(k, c->L, x[D * a]) / fL; /* Eq. 52 */
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -89,9 +109,10 @@ static PetscErrorCode Probe(Sim sim, PetscReal *vals)
   Plate     *c = (Plate *)sim->scene_ctx;
   Particles  P = sim->P;
   PetscReal *x = PField(P, FIELD_X), *x0 = PField(P, FIELD_X0), s[2] = {0, 0}, e;
+  PetscInt   D = sim->dim;
   PetscFunctionBeginUser;
   for (PetscInt a = 0; a < P->n; a++)
-    if (P->kind[a] == KIND_SOLID && x0[2 * a] > (c->nx - 1) * sim->dx) { s[0] += x[2 * a + 1] - x0[2 * a + 1]; s[1] += 1; }
+    if (P->kind[a] == KIND_SOLID && x0[D * a] > (c->nx - 1) * sim->dx) { s[0] += x[D * a + 1] - x0[D * a + 1]; s[1] += 1; }
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, s, 2, MPIU_REAL, MPI_SUM, sim->comm));
   vals[0] = s[1] > 0 ? s[0] / s[1] : 0;
   PetscCall(SolidEnergy(sim, &vals[1], &vals[2]));
@@ -130,14 +151,19 @@ static PetscErrorCode Errors(Sim sim, FILE *f)
   Plate          *c = (Plate *)sim->scene_ctx;
   const SolidMaterial *m = &sim->sl;
   PetscReal       E = 9 * m->K * m->G / (3 * m->K + m->G), nu = (3 * m->K - 2 * m->G) / (2 * (3 * m->K + m->G)), k = c->kL / c->L;
-  PetscReal       omega = PetscSqrtReal(E * c->H * c->H * PetscPowReal(k, 4) / (12 * m->rho0 * (1 - nu * nu)));
+  PetscReal       Ep = sim->dim == 3 && !c->periodic ? E : E / (1 - nu * nu); /* a beam with free sides; a plate in plane strain */
+  PetscReal       omega = PetscSqrtReal(Ep * c->H * c->H * PetscPowReal(k, 4) / (12 * m->rho0));
   PetscReal       Ta = 2 * PETSC_PI / omega, Aa = c->vf * m->c0 / omega, T, A, A_last, ek, es;
+  /* Timoshenko's first-order correction for shear (kappa_s = 5/6) and rotary inertia of a slender
+   * beam, omega_T / omega = 1 - (k r)^2 / 2 (1 + E' / (kappa_s G)), r^2 = H^2 / 12, exact to that
+   * order for a simply supported beam and taken with the mode's wavenumber k for the cantilever */
+  PetscReal       Tt = Ta / (1 - 0.5 * c->kL * c->kL * c->H * c->H / (12 * c->L * c->L) * (1 + Ep / (5.0 / 6.0 * m->G)));
   PetscInt        ncross;
   PetscFunctionBeginUser;
   PetscCall(SolidEnergy(sim, &ek, &es));
   Analyse(&c->tip, &T, &A, &A_last, &ncross);
   if (f && c->vf == 0) { /* a static load (-gravity) instead of the mode: the end's sag against beam theory */
-    PetscReal g = PetscSqrtReal(sim->g[0] * sim->g[0] + sim->g[1] * sim->g[1]), Ep = E / (1 - nu * nu), L = c->L, H = c->H;
+    PetscReal g = PetscSqrtReal(sim->g[0] * sim->g[0] + sim->g[1] * sim->g[1] + sim->g[2] * sim->g[2]), L = c->L, H = c->H;
     PetscReal eb = 1.5 * m->rho0 * g * PetscPowReal(L, 4) / (Ep * H * H), shear = m->rho0 * g * L * L / (2 * (5.0 / 6.0) * m->G), sag = c->tip.n ? -c->tip.y[c->tip.n - 1] : 0;
     fprintf(f, "\"g\": %.6g, \"sag\": %.6g, \"sag_beam\": %.6g, \"sag_rel_err\": %.6g, \"sag_euler_bernoulli\": %.6g, \"plate_ny\": %d, \"kinetic_over_strain_energy\": %.6g, ", (double)g, (double)sag, (double)(eb + shear), (double)(sag / (eb + shear) - 1), (double)eb, (int)c->ny, (double)(es > 0 ? ek / es : 0));
     fprintf(f, "\"reference\": \"sag of the end under the uniform load rho g H: Euler-Bernoulli q L^4 / (8 E' I), E' = E / (1 - nu^2), plus Timoshenko shear q L^2 / (2 (5/6) G H); the end at rest when kinetic_over_strain_energy is small (-solid_damping)\"");
@@ -147,7 +173,9 @@ static PetscErrorCode Errors(Sim sim, FILE *f)
     fprintf(f, "\"period_c0_over_L\": %.6g, \"period_c0_over_L_analytic\": %.6g, \"period_rel_err\": %.6g, ", (double)(T * m->c0 / c->L), (double)(Ta * m->c0 / c->L), (double)(T > 0 ? (T - Ta) / Ta : 1));
     fprintf(f, "\"amplitude_over_L\": %.6g, \"amplitude_over_L_analytic\": %.6g, \"amplitude_rel_err\": %.6g, \"amplitude_last_over_first\": %.6g, ", (double)(A / c->L), (double)(Aa / c->L), (double)(Aa > 0 ? (A - Aa) / Aa : 0), (double)(A > 0 ? A_last / A : 0));
     fprintf(f, "\"zero_crossings\": %d, \"energy_rel_drift_final\": %.6g, \"energy_rel_drift_max\": %.6g, \"period_s\": %.6g, \"period_s_analytic\": %.6g, ", (int)ncross, (double)(c->e0 > 0 ? (ek + es - c->e0) / c->e0 : 0), (double)c->de_max, (double)T, (double)Ta);
-    fprintf(f, "\"plate_ny\": %d, \"E\": %.6g, \"nu\": %.6g, \"reference\": \"thin-plate analytic (Gray et al. 2001); published SPH T c0/L 81-82, A/L 0.124-0.125 (paper Table 1)\"", (int)c->ny, (double)E, (double)nu);
+    fprintf(f, "\"period_c0_over_L_timoshenko\": %.6g, \"period_rel_err_timoshenko\": %.6g, \"dim\": %d, ", (double)(Tt * m->c0 / c->L), (double)(T > 0 ? (T - Tt) / Tt : 1), (int)sim->dim);
+    if (sim->dim == 3) fprintf(f, "\"plate_ny\": %d, \"E\": %.6g, \"nu\": %.6g, \"reference\": \"Euler-Bernoulli cantilever of square section (E, free sides), root at the clamp face x = 0; Timoshenko-corrected period beside it\"", (int)c->ny, (double)E, (double)nu);
+    else fprintf(f, "\"plate_ny\": %d, \"E\": %.6g, \"nu\": %.6g, \"reference\": \"thin-plate analytic (Gray et al. 2001); published SPH T c0/L 81-82, A/L 0.124-0.125 (paper Table 1)\"", (int)c->ny, (double)E, (double)nu);
   }
   PetscFunctionReturn(PETSC_SUCCESS);
 }

@@ -181,26 +181,33 @@ PetscErrorCode HaloBuild(Halo h, Decomp d, Particles P)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode HaloRefresh(Halo h, Particles P, PetscInt nf, const FieldId f[])
+/* Bcast of the fields over sf, whose leaves are the ghosts ghost[0 .. n) (NULL: all ghosts, in
+ * order), then the periodic shift of the positions among them. */
+static PetscErrorCode Refresh(Halo h, Particles P, PetscSF sf, const PetscInt *ghost, PetscInt n, PetscInt nf, const FieldId f[])
 {
   PetscFunctionBeginUser;
   for (PetscInt k = 0; k < nf; k++) {
     Field *F = &P->f[f[k]];
     PetscCheck(F->on, h->comm, PETSC_ERR_ARG_WRONGSTATE, "Halo refresh of field %s, which this scene does not allocate", F->name);
-    PetscCall(PetscSFBcastBegin(h->sf, h->unit[F->width], F->a, F->a + P->n * F->width, MPI_REPLACE));
+    PetscCall(PetscSFBcastBegin(sf, h->unit[F->width], F->a, F->a + P->n * F->width, MPI_REPLACE));
   }
   for (PetscInt k = 0; k < nf; k++) {
     Field *F = &P->f[f[k]];
-    PetscCall(PetscSFBcastEnd(h->sf, h->unit[F->width], F->a, F->a + P->n * F->width, MPI_REPLACE));
-    if (IsPosition(f[k])) {
-      /* periodic images: the same shift the build applied */
-      for (PetscInt j = 0; j < P->ng; j++) {
-        PetscInt code = h->shift[j];
-        if (code == HALO_NO_SHIFT) continue;
-        for (PetscInt d = 0; d < P->dim; d++) F->a[P->dim * (P->n + j) + d] += h->period[d] * ShiftComponent(code, d);
-      }
+    PetscCall(PetscSFBcastEnd(sf, h->unit[F->width], F->a, F->a + P->n * F->width, MPI_REPLACE));
+    if (!IsPosition(f[k])) continue;
+    for (PetscInt i = 0; i < n; i++) { /* periodic images: the same shift the build applied */
+      PetscInt j = ghost ? ghost[i] : i, code = h->shift[j];
+      if (code == HALO_NO_SHIFT) continue;
+      for (PetscInt d = 0; d < P->dim; d++) F->a[P->dim * (P->n + j) + d] += h->period[d] * ShiftComponent(code, d);
     }
   }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode HaloRefresh(Halo h, Particles P, PetscInt nf, const FieldId f[])
+{
+  PetscFunctionBeginUser;
+  PetscCall(Refresh(h, P, h->sf, NULL, P->ng, nf, f));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -230,20 +237,6 @@ PetscErrorCode HaloRefreshKinds(Halo h, Particles P, PetscBool (*keep)(PetscInt)
 {
   PetscFunctionBeginUser;
   if (!h->sf_kinds || h->kinds != keep) PetscCall(KindsSF(h, P, keep));
-  for (PetscInt k = 0; k < nf; k++) {
-    Field *F = &P->f[f[k]];
-    PetscCheck(F->on, h->comm, PETSC_ERR_ARG_WRONGSTATE, "Halo refresh of field %s, which this scene does not allocate", F->name);
-    PetscCall(PetscSFBcastBegin(h->sf_kinds, h->unit[F->width], F->a, F->a + P->n * F->width, MPI_REPLACE));
-  }
-  for (PetscInt k = 0; k < nf; k++) {
-    Field *F = &P->f[f[k]];
-    PetscCall(PetscSFBcastEnd(h->sf_kinds, h->unit[F->width], F->a, F->a + P->n * F->width, MPI_REPLACE));
-    if (IsPosition(f[k]))
-      for (PetscInt i = 0; i < h->nkinds; i++) {
-        PetscInt j = h->kinds_ghost[i], code = h->shift[j];
-        if (code == HALO_NO_SHIFT) continue;
-        for (PetscInt d = 0; d < P->dim; d++) F->a[P->dim * (P->n + j) + d] += h->period[d] * ShiftComponent(code, d);
-      }
-  }
+  PetscCall(Refresh(h, P, h->sf_kinds, h->kinds_ghost, h->nkinds, nf, f));
   PetscFunctionReturn(PETSC_SUCCESS);
 }

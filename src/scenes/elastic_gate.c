@@ -6,7 +6,8 @@
  * the gap between the gate's end and the floor, not the whole swing of the gate); fluid that leaves
  * the domain box is removed.  x points downstream, y up.
  * -dim 3: the same layout extruded in z (SceneExtrudeBegin) over -gate_width, periodic across it
- * (a slab of the 2D case, which it must reproduce), on a uniform lattice. */
+ * (a slab of the 2D case, which it must reproduce), or with -gate_side_walls between the walls of
+ * the tank's real width (0.1 m by default), on a uniform lattice. */
 #include <sphfsi/scene.h>
 #include <sphfsi/options_used.h>
 #include <sphfsi/solid.h>
@@ -18,6 +19,7 @@ typedef struct {
   PetscReal floor;             /* length of the floor downstream of the gate */
   PetscReal width;             /* 3D: the slab's width in z, periodic (m) */
   PetscInt  nz;                /* 3D: particle layers across it */
+  PetscBool side_walls;        /* 3D: walls at z = 0 and z = width instead of periodicity */
   PetscInt  rows, nclamp;      /* wall rows (coarse spacing); clamp rows of the gate inside its support */
   Series    dx_tip, dy_tip;
 } Gate;
@@ -46,7 +48,8 @@ static PetscErrorCode Create(Sim sim)
   PetscCall(OptReal("-floor_downstream", "Length of the floor downstream of the gate (m); 0 = the floor ends under the gate and the water falls freely past it", "", c->floor, &c->floor, NULL));
   PetscCall(OptInt("-dim", "Dimension: 2, or 3 for a slab of the 2D case, periodic across -gate_width", "", sim->dim, &sim->dim, NULL));
   c->width = -1;
-  if (sim->dim == 3) PetscCall(OptReal("-gate_width", "3D: width of the periodic slab in z (m); default 10 dx (the periodic grid needs 3 cells of 2 h + skin)", "", c->width, &c->width, NULL));
+  if (sim->dim == 3) PetscCall(OptBool("-gate_side_walls", "3D: the tank's side walls at z = 0 and z = -gate_width (default 0.1 m, the experiment's tank) instead of a periodic slab", "", c->side_walls, &c->side_walls, NULL));
+  if (sim->dim == 3) PetscCall(OptReal("-gate_width", "3D: width in z (m): of the periodic slab, default 10 dx (the periodic grid needs 3 cells of 2 h + skin); between side walls, default 0.1 m", "", c->width, &c->width, NULL));
   PetscOptionsEnd();
   PetscCheck(sim->dim == 2 || sim->dim == 3, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dim %" PetscInt_FMT " must be 2 or 3", sim->dim);
   PetscCheck(c->W > 0 && c->H > 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-water_width %g and -water_depth %g must be > 0", (double)c->W, (double)c->H);
@@ -70,14 +73,14 @@ static PetscErrorCode Create(Sim sim)
   sim->dom_lo[1] = -0.1;
   sim->dom_hi[1] = c->top + sim->dx;
   if (sim->dim == 3) {
-    if (c->width < 0) c->width = 10 * sim->dx;
+    if (c->width < 0) c->width = c->side_walls ? 0.1 : 10 * sim->dx;
     c->nz = RoundToInt(c->width / sim->dx);
     PetscCheck(c->nz >= 6, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-gate_width %g holds fewer than 6 particles", (double)c->width);
     c->width         = c->nz * sim->dx;
     sim->g[2]        = 0;
-    sim->dom_lo[2]   = 0;
-    sim->dom_hi[2]   = c->width;
-    sim->periodic[2] = PETSC_TRUE;
+    sim->dom_lo[2]   = c->side_walls ? -(c->rows + 0.5) * sim->dx : 0;
+    sim->dom_hi[2]   = c->side_walls ? c->width + (c->rows + 0.5) * sim->dx : c->width;
+    sim->periodic[2] = (PetscBool)!c->side_walls;
   }
   PetscCall(ParticlesEnableField(sim->P, FIELD_X0, PETSC_FALSE));
   PetscFunctionReturn(PETSC_SUCCESS);
@@ -101,6 +104,14 @@ static PetscErrorCode Populate(Sim sim)
   }
   PetscCall(SceneHydrostaticDensity(sim, 0, RoundToInt(c->H / dx) * dx));
   PetscCall(SceneExtrudeEnd(sim));
+  if (sim->dim == 3 && c->side_walls) { /* the tank's side walls over its whole section: one wall layer, then dummies */
+    PetscInt nx = c->rows + nt + RoundToInt(c->W / dx) + RoundToInt(c->floor / dx), ny = c->rows + ntop;
+    for (PetscInt k = 0; k < c->rows; k++)
+      for (PetscInt side = 0; side < 2; side++) {
+        const PetscReal lo[3] = {-(c->rows - 0.5) * dx, -(c->rows - 0.5) * dx, side ? c->width + (k + 0.5) * dx : -(k + 0.5) * dx};
+        PetscCall(SceneAddBlock(sim, k ? KIND_DUMMY : KIND_WALL, lo, (PetscInt[]){nx, ny, 1}, dx, sim->fl.rho0));
+      }
+  }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

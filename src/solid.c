@@ -105,6 +105,21 @@ PetscErrorCode SolidSetUp(Sim sim)
         }
     s->nrm_min = 0.5 * PetscAbsReal(g);
   }
+  s->repulsion_scale = 1;
+  if (sim->dim == 3) { /* Eq. 41 is a plain sum over the solid neighbours, not a kernel sum: a fluid
+                        * particle dx from a flat solid has ~5 times as many of them in 3D.  Scaled
+                        * so that its total there is the 2D one, a slab repeats the 2D run. */
+    PetscReal s2 = 0, s3 = 0, hh = sim->kernel.h_factor;
+    PetscInt  nr = KernelSupportRows(&sim->kernel);
+    for (PetscInt j = 1; j <= nr; j++)
+      for (PetscInt i = -nr; i <= nr; i++)
+        for (PetscInt k = -nr; k <= nr; k++) {
+          PetscReal q = PetscSqrtReal((PetscReal)(i * i + j * j + k * k)) / (2 * hh);
+          s3 += FSIRepulsion(-1.0, q, 1.0);
+          if (!k) s2 += FSIRepulsion(-1.0, q, 1.0);
+        }
+    s->repulsion_scale = s3 > 0 ? s2 / s3 : 1;
+  }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

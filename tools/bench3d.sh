@@ -9,14 +9,16 @@
 #      memory per particle (maximum resident set over ranks, summed) at each size
 #   3. partition statistics of the 3D cell graph (bin/partition_model) at dx = 0.01 m (1.4 M) for
 #      2..1024 ranks
+#   4. 2-rank efficiency at ~1 M particles: the same case at dx = 0.01 m (1.05 M), WCSPH 10 steps and
+#      ISPH 3 steps on 1 and 2 ranks: particle-steps/s on 2 over twice that on 1
 # Writes out/bench/bench3d.md.  Environment as tools/bench.sh (MPIEXEC, MPIEXEC_FLAGS, BINDIR,
-# BENCH_TIMEOUT); BENCH3D_SIZES (the dx list of part 2), BENCH3D_ONLY (subset of: throughput cg partition).
+# BENCH_TIMEOUT); BENCH3D_SIZES (the dx list of part 2), BENCH3D_ONLY (subset of: throughput cg partition efficiency).
 cd "$(dirname "$0")/.."
 MPI="${MPIEXEC:-mpiexec} ${MPIEXEC_FLAGS:-}"
 BIN=${BINDIR:-bin}
 OUT=out/bench; mkdir -p $OUT
 TMO=${BENCH_TIMEOUT:-1800}
-ONLY=${BENCH3D_ONLY:-throughput cg partition}
+ONLY=${BENCH3D_ONLY:-throughput cg partition efficiency}
 SIZES=${BENCH3D_SIZES:-0.04 0.03 0.02 0.015 0.012 0.01 0.009}
 has() { [[ " $ONLY " == *" $1 "* ]]; }
 S2="-options_file cases/spheric_test2.opts -output_interval 0" # probes every 2 ms of physical time, as the case file
@@ -43,6 +45,12 @@ if has throughput; then
 fi
 if has cg; then
   for dx in $SIZES; do run s2_cg_$dx 2 $S2 -fluid isph -dx $dx -max_steps 3 -ppe_ksp_initial_guess_nonzero 0; done
+fi
+if has efficiency; then
+  for np_ in 1 2; do
+    run s2_eff_wcsph_np$np_ $np_ $S2 -dx 0.01 -max_steps 10
+    run s2_eff_isph_np$np_ $np_ $S2 -fluid isph -dx 0.01 -max_steps 3
+  done
 fi
 if has partition; then
   timeout $TMO $BIN/partition_model $S2 -dx 0.01 -nparts_max 1024 > $OUT/partition_spheric_test2.csv 2> $OUT/partition_spheric_test2.log || FAILS="$FAILS partition"
@@ -72,6 +80,15 @@ for dx in sizes:
 if rows:
     L += ["ISPH pressure equation, 3 steps from a zero initial guess, 2 ranks: CG iterations per solve, memory.", "",
           "| dx (m) | particles | CG its mean | max | peak resident B/particle | field B/particle |", "|---|---|---|---|---|---|"] + rows + [""]
+rows = []
+for f in ("wcsph", "isph"):
+    s1, s2 = summ(f"s2_eff_{f}_np1"), summ(f"s2_eff_{f}_np2")
+    if s1 and s2:
+        e = s2["particle_steps_per_s"] / (2 * s1["particle_steps_per_s"])
+        rows.append(f"| {f} | {s1['particles']} | {s1['steps']} | {s1['particle_steps_per_s']/1e6:.3f} | {s2['particle_steps_per_s']/1e6:.3f} | {100*e:.0f} % |")
+if rows:
+    L += ["2-rank efficiency at dx = 0.01 m (time loop only): particle-steps/s on 2 ranks over twice that on 1.", "",
+          "| fluid | particles | steps | 10^6 particle-steps/s, 1 rank | 2 ranks | efficiency |", "|---|---|---|---|---|---|"] + rows + [""]
 if os.path.exists(f"{o}/partition_spheric_test2.csv"):
     L += ["Partition of the 3D cell graph at dx = 0.01 m: out/bench/partition_spheric_test2.csv.", ""]
 open(f"{o}/bench3d.md", "w").write("\n".join(L))

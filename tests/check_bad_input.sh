@@ -83,6 +83,7 @@ check "takes a uniform lattice"  -case elastic_gate -dim 3 -dx 0.0016667 -dx_coa
 check "fewer than 6 particles"   -case elastic_gate -dim 3 -dx 0.0016667 -gate_width 0.005
 check "must hold >= 3 particles" -case oscillating_plate -dim 3 -plate_ny 4 -plate_width 0.01
 check "not used by this run: -gate_width" -case elastic_gate -gate_width 0.02
+check "-gauge_solid_1 takes 6 numbers" -case boxes -dim 3 -dx 0.005 -solid_box_1 0,0,0.1,0.2,0.02,0.12 -clamp_box_1 -0.02,0,0.1,0,0.02,0.12 -domain -0.03,-0.05,-0.2,0.25,0.07,0.25 -gauge_solid_1 0.195,0,0.2,0.02
 # issue 27: bad geometry of a case given as data (-case boxes)
 check "has no water"                   -case boxes -dx 0.01 -tank_1 0,1,0,1
 check "-fluid_box_1 overlaps -wall_box_1" -case boxes -dx 0.01 -tank_1 0,1,0,1 -fluid_box_1 0,0,0.5,0.5 -wall_box_1 0.4,0,0.6,0.1

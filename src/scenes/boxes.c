@@ -20,7 +20,7 @@
  * -dim 3: the same primitives in 3D (z up): a box is x0,y0,z0,x1,y1,z1[,s]; a tank
  * x0,x1,y0,y1,z0,z1[,s[,rows]] has its floor at z0 and walls on all four sides up to z1; obstacle
  * faces left,right,front,back,bottom,top (x-, x+, y-, y+, z-, z+); -domain six numbers; a level
- * gauge x,y; a pressure gauge x,y,z; no solids yet. */
+ * gauge x,y; a pressure gauge x,y,z; a solid gauge x0,y0,z0,x1,y1,z1 (probes solid_dx, _dy, _dz). */
 #include <sphfsi/scene.h>
 #include <sphfsi/dim.h>
 #include <sphfsi/options_used.h>
@@ -38,7 +38,7 @@ typedef struct {
 typedef struct {
   Box       fluid[NBOX], tank[NTANK], solid[NBOX], clamp[NBOX], wall[NBOX];
   PetscInt  nfluid, ntank, nsolid, nclamp, nwall, nlevel, npress, nsgauge;
-  PetscReal level[NGAUGE][2], press[NGAUGE][3], sgauge[NGAUGE][4];
+  PetscReal level[NGAUGE][2], press[NGAUGE][3], sgauge[NGAUGE][6];
   char      names[SCENE_MAX_PROBES][32];
 } Boxes;
 
@@ -192,7 +192,7 @@ static PetscErrorCode Create(Sim sim)
   PetscCall(PetscOptionsRealArray("-domain", "Computational box x0,y0,x1,y1 (3D: x0,y0,z0,x1,y1,z1) (m); default: the tanks with their walls, open to twice their height", "", dom, &n, &dom_set));
   if (dom_set) PetscCall(CheckBox(sim, "-domain", dom, n, 2 * D));
   for (PetscInt k = 1; k <= NGAUGE; k++) {
-    PetscInt nl = D - 1, np = D, four = 4;
+    PetscInt nl = D - 1, np = D, nbox = 2 * D;
     PetscCall(PetscSNPrintf(name, sizeof(name), "-gauge_level_%d", (int)k));
     PetscCall(PetscOptionsRealArray(name, "Water level gauge at this x (m) (3D: x,y)", "", c->level[c->nlevel], &nl, &set));
     PetscCheck(!set || nl == D - 1, sim->comm, PETSC_ERR_USER_INPUT, "%s takes %s", name, D == 3 ? "2 numbers x,y" : "1 number x");
@@ -202,8 +202,8 @@ static PetscErrorCode Create(Sim sim)
     PetscCheck(!set || np == D, sim->comm, PETSC_ERR_USER_INPUT, "%s takes %s", name, D == 3 ? "3 numbers x,y,z" : "2 numbers x,y");
     c->npress += set;
     PetscCall(PetscSNPrintf(name, sizeof(name), "-gauge_solid_%d", (int)k));
-    PetscCall(PetscOptionsRealArray(name, "Mean displacement of the solid particles whose reference position is in x0,y0,x1,y1 (m)", "", c->sgauge[c->nsgauge], &four, &set));
-    if (set) PetscCall(CheckBox(sim, name, c->sgauge[c->nsgauge++], four, 4));
+    PetscCall(PetscOptionsRealArray(name, "Mean displacement of the solid particles whose reference position is in x0,y0,x1,y1 (3D: x0,y0,z0,x1,y1,z1) (m)", "", c->sgauge[c->nsgauge], &nbox, &set));
+    if (set) PetscCall(CheckBox(sim, name, c->sgauge[c->nsgauge++], nbox, 2 * D));
   }
   PetscOptionsEnd();
   PetscCheck(c->nfluid > 0 || c->nsolid > 0, sim->comm, PETSC_ERR_USER_INPUT, "Scene boxes has no water and no solid: give -fluid_box_1 x0,y0,x1,y1");
@@ -275,8 +275,9 @@ static PetscErrorCode Create(Sim sim)
   for (PetscInt k = 1; k <= c->nsgauge; k++) {
     PetscCall(ProbeName(c, &n, "solid_dx", k));
     PetscCall(ProbeName(c, &n, "solid_dy", k));
+    if (D == 3) PetscCall(ProbeName(c, &n, "solid_dz", k));
   }
-  PetscCheck(n <= SCENE_MAX_PROBES, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "Scene boxes has %d probe columns (front_x, v_max and the gauges; a solid gauge counts 2): at most %d", (int)n, SCENE_MAX_PROBES);
+  PetscCheck(n <= SCENE_MAX_PROBES, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "Scene boxes has %d probe columns (front_x, v_max and the gauges; a solid gauge counts one per dimension): at most %d", (int)n, SCENE_MAX_PROBES);
   SceneBoxes.nprobes = n;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -307,11 +308,11 @@ static PetscErrorCode Probe(Sim sim, PetscReal *vals)
 {
   Boxes     *c = (Boxes *)sim->scene_ctx;
   Particles  P = sim->P;
-  PetscReal *x = PField(P, FIELD_X), *x0 = P->f[FIELD_X0].on ? PField(P, FIELD_X0) : NULL, m[1 + NGAUGE], s[3 * NGAUGE];
+  PetscReal *x = PField(P, FIELD_X), *x0 = P->f[FIELD_X0].on ? PField(P, FIELD_X0) : NULL, m[1 + NGAUGE], s[4 * NGAUGE];
   PetscInt   n = 2, D = P->dim;
   PetscFunctionBeginUser;
   for (PetscInt k = 0; k <= c->nlevel; k++) m[k] = -PETSC_MAX_REAL;
-  for (PetscInt k = 0; k < 3 * c->nsgauge; k++) s[k] = 0;
+  for (PetscInt k = 0; k < (D + 1) * c->nsgauge; k++) s[k] = 0;
   for (PetscInt a = 0; a < P->n; a++) {
     if (KindIsFluid(P->kind[a])) {
       m[0] = PetscMax(m[0], x[D * a]);
@@ -323,22 +324,21 @@ static PetscErrorCode Probe(Sim sim, PetscReal *vals)
     } else if (P->kind[a] == KIND_SOLID && x0)
       for (PetscInt k = 0; k < c->nsgauge; k++) {
         const PetscReal *g = c->sgauge[k];
-        if (x0[2 * a] < g[0] || x0[2 * a] > g[2] || x0[2 * a + 1] < g[1] || x0[2 * a + 1] > g[3]) continue;
-        s[3 * k] += x[2 * a] - x0[2 * a];
-        s[3 * k + 1] += x[2 * a + 1] - x0[2 * a + 1];
-        s[3 * k + 2] += 1;
+        PetscBool        in = PETSC_TRUE;
+        for (PetscInt d = 0; d < D; d++) in = (PetscBool)(in && x0[D * a + d] >= g[d] && x0[D * a + d] <= g[D + d]);
+        if (!in) continue;
+        for (PetscInt d = 0; d < D; d++) s[(D + 1) * k + d] += x[D * a + d] - x0[D * a + d];
+        s[(D + 1) * k + D] += 1;
       }
   }
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, m, 1 + c->nlevel, MPIU_REAL, MPIU_MAX, sim->comm));
-  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, s, 3 * c->nsgauge, MPIU_REAL, MPIU_SUM, sim->comm));
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, s, (D + 1) * c->nsgauge, MPIU_REAL, MPIU_SUM, sim->comm));
   vals[0] = m[0] > -PETSC_MAX_REAL ? m[0] + 0.5 * sim->dx : 0;
   PetscCall(SceneMaxSpeed(sim, &vals[1]));
   for (PetscInt k = 0; k < c->nlevel; k++) vals[n++] = m[1 + k] > -PETSC_MAX_REAL ? m[1 + k] + 0.5 * sim->dx : 0; /* 0: no water there */
   for (PetscInt k = 0; k < c->npress; k++) PetscCall(SceneProbePressure(sim, c->press[k], &vals[n++]));
-  for (PetscInt k = 0; k < c->nsgauge; k++) {
-    vals[n++] = s[3 * k + 2] > 0 ? s[3 * k] / s[3 * k + 2] : 0;
-    vals[n++] = s[3 * k + 2] > 0 ? s[3 * k + 1] / s[3 * k + 2] : 0;
-  }
+  for (PetscInt k = 0; k < c->nsgauge; k++)
+    for (PetscInt d = 0; d < D; d++) vals[n++] = s[(D + 1) * k + D] > 0 ? s[(D + 1) * k + d] / s[(D + 1) * k + D] : 0;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

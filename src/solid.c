@@ -94,31 +94,23 @@ PetscErrorCode SolidSetUp(Sim sim)
    * read the fluid ghosts' pressure, which nothing else recomputes there */
   if (fluid && sim->fluid == FLUID_ISPH) PetscCall(ParticlesEnableField(sim->P, FIELD_P, PETSC_TRUE));
   PetscCall(CellsCreateList(&sim->kernel, &s->nl));
-  { /* |sum V grad W| of a particle on a flat surface of a lattice of spacing 1 */
-    PetscReal g = 0, hh = sim->kernel.h_factor;
+  { /* Sums over the lattice of spacing 1 on one side of a flat surface, at a particle of its first
+     * row: |sum V grad W| (nrm_min, the normal's threshold) and, in 3D, Eq. 41's repulsion.  Eq. 41
+     * is a plain sum over the solid neighbours, not a kernel sum: a fluid particle dx from a flat
+     * solid has ~5 times as many of them in 3D, so it is scaled there to the 2D sum (the layer
+     * k = 0), and a slab repeats the 2D run. */
+    PetscReal g = 0, s2 = 0, s3 = 0, hh = sim->kernel.h_factor;
     PetscInt  nr = KernelSupportRows(&sim->kernel), nk = sim->dim == 3 ? nr : 0;
     for (PetscInt k = -nk; k <= nk; k++) /* one layer in 2D */
       for (PetscInt j = 0; j <= nr; j++)
         for (PetscInt i = -nr; i <= nr; i++) {
-          PetscReal r = PetscSqrtReal((PetscReal)(i * i + j * j + k * k));
+          PetscReal r = PetscSqrtReal((PetscReal)(i * i + j * j + k * k)), rep = j ? FSIRepulsion(-1.0, r / (2 * hh), 1.0) : 0;
           g += KernelF(&sim->kernel, r, hh) * j;
+          s3 += rep;
+          if (!k) s2 += rep;
         }
-    s->nrm_min = 0.5 * PetscAbsReal(g);
-  }
-  s->repulsion_scale = 1;
-  if (sim->dim == 3) { /* Eq. 41 is a plain sum over the solid neighbours, not a kernel sum: a fluid
-                        * particle dx from a flat solid has ~5 times as many of them in 3D.  Scaled
-                        * so that its total there is the 2D one, a slab repeats the 2D run. */
-    PetscReal s2 = 0, s3 = 0, hh = sim->kernel.h_factor;
-    PetscInt  nr = KernelSupportRows(&sim->kernel);
-    for (PetscInt j = 1; j <= nr; j++)
-      for (PetscInt i = -nr; i <= nr; i++)
-        for (PetscInt k = -nr; k <= nr; k++) {
-          PetscReal q = PetscSqrtReal((PetscReal)(i * i + j * j + k * k)) / (2 * hh);
-          s3 += FSIRepulsion(-1.0, q, 1.0);
-          if (!k) s2 += FSIRepulsion(-1.0, q, 1.0);
-        }
-    s->repulsion_scale = s3 > 0 ? s2 / s3 : 1;
+    s->nrm_min         = 0.5 * PetscAbsReal(g);
+    s->repulsion_scale = sim->dim == 3 && s3 > 0 ? s2 / s3 : 1;
   }
   PetscFunctionReturn(PETSC_SUCCESS);
 }

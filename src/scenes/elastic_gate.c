@@ -77,7 +77,6 @@ static PetscErrorCode Create(Sim sim)
     c->nz = RoundToInt(c->width / sim->dx);
     PetscCheck(c->nz >= 6, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-gate_width %g holds fewer than 6 particles", (double)c->width);
     c->width         = c->nz * sim->dx;
-    sim->g[2]        = 0;
     sim->dom_lo[2]   = c->side_walls ? -(c->rows + 0.5) * sim->dx : 0;
     sim->dom_hi[2]   = c->side_walls ? c->width + (c->rows + 0.5) * sim->dx : c->width;
     sim->periodic[2] = (PetscBool)!c->side_walls;

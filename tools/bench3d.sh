@@ -7,8 +7,9 @@
 #      steps from a zero initial guess (-ppe_ksp_initial_guess_nonzero 0, so the count is the
 #      solver's, not the warm start's) at dx = 0.04 .. 0.009 m (36 000 .. 1.5 M particles), 2 ranks;
 #      memory per particle (maximum resident set over ranks, summed) at each size
-#   3. partition statistics of the 3D cell graph (bin/partition_model) at dx = 0.01 m (1.4 M) for
-#      2..1024 ranks
+#   3. partition statistics of the 3D cell graph (bin/partition_model) at dx = 0.01 m (1.05 M) and
+#      0.0046 m (8.7 M) for 2..1024 ranks (tools/scaling_model.py turns them into modelled times
+#      with the costs of part 4: out/bench/scaling_model.md, run by tools/bench.sh)
 #   4. 2-rank efficiency at ~1 M particles: the same case at dx = 0.01 m (1.05 M), WCSPH 10 steps and
 #      ISPH 3 steps on 1 and 2 ranks: particle-steps/s on 2 over twice that on 1
 # Writes out/bench/bench3d.md.  Environment as tools/bench.sh (MPIEXEC, MPIEXEC_FLAGS, BINDIR,
@@ -54,6 +55,8 @@ if has efficiency; then
 fi
 if has partition; then
   timeout $TMO $BIN/partition_model $S2 -dx 0.01 -nparts_max 1024 > $OUT/partition_spheric_test2.csv 2> $OUT/partition_spheric_test2.log || FAILS="$FAILS partition"
+  # ~8.5k particles per rank at 1024 ranks, the issue's scale for the scaling model (1.6 GB, ~20 s)
+  timeout $TMO $BIN/partition_model $S2 -dx 0.0046 -nparts_max 1024 > $OUT/partition_spheric_test2_9M.csv 2> $OUT/partition_spheric_test2_9M.log || FAILS="$FAILS partition_9M"
 fi
 python3 - $OUT "$SIZES" <<'PY' || FAILS="$FAILS report"
 import json, os, sys

@@ -4,7 +4,15 @@
   - the costs measured by tools/bench.sh on this machine (the 1-rank and 2-rank runs at ~400k
     particles: time per unit of work, PPE assembly / AMG set-up / V-cycle / CG cost per row,
     PPE iterations, halo messages and reductions per step).
-Usage: tools/scaling_model.py OUTDIR [--alpha 2e-6] [--alpha_ar 1.5e-6] [--beta 5e9]
+  3D (SPHERIC Test 2): the same model on the 3D cell graph (partition_spheric_test2.csv), with the
+    costs of tools/bench3d.sh's 1- and 2-rank runs at dx = 0.01 m (part "efficiency", 1.05 M
+    particles, the partition's own size); the PPE rows are the partition's (water and the walls
+    within reach of it), and ghost bytes scale with the halo as measured at 2 ranks.
+Each case is modelled when its partition and its cost runs are in OUTDIR, and skipped otherwise.
+    In 3D two more terms: the ghosts' handling on their rank (c_ghost, measured apart), and the
+    compute slowed on many ranks by the factor the 2-rank run shows beyond the model (two ranks
+    sharing one memory system; a full cluster node shares it too).
+Usage: tools/scaling_model.py OUTDIR [--alpha 2e-6] [--alpha_ar 1.5e-6] [--beta 5e9] [--c_ghost 80e-9]
 Writes OUTDIR/scaling_model.md and OUTDIR/scaling_model.png.
 
 Per rank and step (P ranks, max over ranks from the partition):
@@ -56,17 +64,24 @@ def work_of(k):
     return 4 * (k.get("fluid", 0) + k.get("solid", 0) + k.get("clamp", 0)) + k.get("wall", 0) + k.get("dummy", 0)
 
 
-def load_costs(out):
-    """Per-unit costs from the ~400k runs of bench.sh (1 rank) and message counts (2 ranks)."""
+# cost runs of each dimension: scheme -> run name of 1 rank and of 2 ranks (OUTDIR/NAME, OUTDIR/NAME.log)
+COST_RUNS = {2: {s: (f"{s}_400k_np1", f"{s}_400k_np2") for s in ("wcsph", "isph")},
+             3: {s: (f"s2_eff_{s}_np1", f"s2_eff_{s}_np2") for s in ("wcsph", "isph")}}
+
+
+def load_costs(out, dim=2, ppe_rows=None):
+    """Per-unit costs from the 1-rank runs (bench.sh: ~400k particles in 2D; bench3d.sh: 1.05 M in 3D)
+    and message counts of the 2-rank runs.  ppe_rows: the PPE's rows in the measured run, when known
+    (the 3D partition's); otherwise the fluid and half the walls."""
     c = {}
-    for scheme in ("wcsph", "isph"):
-        d1, d2 = f"{out}/{scheme}_400k_np1", f"{out}/{scheme}_400k_np2"
+    for scheme, (n1, n2) in COST_RUNS[dim].items():
+        d1, d2 = f"{out}/{n1}", f"{out}/{n2}"
         s1 = json.load(open(f"{d1}/summary.json"))
         st1, ev1 = stages(f"{d1}/log_view.txt")
         st2, ev2 = stages(f"{d2}/log_view.txt")
         s2 = json.load(open(f"{d2}/summary.json"))
         steps = s1["steps"]
-        k = kinds(f"{out}/{scheme}_400k_np1.log")
+        k = kinds(f"{d1}.log")
         w = work_of(k)
         tot = sum(v[0] for v in st1.values())
         r = dict(steps=steps, particles=s1["particles"], work=w, t_step=s1["wall_s"] / steps,
@@ -82,7 +97,7 @@ def load_costs(out):
             e = ev1.get("PPE solve", {})
             nv = e["PCApply"]["count"]
             its = s1["ksp_its_mean"]
-            rows = k.get("fluid", 0) + 0.5 * (k.get("wall", 0) + k.get("dummy", 0))  # walls within reach of fluid: about half here
+            rows = ppe_rows or k.get("fluid", 0) + 0.5 * (k.get("wall", 0) + k.get("dummy", 0))  # walls within reach of fluid: about half in 2D
             r.update(its=its, rows=rows, c_nonppe=(tot - ppe_s - asm) / steps / w, c_asm=asm / steps / rows,
                      c_setup=e["PCSetUp"]["time"] / steps / rows, c_vcycle=e["PCApply"]["time"] / nv / rows,
                      c_matmult=e["MatMult"]["time"] / e["MatMult"]["count"] / rows, vcycles=nv / steps,
@@ -91,6 +106,8 @@ def load_costs(out):
         else:
             r["c_work"] = r["t_step"] / w
         c[scheme] = r
+    if dim == 3:
+        return c
     # solid: the plate on 2 ranks, time per solid particle-step (a sub-step)
     try:
         sp = json.load(open(f"{out}/plate_np2/summary.json"))
@@ -98,6 +115,19 @@ def load_costs(out):
     except (OSError, KeyError):
         c["solid"] = dict(c_solid=0.0)
     return c
+
+
+def measured_costs(c, dim):
+    ci, cw = c["isph"], c["wcsph"]
+    solid = f"solid sub-step {c['solid']['c_solid'] * 1e9:.0f} ns per solid particle." if "solid" in c else "no solid in 3D (not modelled)."
+    return (f"Measured costs, {dim}D (1 rank, {cw['particles']} particles): WCSPH {cw['c_work'] * 1e9:.1f} ns per work unit per step "
+              f"(fluid 4, wall 1; {cw['t_step'] * 1e3:.1f} ms/step); ISPH outside the PPE {ci['c_nonppe'] * 1e9:.1f} ns per work unit, "
+              f"PPE per row: assembly {ci['c_asm'] * 1e9:.0f} ns, AMG set-up {ci['c_setup'] * 1e9:.0f} ns, V-cycle {ci['c_vcycle'] * 1e9:.0f} ns "
+              f"({ci['vcycles']:.1f} per step), CG mat-vec {ci['c_matmult'] * 1e9:.0f} ns ({ci['its']:.2f} iterations); "
+              f"halo: {cw['n_msg']:.1f} (WCSPH) / {ci['n_msg']:.1f} (ISPH) messages and {cw['n_red']:.1f} / {ci['n_red']:.1f} reductions per step outside the PPE; "
+              f"{solid}"
+              + "".join(f" {k.upper()} on 2 ranks: {100 * c[k]['eff2']:.0f} % efficient (measured), so compute on more than one rank is taken {c[k]['share']:.3f}x slower (ranks sharing a node's memory);" for k in ("wcsph", "isph") if "share" in c[k])
+              + (f" a ghost costs {c['c_ghost'] * 1e9:.0f} ns per step on its rank." if "c_ghost" in c else "") + "\n")
 
 
 def model(row, c, scheme, a, aar, beta, alltoallv, nsub=0, o=0.5e-6):
@@ -128,32 +158,59 @@ def model(row, c, scheme, a, aar, beta, alltoallv, nsub=0, o=0.5e-6):
     solid = 0.0  # in comp through the cost column
     if P == 1:
         return dict(comp=comp, ppe=ppe, solid=solid, comm=0.0, total=comp + ppe + solid)
-    comm = n_msg * ex + byt / beta + n_red * aar * lg + rebuilds * reb + lat_ppe
+    # handling of the ghosts on the rank (copy, binning, equation of state): c_ghost per ghost
+    ghost = c.get("c_ghost", 0.0) * halo
+    # ranks that share a node's memory bandwidth: compute slowed by the factor measured on 2 ranks
+    comp, ppe = comp * c[scheme].get("share", 1.0), ppe * c[scheme].get("share", 1.0)
+    comm = n_msg * ex + byt / beta + n_red * aar * lg + rebuilds * reb + lat_ppe + ghost
     return dict(comp=comp, ppe=ppe, solid=solid, comm=comm, total=comp + ppe + solid + comm, ppe_lat=lat_ppe)
 
 
 def main():
     out = sys.argv[1]
-    args = dict(alpha=2e-6, o=0.5e-6, alpha_ar=1.5e-6, beta=5e9, nsub=8)
+    # c_ghost: 3D WCSPH Taylor-Green cube on 1 rank, periodic images as ghosts, 25 and 50 across
+    # (ghosts 1.3 and 0.56 per owned particle): 8.32 and 8.27 us per particle-step, so <= 80 ns a ghost
+    args = dict(alpha=2e-6, o=0.5e-6, alpha_ar=1.5e-6, beta=5e9, nsub=8, c_ghost=80e-9)
     for k in range(2, len(sys.argv) - 1, 2):
         args[sys.argv[k].lstrip("-")] = float(sys.argv[k + 1])
     a, aar, beta = args["alpha"], args["alpha_ar"], args["beta"]
     sc = open(f"{out}/solid_cost.txt").read().strip() if os.path.exists(f"{out}/solid_cost.txt") else "?"
-    c = load_costs(out)
-    tables, series = [], {}
-    for case, schemes in (("dam_break", ("wcsph", "isph")), ("elastic_gate", ("wcsph",)), ("elastic_gate_solidw", ("wcsph",))):
+    tables, series, costs = [], {}, {}
+    for case, schemes, dim in (("dam_break", ("wcsph", "isph"), 2), ("elastic_gate", ("wcsph",), 2), ("elastic_gate_solidw", ("wcsph",), 2),
+                               ("spheric_test2", ("wcsph", "isph"), 3), ("spheric_test2_9M", ("wcsph", "isph"), 3)):
         path = f"{out}/partition_{case}.csv"
         if not os.path.exists(path): continue
-        rows = [r for r in csv.DictReader(open(path)) if r.get("case") == case.replace("_solidw", "") and r.get("ranks")]  # METIS may print into stdout
+        name = case.replace("_solidw", "").replace("_9M", "")
+        rows = [r for r in csv.DictReader(open(path)) if r.get("case") == name and r.get("ranks")]  # METIS may print into stdout
         if not rows: continue
         N = int(rows[0]["particles"])
+        if dim not in costs:
+            try:  # 3D: the PPE rows of the measured run are the partition's, scaled to its size
+                rows_measured = None
+                if dim == 3:  # the costs were measured at the size of partition_spheric_test2.csv
+                    if case != "spheric_test2": raise OSError(f"{out}/partition_spheric_test2.csv first")
+                    n_meas = json.load(open(f"{out}/{COST_RUNS[3]['isph'][0]}/summary.json"))["particles"]
+                    rows_measured = 2 * float(rows[0]["ppe_rows_mean"]) * n_meas / N
+                costs[dim] = load_costs(out, dim, rows_measured)
+            except (OSError, KeyError) as e:
+                print(f"{case}: no cost runs for {dim}D in {out} ({e}): skipped", file=sys.stderr)
+                costs[dim] = None
+        if costs[dim] is None: continue
+        c = costs[dim]
         one = dict(rows[0]); one.update(ranks="1", work_max=str(float(rows[0]["work_mean"]) * 2), cost_max=str(float(rows[0]["cost_mean"]) * 2), ppe_rows_max=str(float(rows[0]["ppe_rows_mean"]) * 2),
                                         ppe_rows_mean=str(float(rows[0]["ppe_rows_mean"]) * 2), solid_max=str(float(rows[0]["solid_mean"]) * 2), halo_max="0", nbr_ranks_max="0")
-        # the 2-rank halo of the measured 400k run scales the ghost bytes: halo ~ sqrt(N) at 2 ranks
+        # the 2-rank halo of the measured run scales the ghost bytes: halo ~ N^((D-1)/D) at 2 ranks
         for s in schemes:
-            c[s]["halo2"] = float(rows[0]["halo_max"]) * math.sqrt(c[s]["particles"] / N)
+            c[s]["halo2"] = float(rows[0]["halo_max"]) * (c[s]["particles"] / N) ** ((dim - 1) / dim)
         for s in schemes:
             nsub = args["nsub"] if case.startswith("elastic_gate") else 0
+            if dim == 3 and "share" not in c[s]:
+                # the 2-rank run's time beyond the model is the two ranks sharing one memory system
+                # (not the ghosts: c_ghost is measured apart); every multi-rank compute pays it
+                c["c_ghost"] = args["c_ghost"]
+                m2 = model(rows[0], c, s, a, aar, beta, "as is", nsub, args["o"])
+                c[s]["share"] = max(1.0, c[s]["t_step2"] / m2["total"])
+                c[s]["eff2"] = c[s]["t_step"] / (2 * c[s]["t_step2"])
             m1 = model(one, c, s, a, aar, beta, "as is", nsub)
             t1 = m1["total"]
             for variant in ("as is", "MPI_Alltoallv"):
@@ -164,21 +221,16 @@ def main():
                     ppe_eff = m1["ppe"] / (P * (m["ppe"] + m.get("ppe_lat", 0))) if m1["ppe"] > 0 else 1.0
                     pts.append((P, m["total"], t1 / (P * m["total"]), m["comm"] / m["total"], m.get("ppe_lat", 0) / m["total"], ppe_eff))
                 series[(case, s, variant)] = (N, pts)
-        tables.append((case, N, rows))
+        tables.append((case, N, rows, dim))
     md = []
     md.append(f"Scaling model (tools/scaling_model.py): METIS partitions of the real cell graphs (bin/partition_model, initial state) "
-              f"and the per-particle costs measured on this machine by tools/bench.sh (~400k particles, 1 rank). "
+              f"and the per-particle costs measured on this machine (2D: tools/bench.sh, ~400k particles; 3D: tools/bench3d.sh, SPHERIC Test 2 at 1.05 M particles; 1 rank, message counts from 2 ranks). "
               f"Assumed network: point-to-point latency alpha = {a * 1e6:.1f} us + {args['o'] * 1e6:.1f} us per further neighbour of an exchange, allreduce {aar * 1e6:.1f} us per log2(P) stage, "
               f"{beta / 1e9:.0f} GB/s per rank; elastic gate: {args['nsub']:.0f} solid sub-steps per fluid step, a solid particle costing {sc} work units per fluid step "
               f"(4 + 8 c_solid / c_work, c_solid from the oscillating plate on 2 ranks, an upper bound: its 1040 particles carry the per-step overheads).\n")
-    ci, cw = c["isph"], c["wcsph"]
-    md.append(f"Measured costs (1 rank, {cw['particles']} particles): WCSPH {cw['c_work'] * 1e9:.1f} ns per work unit per step "
-              f"(fluid 4, wall 1; {cw['t_step'] * 1e3:.1f} ms/step); ISPH outside the PPE {ci['c_nonppe'] * 1e9:.1f} ns per work unit, "
-              f"PPE per row: assembly {ci['c_asm'] * 1e9:.0f} ns, AMG set-up {ci['c_setup'] * 1e9:.0f} ns, V-cycle {ci['c_vcycle'] * 1e9:.0f} ns "
-              f"({ci['vcycles']:.1f} per step), CG mat-vec {ci['c_matmult'] * 1e9:.0f} ns ({ci['its']:.2f} iterations); "
-              f"halo: {cw['n_msg']:.1f} (WCSPH) / {ci['n_msg']:.1f} (ISPH) messages and {cw['n_red']:.1f} / {ci['n_red']:.1f} reductions per step outside the PPE; "
-              f"solid sub-step {c['solid']['c_solid'] * 1e9:.0f} ns per solid particle.\n")
-    for case, N, rows in tables:
+    for dim, c in costs.items():
+        if c: md.append(measured_costs(c, dim))
+    for case, N, rows, dim in tables:
         title = {"elastic_gate": "elastic_gate (solid particles balanced as METIS's second constraint, as the code does by default)",
                  "elastic_gate_solidw": f"elastic_gate, solid and clamp particles weighted {sc} (their cost with the sub-steps) in the partition instead of 4"}.get(case, case)
         md.append(f"\n**{title}**, {N} particles, {rows[0]['cells']} cells, solid particles on the busiest rank at 2 / 64 ranks: "
@@ -214,11 +266,12 @@ def main():
         matplotlib.use("Agg")
         import matplotlib.pyplot as plt
         fig, ax = plt.subplots(1, 2, figsize=(11, 5.6))
-        colors = {("dam_break", "wcsph"): "C0", ("dam_break", "isph"): "C1", ("elastic_gate", "wcsph"): "C2", ("elastic_gate_solidw", "wcsph"): "C3"}
+        colors = {("dam_break", "wcsph"): "C0", ("dam_break", "isph"): "C1", ("elastic_gate", "wcsph"): "C2", ("elastic_gate_solidw", "wcsph"): "C3",
+                  ("spheric_test2", "wcsph"): "C4", ("spheric_test2", "isph"): "C5", ("spheric_test2_9M", "wcsph"): "C6", ("spheric_test2_9M", "isph"): "C7"}
         for k, (N, pts) in series.items():
             P = [p[0] for p in pts]; t = [p[1] * 1e3 for p in pts]; e = [100 * p[2] for p in pts]
             ls = "-" if k[2] == "as is" else "--"
-            name = k[0].replace("elastic_gate_solidw", "elastic gate (solids weighted by their cost)").replace("elastic_gate", "elastic gate (solids a second constraint, as now)").replace("_", " ")
+            name = k[0].replace("spheric_test2_9M", "3D SPHERIC Test 2 (8.7 M)").replace("spheric_test2", "3D SPHERIC Test 2 (1.05 M)").replace("elastic_gate_solidw", "elastic gate (solids weighted by their cost)").replace("elastic_gate", "elastic gate (solids a second constraint, as now)").replace("_", " ")
             lab = f"{name} {k[1].upper()}{'' if k[2] == 'as is' else ', all-to-all exchanges (before)'}"
             ax[0].loglog(P, t, ls, marker="o", ms=3, color=colors[(k[0], k[1])], label=lab)
             if k[2] == "as is": ax[0].loglog(P, [t[0] / p for p in P], ":", color=colors[(k[0], k[1])], lw=0.8)
@@ -226,7 +279,7 @@ def main():
         ax[0].set_xlabel("ranks"); ax[0].set_ylabel("modelled time per step (ms)"); ax[0].set_title("time per step (dotted: ideal)")
         ax[1].axhline(43, color="grey", lw=0.8); ax[1].text(1.2, 45, "Guo et al. 2018: 43 % overall at 6144 partitions", fontsize=7, color="grey")
         ax[1].axhline(90, color="grey", lw=0.8, ls="--"); ax[1].text(1.2, 92, "Guo et al. 2018: PPE > 90 %", fontsize=7, color="grey")
-        ax[1].set_xlabel("ranks"); ax[1].set_ylabel("parallel efficiency (%)"); ax[1].set_ylim(0, 105); ax[1].set_title("strong scaling at ~1M particles")
+        ax[1].set_xlabel("ranks"); ax[1].set_ylabel("parallel efficiency (%)"); ax[1].set_ylim(0, 105); ax[1].set_title("strong scaling at ~1M particles (3D also 8.7M)")
         h, l = ax[1].get_legend_handles_labels()
         fig.legend(h, l, fontsize=7, loc="lower center", ncol=2)
         for x in ax: x.grid(True, which="both", alpha=0.3)

@@ -95,12 +95,15 @@ PetscErrorCode SolidSetUp(Sim sim)
   if (fluid && sim->fluid == FLUID_ISPH) PetscCall(ParticlesEnableField(sim->P, FIELD_P, PETSC_TRUE));
   PetscCall(CellsCreateList(&sim->kernel, &s->nl));
   { /* Sums over the lattice of spacing 1 on one side of a flat surface, at a particle of its first
-     * row: |sum V grad W| (nrm_min, the normal's threshold) and, in 3D, Eq. 41's repulsion.  Eq. 41
-     * is a plain sum over the solid neighbours, not a kernel sum: a fluid particle dx from a flat
-     * solid has ~5 times as many of them in 3D, so it is scaled there to the 2D sum (the layer
-     * k = 0), and a slab repeats the 2D run. */
-    PetscReal g = 0, s2 = 0, s3 = 0, hh = sim->kernel.h_factor;
-    PetscInt  nr = KernelSupportRows(&sim->kernel), nk = sim->dim == 3 ? nr : 0;
+     * row: |sum V grad W| (nrm_min, the normal's threshold) and Eq. 41's repulsion.  Eq. 41 is a
+     * plain sum over the solid neighbours within 2 h, not a kernel sum, and its 1/3 is the paper's
+     * for 2D at h = 1.3 dx: a fluid particle dx from a flat solid has ~5 times as many such
+     * neighbours in 3D and ~3 times at h = 2 dx (where the gate blew up at its 27th step).  So the
+     * sum is scaled to the paper's (2D, 1.3 dx; the layer k = 0), exactly 1 there, and a slab
+     * repeats the 2D run. */
+    const PetscReal hh = sim->kernel.h_factor, href = 1.3;
+    PetscReal       g = 0, s2 = 0, s3 = 0, sref = 0;
+    PetscInt        nr = PetscMax(KernelSupportRows(&sim->kernel), 3), nk = sim->dim == 3 ? nr : 0;
     for (PetscInt k = -nk; k <= nk; k++) /* one layer in 2D */
       for (PetscInt j = 0; j <= nr; j++)
         for (PetscInt i = -nr; i <= nr; i++) {
@@ -108,9 +111,10 @@ PetscErrorCode SolidSetUp(Sim sim)
           g += KernelF(&sim->kernel, r, hh) * j;
           s3 += rep;
           if (!k) s2 += rep;
+          if (!k && j) sref += FSIRepulsion(-1.0, r / (2 * href), 1.0);
         }
     s->nrm_min         = 0.5 * PetscAbsReal(g);
-    s->repulsion_scale = sim->dim == 3 && s3 > 0 ? s2 / s3 : 1;
+    s->repulsion_scale = sim->dim == 3 ? (s3 > 0 ? sref / s3 : 1) : (s2 > 0 ? sref / s2 : 1);
   }
   PetscFunctionReturn(PETSC_SUCCESS);
 }

@@ -151,7 +151,7 @@ SPH_INLINE PetscErrorCode MomentumD(Sim sim, const PetscInt D)
       visc  = LaminarViscosity(mb, fl->mu, ra, rb, F * r2, r2, hab, fl->eta, fl->lap_kappa);
       if (nrm && KindIsSolid(P->kind[b])) {
         PetscReal f = FSIRepulsion(VDot(dvab, nrm + D * b, D), PetscSqrtReal(r2) / (2 * hab), sim->dt);
-        if (D == 3) f *= sim->solid->repulsion_scale; /* solid.c */
+        f *= sim->solid->repulsion_scale; /* to the paper's 2D sum at 1.3 dx (solid.c); 1 there */
         for (PetscInt i = 0; i < D; i++) ac[i] += f * nrm[D * b + i];
       }
       if (KindIsBoundary(P->kind[b])) VSub(va, vw + D * b, dvab, D);

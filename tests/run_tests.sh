@@ -51,8 +51,10 @@ run test_rank_agreement_fsi $MPI "${BINDIR:-bin}"/test_rank_agreement -case elas
 # FSI with ISPH (implicit interface rows in the PPE, GMRES): the solver tolerance (3e-11; 1.6e-7 while
 # the solids' ghosts kept a velocity half a kick old after the sub-steps, sim.c): bound 1e-8
 run test_rank_agreement_fsi_isph $MPI "${BINDIR:-bin}"/test_rank_agreement -case elastic_gate -fluid isph -dx 0.00125 -t_end 0.01 -ppe_ksp_rtol 1e-10 -tol 1e-8 -min_speed 0.01
-# FSI with another kernel and h / dx: the solid's step is that of h = 1.3 dx (at 2 dx the gate blew
-# up in its first step before: the solid's stable step is set by its spacing, not by h)
+# FSI with another kernel and h / dx: Eq. 41's repulsion scaled to the paper's sum (the WCSPH gate
+# blew up at its 27th step at 2 dx before), and the solid's step that of h = 1.3 dx (the ISPH gate
+# blew up in its first step: the solid's stable step is set by its spacing, not by h)
+run test_rank_agreement_fsi_wendland_wcsph $MPI "${BINDIR:-bin}"/test_rank_agreement -options_file cases/elastic_gate_wcsph.opts -kernel wendland_c2 -h_factor 2 -dx 0.001667 -t_end 0.002 -output_interval 0 -min_speed 0.05
 run test_rank_agreement_fsi_wendland $MPI "${BINDIR:-bin}"/test_rank_agreement -options_file cases/elastic_gate.opts -kernel wendland_c2 -h_factor 2 -dx 0.001667 -t_end 0.01 -output_interval 0 -ppe_ksp_rtol 1e-10 -tol 1e-8 -min_speed 0.01
 # The same with the paper's hypo-elastic solid (-solid_formulation updated; the tests above run the
 # total-Lagrangian default)

@@ -6,6 +6,7 @@
  * -tol 1e-6.  Another scene with -case NAME and its options.  Run on 2 ranks. */
 #include <sphfsi/sim.h>
 #include <sphfsi/scene.h>
+#include <sphfsi/guard.h>
 
 static PetscErrorCode RunCase(MPI_Comm comm, const char *outdir, Sim *sim)
 {
@@ -52,6 +53,9 @@ int main(int argc, char **argv)
   PetscCall(RunCase(PETSC_COMM_WORLD, "out/test_rank_agreement/world", &world));
   if (!rank) PetscCall(RunCase(PETSC_COMM_SELF, "out/test_rank_agreement/self", &self));
   N = world->nparticles;
+  /* agreement of two blown-up runs proves nothing: both must complete */
+  PetscCheck(world->guard->state != GUARD_FAULT, PETSC_COMM_SELF, PETSC_ERR_PLIB, "The %d-rank run faulted: %s", size, world->guard->msg);
+  PetscCheck(rank || self->guard->state != GUARD_FAULT, PETSC_COMM_SELF, PETSC_ERR_PLIB, "The 1-rank run faulted: %s", self->guard->msg);
   /* every world particle's (x, v, rho) sent to rank 0, compared there by id with the 1-rank run */
   {
     Particles    P = world->P;

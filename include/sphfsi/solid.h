@@ -32,7 +32,7 @@ struct _p_Solid {
   PetscReal    *xref;     /* positions of owned particles when nl was built */
   PetscInt      cap_xref, nrebuild; /* rebuilds forced by solid motion */
   PetscBool     repulsion; /* Eq. 41 on fluid-solid pairs (WCSPH fluid) */
-  PetscReal     repulsion_scale; /* 3D: Eq. 41's pair sum scaled to the 2D one's next to a flat solid (1 in 2D) */
+  PetscReal     repulsion_scale; /* Eq. 41's pair sum next to a flat solid scaled to the paper's (2D, h = 1.3 dx: 1 there) */
   PetscReal     nrm_min;   /* |sum V grad W| below this: not a surface particle, no normal */
   PetscBool     subcycle;  /* multi-rate: solid sub-steps inside the fluid step */
   PetscReal     cfl;       /* Courant number of the solid's step */

@@ -25,7 +25,7 @@ SPH_INLINE void FluidLoad(Sim sim, PetscInt a, PetscInt b, PetscReal F, PetscRea
   pterm = p[b] / (rb * rb) + pa / (ra * ra) + ArtificialViscosity(alpha, sim->fl.c0, hab, 0.5 * (ra + rb), VDot(dv, d, D), r2);
   visc  = LaminarViscosity(ma, sim->fl.mu, rb, ra, F * r2, r2, hab, sim->fl.eta, sim->fl.lap_kappa);
   if (sim->solid->repulsion) rep = FSIRepulsion(VDot(dv, nrm + D * a, D), PetscSqrtReal(r2) / (2 * hab), sim->dt);
-  if (D == 3) rep *= sim->solid->repulsion_scale;
+  rep *= sim->solid->repulsion_scale; /* 1 in 2D at h = 1.3 dx */
   for (PetscInt i = 0; i < D; i++) { /* the fluid's pair acceleration, reversed */
     PetscReal fb = visc * (v[D * b + i] - vw[D * a + i]) - ma * pterm * F * d[i];
     if (sim->solid->repulsion) fb += rep * nrm[D * a + i];

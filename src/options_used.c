@@ -1,5 +1,6 @@
 #include <sphfsi/options_used.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 /* The options read with their final values (OptionsRecord*): a database of its own, like PETSc's
@@ -30,7 +31,10 @@ PetscErrorCode OptionsRecordReal(const char *name, PetscReal v, const void *set)
   char buf[64];
   PetscFunctionBeginUser;
   if (set || v < 0 || PetscIsInfOrNanReal(v)) PetscFunctionReturn(PETSC_SUCCESS);
-  PetscCall(PetscSNPrintf(buf, sizeof(buf), "%.17g", (double)v));
+  for (int digits = 15; digits <= 17; digits++) { /* the shortest form that reads back exactly: 1.4, not 1.3999999999999999 */
+    PetscCall(PetscSNPrintf(buf, sizeof(buf), "%.*g", digits, (double)v));
+    if (strtod(buf, NULL) == (double)v) break;
+  }
   PetscCall(OptionsRecord(name, buf, NULL));
   PetscFunctionReturn(PETSC_SUCCESS);
 }

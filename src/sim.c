@@ -82,16 +82,22 @@ PetscErrorCode SimSetFromOptions(Sim sim)
 {
   char      name[64] = "", names[512];
   PetscBool set, dx_set, t_set;
-  PetscInt  fluid = sim->fluid, ktype = sim->kernel.type;
-  PetscReal hfac = sim->kernel.h_factor;
+  PetscInt  fluid = sim->fluid, ktype;
+  PetscReal hfac;
 
   PetscFunctionBeginUser;
   PetscCall(SceneListNames(names, sizeof(names)));
   PetscOptionsBegin(sim->comm, NULL, "sphfsi: SPH for fluid-structure interaction", "Sim");
   PetscCall(PetscOptionsString("-case", "Scene to run", "", name, name, sizeof(name), &set));
   PetscCall(OptEList("-fluid", "Fluid pressure scheme", "", FluidSchemes, 2, FluidSchemes[sim->fluid], &fluid, NULL));
-  PetscCall(OptEList("-kernel", "Smoothing kernel of every scheme and the solid: cubic (Eq. 12), wendland_c2, wendland_c4 (Dehnen & Aly 2012); support 2h", "", KernelTypes, 3, KernelTypes[ktype], &ktype, NULL));
-  PetscCall(OptReal("-h_factor", "Smoothing length over particle spacing, h / dx (the paper: 1.3); wall rows default to cover 2h", "", hfac, &hfac, NULL));
+  /* Defaults by measurement (docs/convergence.md): WCSPH's square start lattice is unstable under
+   * its own pressure with the cubic spline at 1.3 dx and stable with Wendland C2 at 1.4 dx
+   * (tools/lattice_stability.py), at the same cost; ISPH keeps the paper's kernel, whose still tank
+   * is at rest (its pressure is noisy with Wendland C2). */
+  ktype = fluid == FLUID_WCSPH ? KERNEL_WENDLAND_C2 : KERNEL_CUBIC;
+  PetscCall(OptEList("-kernel", "Smoothing kernel of every scheme and the solid: cubic (Eq. 12), wendland_c2, wendland_c4 (Dehnen & Aly 2012); support 2h; default: wendland_c2 with -fluid wcsph, cubic with isph", "", KernelTypes, 3, KernelTypes[ktype], &ktype, NULL));
+  hfac = KernelDefaultHFactor((KernelType)ktype);
+  PetscCall(OptReal("-h_factor", "Smoothing length over particle spacing, h / dx; default 1.4 for wendland_c2 (its lattice-stable value), else the paper's 1.3; wall rows default to cover 2h", "", hfac, &hfac, NULL));
   PetscCall(OptReal("-dx", "Particle spacing of the finest particles (m); default: the scene's", "", sim->dx, &sim->dx, &dx_set));
   PetscCall(OptReal("-t_end", "Physical end time (s); default: the scene's", "", sim->t_end, &sim->t_end, &t_set));
   PetscCall(OptReal("-dt", "Fixed time step (s); 0 = adaptive", "", sim->dt_fixed, &sim->dt_fixed, NULL));
@@ -389,7 +395,7 @@ PetscErrorCode SimRun(Sim sim)
   PetscBool       shown;
 
   PetscFunctionBeginUser;
-  PetscCall(PetscViewerASCIIPrintf(PETSC_VIEWER_STDOUT_(sim->comm), "sphfsi: case %s, fluid %s, %d rank(s), dx %g, t_end %g, c0 %g\n", sim->scene->name, sim->has_fluid ? FluidSchemes[sim->fluid] : "none", sim->size, (double)sim->dx, (double)sim->t_end, (double)(sim->has_fluid ? sim->fl.c0 : sim->sl.c0)));
+  PetscCall(PetscViewerASCIIPrintf(PETSC_VIEWER_STDOUT_(sim->comm), "sphfsi: case %s, fluid %s, kernel %s at h = %g dx, %d rank(s), dx %g, t_end %g, c0 %g\n", sim->scene->name, sim->has_fluid ? FluidSchemes[sim->fluid] : "none", KernelTypes[sim->kernel.type], (double)sim->kernel.h_factor, sim->size, (double)sim->dx, (double)sim->t_end, (double)(sim->has_fluid ? sim->fl.c0 : sim->sl.c0)));
   PetscCall(ParticlesView(sim->P, PETSC_VIEWER_STDOUT_(sim->comm)));
   PetscCall(DecompView(sim->decomp, PETSC_VIEWER_STDOUT_(sim->comm)));
   if (sim->isph) PetscCall(ISPHView(sim, PETSC_VIEWER_STDOUT_(sim->comm)));

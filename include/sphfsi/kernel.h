@@ -13,7 +13,8 @@
 typedef enum { KERNEL_CUBIC = 0, KERNEL_WENDLAND_C2, KERNEL_WENDLAND_C4 } KernelType;
 extern const char *const KernelTypes[];
 
-#define SPH_H_FACTOR 1.3 /* the paper's h = 1.3 dx: the default of -h_factor */
+#define SPH_H_FACTOR 1.3 /* the paper's h = 1.3 dx: the default of -h_factor (but Wendland C2's) */
+#define SPH_H_FACTOR_WENDLAND_C2 1.4 /* the square lattice under pressure is stable (tools/lattice_stability.py) */
 
 typedef struct {
   KernelType type;
@@ -28,6 +29,9 @@ static inline void KernelInit(SPHKernel *K, KernelType t, PetscInt dim, PetscRea
   K->type = t; K->dim = dim; K->h_factor = h_factor;
   K->num = num[t][dim == 3]; K->den = den[t][dim == 3];
 }
+
+/* -h_factor's default for a kernel */
+static inline PetscReal KernelDefaultHFactor(KernelType t) { return t == KERNEL_WENDLAND_C2 ? SPH_H_FACTOR_WENDLAND_C2 : SPH_H_FACTOR; }
 
 /* The normalisation sigma(h); for the cubic spline in 2D the paper's 10 / (7 pi h^2) */
 static inline PetscReal KernelSigma(const SPHKernel *K, PetscReal h) { return K->dim == 3 ? K->num / (K->den * PETSC_PI * h * h * h) : K->num / (K->den * PETSC_PI * h * h); }

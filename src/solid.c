@@ -101,7 +101,7 @@ PetscErrorCode SolidSetUp(Sim sim)
      * neighbours in 3D and ~3 times at h = 2 dx (where the gate blew up at its 27th step).  So the
      * sum is scaled to the paper's (2D, 1.3 dx; the layer k = 0), exactly 1 there, and a slab
      * repeats the 2D run. */
-    const PetscReal hh = sim->kernel.h_factor, href = 1.3;
+    const PetscReal hh = sim->kernel.h_factor, href = SPH_H_FACTOR;
     PetscReal       g = 0, s2 = 0, s3 = 0, sref = 0;
     PetscInt        nr = PetscMax(KernelSupportRows(&sim->kernel), 3), nk = sim->dim == 3 ? nr : 0;
     for (PetscInt k = -nk; k <= nk; k++) /* one layer in 2D */
@@ -270,7 +270,7 @@ PetscErrorCode SolidTimeStep(Sim sim, PetscReal *dt)
    * stiffest mode.  -solid_cfl is calibrated at h = 1.3 dx (the paper's); at larger h / dx the step
    * stays that of h = 1.3 dx (at 2 dx it would be 1.54x longer: the elastic gate blew up in its
    * first fluid step with the Wendland kernel at 2 dx). */
-  const PetscReal  hlen = PetscMin(1.0, 1.3 / sim->kernel.h_factor);
+  const PetscReal  hlen = PetscMin(1.0, SPH_H_FACTOR / sim->kernel.h_factor);
   PetscReal        lim  = PETSC_MAX_REAL;
 
   PetscFunctionBeginUser;

@@ -216,11 +216,11 @@ static PetscErrorCode KindsSF(Halo h, Particles P, PetscBool (*keep)(PetscInt))
 {
   const PetscSFNode *all;
   PetscSFNode       *remote;
-  PetscInt           nl, n = 0;
+  PetscInt           n = 0;
   PetscFunctionBeginUser;
   PetscCall(PetscSFDestroy(&h->sf_kinds));
   PetscCall(PetscFree(h->kinds_ghost));
-  PetscCall(PetscSFGetGraph(h->sf, NULL, &nl, NULL, &all));
+  PetscCall(PetscSFGetGraph(h->sf, NULL, NULL, NULL, &all));
   PetscCall(PetscMalloc1(P->ng + 1, &h->kinds_ghost));
   PetscCall(PetscMalloc1(P->ng + 1, &remote));
   for (PetscInt j = 0; j < P->ng; j++)

@@ -103,6 +103,14 @@ PetscErrorCode RefDataLoad(Sim sim, const char *file, const char *xcol, const ch
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+void SeriesKeepBelow(Series *s, PetscReal ymax)
+{
+  PetscInt n = 0;
+  for (PetscInt k = 0; k < s->n; k++)
+    if (s->y[k] < ymax) { s->t[n] = s->t[k]; s->y[n] = s->y[k]; n++; }
+  s->n = n;
+}
+
 PetscErrorCode SeriesCompare(const Series *sim, const Series *ref, PetscReal tscale, PetscReal yscale, PetscReal t0, PetscReal t1, PetscBool relative, PetscReal *rms, PetscReal *max, PetscInt *npts)
 {
   PetscReal s2 = 0;

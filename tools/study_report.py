@@ -22,10 +22,16 @@ import numpy as np
 
 OUT = sys.argv[1] if len(sys.argv) > 1 else "out/study"
 # scene: title, error key (absolute value taken), its description, display unit and scale, a
-# second error shown for information (key, short name)
+# second error shown for information (key, short name), and optionally the self-convergence of a
+# probe (probes.csv column, short name, display unit and scale): the rms difference of its curve
+# from the next coarser run of the same scheme, with the order of those differences
 SCENES = {
     "dam_break": ("Dam break", "front_rel_err_rms", "surge front against Martin & Moyce 1952, rms relative error", "%", 100,
-                  ("height_rel_err_rms", "column height rms")),
+                  ("height_rel_err_rms", "column height rms"), ("front_x", "front: change from the coarser run", "mm", 1e3)),
+    "dam_break_lobovsky": ("Dam break, Lobovsky et al. 2014", "levels_err_rms",
+                           "water levels H1–H4 against Lobovsky et al. 2014 (H = 0.3 m) to t√(g/H) = 4, rms over the "
+                           "four gauges of the rms |h − h_exp| / H", "% of H", 100,
+                           ("P1_peak_rel_err", "P1 first peak vs the experiment's")),
     "taylor_green": ("Taylor–Green, Re 100", "l2_vel_err_final", "L2 velocity error at t_end, relative", "%", 100,
                      ("e_kin_rel_err_final", "E_kin")),
     "poiseuille": ("Poiseuille", "l2_vel_err_final", "L2 velocity error at t_end, relative (Morris et al. 1997)", "%", 100,
@@ -173,7 +179,7 @@ def main():
               "log(e1/e2)/log(dx1/dx2) against the previous completed resolution of the same scheme; negative = the error grows "
               "with resolution. Particles at the start (the elastic gate loses water through its opening). "
               + (f"{T}." if T else "") + "\n")
-    for scene, (title, key, what, unit, scale, (k2, n2)) in SCENES.items():
+    for scene, (title, key, what, unit, scale, (k2, n2), *selfc) in SCENES.items():
         plan = f"{OUT}/{scene}/plan.tsv"
         if not os.path.exists(plan): continue
         lines = open(plan).read().splitlines()
@@ -185,9 +191,10 @@ def main():
         md.append(f"## {title}\n\nError: {what} ({unit}). {head}.\n")
         strip_res = lambda o: re.sub(r" -(dx|plate_ny|dx_coarse) \S+", "", o)
         md.append("Schemes: " + "; ".join(f"{SCHEME[s]}: `{strip_res(o)}`" for s, o in opts.items()) + "\n")
-        md.append(f"| scheme | resolution | dx (m) | particles | steps | wall s | elapsed s | CPU s | load | error ({unit}) | order | {n2} ({unit}) |")
-        md.append("|---|---|---|---|---|---|---|---|---|---|---|---|")
-        prev = {}
+        sc_head = f" {selfc[0][1]} ({selfc[0][2]}) (order) |" if selfc else ""
+        md.append(f"| scheme | resolution | dx (m) | particles | steps | wall s | elapsed s | CPU s | load | error ({unit}) | order | {n2} ({unit}) |{sc_head}")
+        md.append("|---|---|---|---|---|---|---|---|---|---|---|---|" + ("---|" if selfc else ""))
+        prev, prev_curve = {}, {}
         for r in runs:
             run = r["run"]
             load_s = f"{run['load_before']:.2f} → {run['load_after']:.2f}" if run else "–"
@@ -205,9 +212,10 @@ def main():
                 order = f"{math.log(p[1] / e) / math.log(p[0] / r['dx']):.2f}"
             if e: prev[r["scheme"]] = (r["dx"], e)
             e2 = err_of(r, k2)
+            sc_cell = (" " + self_convergence(scene, r, selfc[0], prev_curve) + " |") if selfc else ""
             md.append(f"| {SCHEME[r['scheme']]} | {res_label(r['lab'])} | {s['dx']:.4g} | {r['particles0'] or s['particles']} | "
                       f"{s['steps']} | {s['wall_s']:.3g} | {el} | {cpu} | {load_s} | {'–' if e is None else f'{e * scale:.3g}'} | "
-                      f"{order} | {'–' if e2 is None else f'{e2 * scale:.3g}'} |")
+                      f"{order} | {'–' if e2 is None else f'{e2 * scale:.3g}'} |{sc_cell}")
         md.append("")
         md += [f"- {x}" for x in compare(scene, runs, key, unit, scale)]
         md.append("")
@@ -221,6 +229,29 @@ def main():
                      f"load average before a run {min(lb):.2f}–{max(lb):.2f} (mean {sum(lb) / len(lb):.2f}).\n")
     open(f"{OUT}/study.md", "w").write("\n".join(md))
     print("\n".join(md))
+
+
+def self_convergence(scene, r, spec, prev):
+    """The rms difference of probe column spec[0] from the same scheme's previous (coarser) run on 301
+    times over their common span, scaled to spec[3]; the order of successive differences. prev keeps
+    per scheme (dx, t, y, difference)."""
+    col, _, unit, scale = spec
+    f = f"{OUT}/{scene}/{r['name']}/probes.csv"
+    if not os.path.exists(f): return "–"
+    rows = [l.split(",") for l in open(f).read().splitlines()]
+    i = rows[0].index(col) if col in rows[0] else -1
+    if i < 0 or len(rows) < 3: return "–"
+    t = np.array([float(x[0]) for x in rows[1:]]); y = np.array([float(x[i]) for x in rows[1:]])
+    p, cell = prev.get(r["scheme"]), "–"
+    diff = None
+    if p:
+        tt = np.linspace(0, min(t[-1], p[1][-1]), 301)
+        diff = float(np.sqrt(np.mean((np.interp(tt, t, y) - np.interp(tt, p[1], p[2])) ** 2)))
+        cell = f"{diff * scale:.3g}"
+        if p[3] and diff > 0 and p[0] != r["dx"]:
+            cell += f" ({math.log(p[3] / diff) / math.log(p[0] / r['dx']):.2f})"
+    prev[r["scheme"]] = (r["dx"], t, y, diff)
+    return cell
 
 
 def plot(scene, title, runs, key, what, unit, scale):

@@ -10,6 +10,8 @@ struct _n_Series {
 
 PetscErrorCode SeriesAppend(Series *s, PetscReal t, PetscReal y);
 PetscErrorCode SeriesDestroy(Series *s);
+/* Drop the points with y >= ymax (a reference measured beyond what the scene's geometry can hold). */
+void SeriesKeepBelow(Series *s, PetscReal ymax);
 /* Linear interpolation (clamped to the ends). */
 PetscReal SeriesAt(const Series *s, PetscReal t);
 

@@ -72,8 +72,10 @@ static PetscErrorCode Probe(Sim sim, PetscReal *vals)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-/* Surge front against Martin & Moyce (1952), n^2 = 2, a = 2.25 in: Z = x/a at T = t sqrt(2g/a);
- * residual height at the wall against their Table 6: h/H0 at tau = t sqrt(g/a). */
+/* Surge front against Martin & Moyce (1952), n^2 = 2, a = 2.25 in: Z = x/a at T = t sqrt(2g/a),
+ * at the points where their front was still inside this tank (Z < L/a: their tank was longer, and
+ * a front held by the far wall is no error of the scheme); residual height at the wall against
+ * their Table 6: h/H0 at tau = t sqrt(g/a). */
 static PetscErrorCode Errors(Sim sim, FILE *f)
 {
   DamBreak *c = (DamBreak *)sim->scene_ctx;
@@ -84,6 +86,7 @@ static PetscErrorCode Errors(Sim sim, FILE *f)
   PetscFunctionBeginUser;
   PetscCall(RefDataLoad(sim, "martin_moyce1952_surge_n2eq2_a2.25in__pysph.csv", "T", "Z", &ref, &found));
   if (found && f) {
+    SeriesKeepBelow(&ref, c->L / c->a);
     PetscCall(SeriesCompare(&c->front, &ref, 1.0 / PetscSqrtReal(2 * g / c->a), c->a, 0, Tend, PETSC_TRUE, &rms, &max, &n));
     fprintf(f, "\"front_rel_err_rms\": %.6g, \"front_rel_err_max\": %.6g, \"front_points\": %d, \"front_T_max\": %.4g, ", (double)rms, (double)max, (int)n, (double)Tend);
   }

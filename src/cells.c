@@ -29,6 +29,7 @@ PetscErrorCode CellsDestroy(Cells *c)
   PetscCall(PetscFree((*c)->nstart));
   PetscCall(PetscFree3((*c)->nbr, (*c)->w, (*c)->f));
   PetscCall(PetscFree((*c)->wet));
+  PetscCall(PetscFree2((*c)->cstart, (*c)->cnbr));
   PetscCall(PetscFree(*c));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -55,6 +56,9 @@ SPH_INLINE void BinParticles(Cells c, const PetscReal *x, PetscInt n, const Pets
     c->start[c->cell[a] + 1]++;
   }
 }
+
+static PetscErrorCode NeighbourPass(Cells, Particles, PetscBool (*)(PetscInt), PetscReal, Cells);
+static PetscErrorCode KeepCandidates(Cells);
 
 PetscErrorCode CellsBuild(Cells c, Particles P)
 {
@@ -98,7 +102,11 @@ PetscErrorCode CellsBuild(Cells c, Particles P)
       while (t > c->start[k] && P->id[c->list[t - 1]] > P->id[v]) { c->list[t] = c->list[t - 1]; t--; }
       c->list[t] = v;
     }
-  PetscCall(CellsBuildNeighbours(c, P));
+  if (c->skin > 0) {
+    PetscCall(NeighbourPass(c, P, NULL, c->skin, c));
+    PetscCall(KeepCandidates(c));
+    PetscCall(CellsRefreshPairs(c, P));
+  } else PetscCall(CellsBuildNeighbours(c, P));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -334,5 +342,68 @@ PetscErrorCode CellsUpdatePairs(Cells sub, Particles P)
       sub->w[k] = KernelW(sub->kernel, r, hab);
       sub->f[k] = KernelF(sub->kernel, r, hab);
     }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* The list just built (r < 2 h_ab + skin) becomes the candidates. */
+static PetscErrorCode KeepCandidates(Cells c)
+{
+  PetscInt n = c->npart, m = c->nstart[n];
+  PetscFunctionBeginUser;
+  if (n + 1 > c->cap_cstart || m > c->cap_cnbr) {
+    PetscCall(PetscFree2(c->cstart, c->cnbr));
+    c->cap_cstart = PetscMax(c->cap_cstart, (3 * (n + 1)) / 2 + 16);
+    c->cap_cnbr   = PetscMax(c->cap_cnbr, (3 * m) / 2 + 16);
+    PetscCall(PetscMalloc2(c->cap_cstart, &c->cstart, c->cap_cnbr, &c->cnbr));
+  }
+  PetscCall(PetscArraycpy(c->cstart, c->nstart, n + 1));
+  PetscCall(PetscArraycpy(c->cnbr, c->nbr, m));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* The candidates within 2 h_ab at the current positions, in their order, with the kernel values
+ * NeighbourPassD gives a build without skin (the same cut-off tests and kernel evaluations).  The
+ * list never outgrows the candidates, whose arrays it held. */
+SPH_INLINE void RefreshPairsD(Cells c, Particles P, const PetscInt D)
+{
+  const PetscReal *x = PField(P, FIELD_X), *h = PField(P, FIELD_H);
+  const SPHKernel *K = c->kernel;
+  PetscInt         cnt = 0;
+  c->max_nbr = 0;
+  for (PetscInt a = 0; a < c->npart; a++) {
+    PetscReal ha = h[a], rca = 2.0 * ha, rc2a = rca * rca, swa = KernelSigma(K, ha), sfa = swa / (ha * ha), iha = 1.0 / ha;
+    PetscReal xa[3] = {x[D * a], x[D * a + 1], D == 3 ? x[D * a + 2] : 0};
+    PetscBool mixed = PETSC_FALSE;
+    PetscInt  s     = cnt;
+    c->nstart[a] = cnt;
+    for (PetscInt k = c->cstart[a]; k < c->cstart[a + 1]; k++) {
+      PetscInt  b  = c->cnbr[k];
+      PetscReal r2 = PairDistance2(x, xa, b, D);
+      if (h[b] == ha) {
+        if (!(r2 < rc2a)) continue;
+        c->w[cnt] = r2;
+      } else {
+        PetscReal hab = PairH(ha, h[b]), rc = 2.0 * hab, sw;
+        if (!(r2 < rc * rc)) continue;
+        sw = KernelSigma(K, hab);
+        PairKernel(K->type, PetscSqrtReal(r2), 1.0 / hab, sw, sw / (hab * hab), &c->w[cnt], &c->f[cnt]);
+        mixed = PETSC_TRUE;
+      }
+      c->nbr[cnt++] = b;
+    }
+    if (!mixed) UniformPairKernels(K->type, c->w + s, c->f + s, cnt - s, iha, swa, sfa);
+    else
+      for (PetscInt k = s; k < cnt; k++)
+        if (h[c->nbr[k]] == ha) PairKernel(K->type, PetscSqrtReal(c->w[k]), iha, swa, sfa, &c->w[k], &c->f[k]);
+    c->max_nbr = PetscMax(c->max_nbr, cnt - s);
+  }
+  c->nstart[c->npart] = cnt;
+}
+
+PetscErrorCode CellsRefreshPairs(Cells c, Particles P)
+{
+  PetscFunctionBeginUser;
+  PetscCheck(c->skin > 0 && c->cstart, PETSC_COMM_SELF, PETSC_ERR_ARG_WRONGSTATE, "CellsRefreshPairs needs a list built with a skin");
+  SPH_DIM_DISPATCH(P->dim, RefreshPairsD, c, P);
   PetscFunctionReturn(PETSC_SUCCESS);
 }

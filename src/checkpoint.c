@@ -492,6 +492,7 @@ PetscErrorCode CheckpointRestart(Sim sim)
     if (sim->P->f[f].on && f != FIELD_XREB) all[nf++] = (FieldId)f;
   PetscCall(HaloRefresh(sim->halo, sim->P, nf, all));
   if (sim->solid) PetscCall(CellsUpdatePairs(sim->solid->nl, sim->P));
+  if (sim->skin > 0) PetscCall(CellsRefreshPairs(sim->cells, sim->P)); /* the main list's pairs now (-wcsph_skin) */
   PetscCall(PetscPrintf(sim->comm, "sphfsi: restarted from %s (written on %d rank(s)) at step %" PetscInt_FMT ", t = %g\n", sim->restart, (int)ranks, sim->step, (double)sim->t));
   PetscFunctionReturn(PETSC_SUCCESS);
 }

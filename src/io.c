@@ -342,6 +342,7 @@ PetscErrorCode IOSummary(Sim sim)
     else fprintf(f, "  \"ksp_its_mean\": null,\n  \"ksp_its_max\": null,\n");
     JsonReal(f, "mass_rel_drift", sim->mass0 > 0 ? (sim->mass - sim->mass0) / sim->mass0 : 0);
     if (sim->solid) fprintf(f, "  \"c0_solid\": %.6g,\n  \"solid_substeps_max\": %d,\n  \"solid_formulation\": \"%s\",\n", (double)sim->sl.c0, (int)sim->solid->nsub_max, SolidFormulations[sim->solid->formulation]);
+    if (sim->skin > 0) fprintf(f, "  \"neighbour_skin_dx\": %.6g,\n  \"neighbour_rebuilds\": %d,\n", (double)(sim->skin / sim->dx), (int)sim->nrebuild); /* this run's (-wcsph_skin) */
     if (sim->has_fluid) fprintf(f, "  \"c0\": %.6g,\n", (double)sim->fl.c0);
     else fprintf(f, "  \"c0\": null,\n");
     JsonModules(f, sim);

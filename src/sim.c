@@ -229,6 +229,49 @@ PetscErrorCode SimRebuild(Sim sim)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+PetscErrorCode SimUpdateNeighbours(Sim sim)
+{
+  Particles        P = sim->P;
+  const PetscReal *x, *xr;
+  const PetscInt   D = P->dim;
+  PetscReal        d2 = 0, lim = 0.5 * sim->skin;
+  FieldId          all[FIELD_COUNT];
+  PetscInt         nf = 0;
+  PetscFunctionBeginUser;
+  if (sim->skin <= 0) {
+    PetscCall(SimRebuild(sim));
+    PetscFunctionReturn(PETSC_SUCCESS);
+  }
+  x  = PField(P, FIELD_X);
+  xr = PField(P, FIELD_XREB);
+  for (PetscInt a = 0; a < P->n; a++) {
+    PetscReal d[3] = {0, 0, 0};
+    VSub(x + D * a, xr + D * a, d, D);
+    d2 = PetscMax(d2, VDot(d, d, D));
+  }
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &d2, 1, MPIU_REAL, MPIU_MAX, sim->comm));
+  /* the steps that may rebalance rebuild on every number of ranks: the lists, and with them the
+   * order of every sum, stay the same on 1 and on 2 ranks */
+  if (d2 >= lim * lim || sim->step % sim->decomp->check_every == 0) {
+    PetscCall(SimRebuild(sim));
+    sim->nrebuild++;
+    PetscFunctionReturn(PETSC_SUCCESS);
+  }
+  /* the ghosts as a rebuild leaves them: the halo fields their owners', the others zero */
+  for (PetscInt f = 0; f < FIELD_COUNT; f++) {
+    if (!P->f[f].on) continue;
+    if (P->f[f].halo) all[nf++] = (FieldId)f;
+    else PetscCall(PetscArrayzero(P->f[f].a + P->n * P->f[f].width, P->ng * P->f[f].width));
+  }
+  PetscCall(PetscLogStagePush(sim->stage[STAGE_HALO]));
+  PetscCall(HaloRefresh(sim->halo, P, nf, all));
+  PetscCall(PetscLogStagePop());
+  PetscCall(PetscLogStagePush(sim->stage[STAGE_NEIGHBOUR]));
+  PetscCall(CellsRefreshPairs(sim->cells, P));
+  PetscCall(PetscLogStagePop());
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 PetscErrorCode SimRebuildKeepPartition(Sim sim)
 {
   PetscFunctionBeginUser;
@@ -294,11 +337,14 @@ PetscErrorCode SimSetUp(Sim sim)
     PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &nfluid, 1, MPIU_INT, MPI_SUM, sim->comm));
     PetscCheck(nfluid > 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "The geometry leaves no fluid particle at -dx %g: the water region is thinner than one -dx; choose a smaller -dx or a larger water region", (double)sim->dx);
   }
-  /* solids keep their neighbour lists over sub-steps: cells wide enough for the skin */
-  PetscCall(GridSetUp(&sim->grid, sim->dim, sim->dom_lo, sim->dom_hi, 2.0 * sim->h_max + (sim->solid ? sim->solid->skin * sim->dx : 0), sim->periodic));
+  /* solids keep their neighbour lists over sub-steps, and WCSPH its main list over steps: cells
+   * wide enough for both skins, since the solids' list is built from bins up to half the fluid's
+   * skin old (SolidPrepare after every fluid step) */
+  PetscCall(GridSetUp(&sim->grid, sim->dim, sim->dom_lo, sim->dom_hi, 2.0 * sim->h_max + sim->skin + (sim->solid ? sim->solid->skin * sim->dx : 0), sim->periodic));
   sim->decomp->split_solids = (PetscBool)(sim->decomp->split_solids && sim->has_fluid && sim->has_solid);
   PetscCall(DecompSetUp(sim->decomp, &sim->grid));
   PetscCall(CellsCreate(&sim->grid, &sim->kernel, &sim->cells));
+  sim->cells->skin = sim->skin;
   sim->next_probe = sim->next_out = 0;
   sim->next_ckpt  = sim->ckpt_interval;
   if (sim->restart[0]) PetscCall(CheckpointRestart(sim)); /* the particles and state of the checkpoint */

@@ -62,8 +62,10 @@ static PetscReal Dist2(const PetscReal *x, PetscInt D, PetscInt a, PetscInt b)
 
 /* Neighbour lists of a random cloud in 2D or 3D (no lattice: the order in which candidates are
  * pairs is random, as in a splashing flow) against all pairs with r < 2 h_ab by brute force, with
- * one smoothing length and with two; two particles share a position (a pair at r = 0). */
-static PetscErrorCode CheckNeighbours(const SPHKernel *K, PetscBool mixed)
+ * one smoothing length and with two; two particles share a position (a pair at r = 0).  With a
+ * skin (in dx): the list built with it, then every particle moved by just under half the skin in a
+ * random direction and the list refreshed from its candidates (CellsRefreshPairs). */
+static PetscErrorCode CheckNeighbours(const SPHKernel *K, PetscBool mixed, PetscReal skin)
 {
   Particles   P;
   Grid        g;
@@ -89,9 +91,24 @@ static PetscErrorCode CheckNeighbours(const SPHKernel *K, PetscBool mixed)
     if (a == n - 1) PetscCall(PetscArraycpy(r, PField(P, FIELD_X), D)); /* on particle 0 */
     PetscCall(ParticlesAdd(P, a, KIND_FLUID, r, 1000 * dx * dx, h, 1000));
   }
-  PetscCall(GridSetUp(&g, D, lo, hi, 2 * h0, per));
+  PetscCall(GridSetUp(&g, D, lo, hi, 2 * h0 + skin * dx, per));
   PetscCall(CellsCreate(&g, K, &C));
+  C->skin = skin * dx;
   PetscCall(CellsBuild(C, P));
+  if (skin > 0) {
+    PetscReal *x = PField(P, FIELD_X);
+    for (PetscInt a = 0; a < n; a++) {
+      PetscReal u[3] = {0, 0, 0}, norm = 0;
+      for (PetscInt d = 0; d < D; d++) {
+        PetscCall(PetscRandomGetValueReal(rnd, &u[d]));
+        u[d] -= 0.5;
+        norm += u[d] * u[d];
+      }
+      norm = PetscSqrtReal(norm) + 1e-30;
+      for (PetscInt d = 0; d < D; d++) x[D * a + d] += 0.499 * skin * dx * u[d] / norm;
+    }
+    PetscCall(CellsRefreshPairs(C, P));
+  }
   PetscCall(PetscCalloc1(n, &mark));
   for (PetscInt a = 0; a < n; a++) {
     const PetscReal *x = PField(P, FIELD_X), *h = PField(P, FIELD_H);
@@ -114,7 +131,7 @@ static PetscErrorCode CheckNeighbours(const SPHKernel *K, PetscBool mixed)
     PetscCheck(found == C->nstart[a + 1] - C->nstart[a], PETSC_COMM_SELF, PETSC_ERR_PLIB, "Neighbour count of %d wrong", (int)a);
     pairs += found;
   }
-  PetscCall(PetscPrintf(PETSC_COMM_WORLD, "neighbours (%dD, %s, %s): %d particles, %d pairs as by brute force, max error of W %.1e, of F %.1e (relative)\n", (int)D, KernelTypes[K->type], mixed ? "two smoothing lengths" : "one smoothing length", (int)n, (int)pairs, (double)errw, (double)errf));
+  PetscCall(PetscPrintf(PETSC_COMM_WORLD, "neighbours (%dD, %s, %s%s): %d particles, %d pairs as by brute force, max error of W %.1e, of F %.1e (relative)\n", (int)D, KernelTypes[K->type], mixed ? "two smoothing lengths" : "one smoothing length", skin > 0 ? ", refreshed after moves of half the skin" : "", (int)n, (int)pairs, (double)errw, (double)errf));
   PetscCheck(errw < 1e-12 && errf < 1e-12, PETSC_COMM_SELF, PETSC_ERR_PLIB, "Kernel values of the list differ from KernelW/KernelF");
   PetscCall(PetscFree(mark));
   PetscCall(CellsDestroy(&C));
@@ -180,10 +197,13 @@ int main(int argc, char **argv)
       KernelInit(&K3, (KernelType)t, 3, k ? 2.0 : SPH_H_FACTOR);
       PetscCall(CheckKernel(&K));
       PetscCall(CheckLattice(&K3));
-      PetscCall(CheckNeighbours(&K, PETSC_FALSE));
-      PetscCall(CheckNeighbours(&K, PETSC_TRUE));
-      PetscCall(CheckNeighbours(&K3, PETSC_FALSE));
-      PetscCall(CheckNeighbours(&K3, PETSC_TRUE));
+      for (PetscInt k = 0; k < 2; k++) { /* without a skin, and with WCSPH's default skin of 0.3 dx */
+        PetscReal skin = k ? 0.3 : 0;
+        PetscCall(CheckNeighbours(&K, PETSC_FALSE, skin));
+        PetscCall(CheckNeighbours(&K, PETSC_TRUE, skin));
+        PetscCall(CheckNeighbours(&K3, PETSC_FALSE, skin));
+        PetscCall(CheckNeighbours(&K3, PETSC_TRUE, skin));
+      }
       PetscCall(CheckGradient(&K));
     }
   PetscCall(PetscPrintf(PETSC_COMM_WORLD, "test_kernel: ok\n"));

@@ -16,13 +16,20 @@ struct _p_Cells {
   PetscReal  *w, *f;                  /* per pair: W_ab and F_ab = (dW/dr)/r, so grad_a W_ab = F_ab (x_a - x_b) */
   PetscInt    max_nbr;
   PetscBool  *wet; PetscInt cap_wet; /* per local cell: holds a fluid particle (the main list's walls) */
+  PetscReal   skin;                    /* Verlet skin of CellsBuild's list (0: none) */
+  PetscInt   *cstart, *cnbr, cap_cstart, cap_cnbr; /* with a skin: the candidates, r < 2 h_ab + skin at the build */
   const SPHKernel *kernel; /* the run's kernel (W, F of the pairs) */
 };
 
 PetscErrorCode CellsCreate(const Grid *g, const SPHKernel *K, Cells *c);
 PetscErrorCode CellsDestroy(Cells *c);
-/* Bin owned + ghost particles and build the neighbour list (r < 2 h_ab) of owned particles. */
+/* Bin owned + ghost particles and build the neighbour list (r < 2 h_ab) of owned particles.  With
+ * a skin (c->skin > 0) the pairs within 2 h_ab + skin are kept as candidates, and the list holds
+ * those of them within 2 h_ab, in the same order as a build without skin on the same bins. */
 PetscErrorCode CellsBuild(Cells c, Particles P);
+/* With a skin: the list anew from the candidates at the current positions (complete while no
+ * particle has moved skin / 2 since CellsBuild), with their kernel values. */
+PetscErrorCode CellsRefreshPairs(Cells c, Particles P);
 /* Cells with only a neighbour list (no bins of their own): for CellsBuildSubList. */
 PetscErrorCode CellsCreateList(const SPHKernel *K, Cells *c);
 /* Neighbour list in `sub` of the owned particles whose kind `keep` accepts, with the binning of

@@ -48,6 +48,8 @@ struct _p_Sim {
   PetscReal     v_ref;      /* expected maximum speed: c0 = 10 v_ref when -c0 is not given */
   SPHKernel     kernel;     /* -kernel, -h_factor: the smoothing kernel of every pair */
   PetscReal     dx, h_max;  /* finest spacing, largest smoothing length */
+  PetscReal     skin;       /* Verlet skin of the main neighbour list (m; -wcsph_skin): 0 rebuilds at every step */
+  PetscInt      nrebuild;   /* rebuilds of the main list by SimUpdateNeighbours */
   PetscReal     dom_lo[3], dom_hi[3];
   PetscBool     periodic[3];
   PetscBool     outflow;    /* fluid leaving the domain box is removed (open boundary) */
@@ -94,6 +96,10 @@ PetscErrorCode SimRun(Sim sim);
 PetscErrorCode SimDestroy(Sim *sim);
 /* Migrate, rebalance, sort, build ghosts, cells and neighbour lists: after particles moved. */
 PetscErrorCode SimRebuild(Sim sim);
+/* After the particles moved: SimRebuild, or with a skin, while no particle has moved skin / 2 since
+ * the last rebuild (and the step is not one that may rebalance), the ghosts take their owners' new
+ * state and the list its pairs at the new positions (CellsRefreshPairs). */
+PetscErrorCode SimUpdateNeighbours(Sim sim);
 /* The rebuild without outflow or rebalancing (a restart repeats the last rebuild of the run). */
 PetscErrorCode SimRebuildKeepPartition(Sim sim);
 /* Step limit of one particle of an explicit (weakly compressible) medium of sound speed c:

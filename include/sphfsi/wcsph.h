@@ -3,6 +3,8 @@
 #pragma once
 #include <sphfsi/sim.h>
 
+/* -wcsph_skin default (particle spacings): the measured choice, docs/performance.md */
+#define WCSPH_SKIN_DEFAULT 0.3
 PetscErrorCode WCSPHSetUp(Sim sim);
 /* One line of the run's header: the WCSPH fluid's settings. */
 PetscErrorCode WCSPHView(Sim sim, PetscViewer v);

@@ -337,6 +337,10 @@ PetscErrorCode SimSetUp(Sim sim)
     PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &nfluid, 1, MPIU_INT, MPI_SUM, sim->comm));
     PetscCheck(nfluid > 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "The geometry leaves no fluid particle at -dx %g: the water region is thinner than one -dx; choose a smaller -dx or a larger water region", (double)sim->dx);
   }
+  /* a periodic length holds three cells: a skin that does not fit is made smaller (a short
+   * periodic channel), down to none, rather than refuse a run that fits without it */
+  for (PetscInt d = 0; d < sim->dim && sim->skin > 0; d++)
+    if (sim->periodic[d]) sim->skin = PetscMin(sim->skin, PetscMax(0, (1 - 1e-9) * (sim->dom_hi[d] - sim->dom_lo[d]) / 3 - 2.0 * sim->h_max));
   /* solids keep their neighbour lists over sub-steps, and WCSPH its main list over steps: cells
    * wide enough for both skins, since the solids' list is built from bins up to half the fluid's
    * skin old (SolidPrepare after every fluid step) */

@@ -85,6 +85,8 @@ if [ "${1:-}" != "--unit-only" ]; then
   run wall_clip bash tests/check_wall_clip.sh "$MPI" "$OUT/wall_clip"
   run dam_break_lobovsky_wcsph bash tests/check_lobovsky.sh "$MPI" "$OUT/dam_break_lobovsky_wcsph"
   run poiseuille_wcsph bash tests/check_poiseuille.sh "$MPI" "$OUT/poiseuille_wcsph" -fluid wcsph
+  # 10 rows: a periodic length of 9 dx holds three cells of 2h but not of 2h + WCSPH's skin, which shrinks
+  run poiseuille_wcsph_hc10 bash tests/check_poiseuille.sh "$MPI" "$OUT/poiseuille_wcsph_hc10" -fluid wcsph -dx 0.0001
   # ISPH (issue 3): floor pressure within 2 % at dx = H/80 (first-order free-surface error: 2.15 % at H/40)
   P_BOUND=0.02 run hydrostatic_isph bash tests/check_hydrostatic.sh "$MPI" "$OUT/hydrostatic_isph" -fluid isph -dx 0.00125
   run still_tank_isph bash tests/check_still_tank.sh "$MPI" "$OUT/still_tank_isph" -fluid isph

@@ -22,7 +22,7 @@ import numpy as np
 
 OUT = sys.argv[1] if len(sys.argv) > 1 else "out/study"
 # scene: title, error key (absolute value taken), its description, display unit and scale, a
-# second error shown for information (key, short name), and optionally the self-convergence of a
+# second error shown for information (key, short name[, its unit and scale]), and optionally the self-convergence of a
 # probe (probes.csv column, short name, display unit and scale): the rms difference of its curve
 # from the next coarser run of the same scheme, with the order of those differences
 SCENES = {
@@ -31,7 +31,7 @@ SCENES = {
     "dam_break_lobovsky": ("Dam break, Lobovsky et al. 2014", "levels_err_rms",
                            "water levels H1–H4 against Lobovsky et al. 2014 (H = 0.3 m) to t√(g/H) = 4, rms over the "
                            "four gauges of the rms |h − h_exp| / H", "% of H", 100,
-                           ("P1_peak_rel_err", "P1 first peak vs the experiment's")),
+                           ("P1_peak_rel_err", "P1's first peak against the experiment's, relative", "%", 100)),
     "taylor_green": ("Taylor–Green, Re 100", "l2_vel_err_final", "L2 velocity error at t_end, relative", "%", 100,
                      ("e_kin_rel_err_final", "E_kin")),
     "poiseuille": ("Poiseuille", "l2_vel_err_final", "L2 velocity error at t_end, relative (Morris et al. 1997)", "%", 100,
@@ -179,7 +179,8 @@ def main():
               "log(e1/e2)/log(dx1/dx2) against the previous completed resolution of the same scheme; negative = the error grows "
               "with resolution. Particles at the start (the elastic gate loses water through its opening). "
               + (f"{T}." if T else "") + "\n")
-    for scene, (title, key, what, unit, scale, (k2, n2), *selfc) in SCENES.items():
+    for scene, (title, key, what, unit, scale, (k2, n2, *u2), *selfc) in SCENES.items():
+        unit2, scale2 = u2 if u2 else (unit, scale)   # the second error's own unit, when it has one
         plan = f"{OUT}/{scene}/plan.tsv"
         if not os.path.exists(plan): continue
         lines = open(plan).read().splitlines()
@@ -192,7 +193,7 @@ def main():
         strip_res = lambda o: re.sub(r" -(dx|plate_ny|dx_coarse) \S+", "", o)
         md.append("Schemes: " + "; ".join(f"{SCHEME[s]}: `{strip_res(o)}`" for s, o in opts.items()) + "\n")
         sc_head = f" {selfc[0][1]} ({selfc[0][2]}) (order) |" if selfc else ""
-        md.append(f"| scheme | resolution | dx (m) | particles | steps | wall s | elapsed s | CPU s | load | error ({unit}) | order | {n2} ({unit}) |{sc_head}")
+        md.append(f"| scheme | resolution | dx (m) | particles | steps | wall s | elapsed s | CPU s | load | error ({unit}) | order | {n2} ({unit2}) |{sc_head}")
         md.append("|---|---|---|---|---|---|---|---|---|---|---|---|" + ("---|" if selfc else ""))
         prev, prev_curve = {}, {}
         for r in runs:
@@ -215,7 +216,7 @@ def main():
             sc_cell = (" " + self_convergence(scene, r, selfc[0], prev_curve) + " |") if selfc else ""
             md.append(f"| {SCHEME[r['scheme']]} | {res_label(r['lab'])} | {s['dx']:.4g} | {r['particles0'] or s['particles']} | "
                       f"{s['steps']} | {s['wall_s']:.3g} | {el} | {cpu} | {load_s} | {'–' if e is None else f'{e * scale:.3g}'} | "
-                      f"{order} | {'–' if e2 is None else f'{e2 * scale:.3g}'} |{sc_cell}")
+                      f"{order} | {'–' if e2 is None else f'{e2 * scale2:.3g}'} |{sc_cell}")
         md.append("")
         md += [f"- {x}" for x in compare(scene, runs, key, unit, scale)]
         md.append("")

@@ -439,12 +439,13 @@ static PetscErrorCode ReadParticles(Sim sim, PetscViewer v, PetscInt ranks)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-static void SwapPositions(Particles P)
+/* Positions x and those of field f (FIELD_XREB, FIELD_XLIST) trade places, ghosts included. */
+static void SwapPositions(Particles P, FieldId f)
 {
   PetscReal *t = P->f[FIELD_X].a;
-  if (!P->f[FIELD_XREB].on) return;
-  P->f[FIELD_X].a    = P->f[FIELD_XREB].a;
-  P->f[FIELD_XREB].a = t;
+  if (!P->f[f].on) return;
+  P->f[FIELD_X].a = P->f[f].a;
+  P->f[f].a       = t;
 }
 
 PetscErrorCode CheckpointRestart(Sim sim)
@@ -474,7 +475,7 @@ PetscErrorCode CheckpointRestart(Sim sim)
   PetscCheck(sim->t < sim->t_end * (1 - 1e-12), sim->comm, PETSC_ERR_USER_INPUT, "-restart %s is at t = %g, not before -t_end %g: give a later -t_end to continue the run", sim->restart, (double)sim->t, (double)sim->t_end);
   PetscCall(ReadParticles(sim, v, ranks));
   /* the run's last rebuild, at the positions it had then */
-  SwapPositions(sim->P);
+  SwapPositions(sim->P, FIELD_XREB);
   if (ranks == sim->size) {
     PetscInt *owner;
     PetscCall(PetscMalloc1(ncell, &owner));
@@ -485,14 +486,19 @@ PetscErrorCode CheckpointRestart(Sim sim)
   } else PetscCall(DecompPartition(sim->decomp, sim->P));
   PetscCall(PetscViewerDestroy(&v));
   PetscCall(SimRebuildKeepPartition(sim));
-  if (sim->solid) PetscCall(SolidPrepare(sim)); /* as after every rebuild: the solids' list, xref */
-  SwapPositions(sim->P);
-  /* ghosts take every field's current value; solid pairs their current kernel values */
+  if (sim->solid && !sim->P->f[FIELD_XLIST].on) PetscCall(SolidPrepare(sim)); /* as after every rebuild: the solids' list, xref */
+  SwapPositions(sim->P, FIELD_XREB);
+  /* ghosts take every field's current value */
   for (PetscInt f = 0; f < FIELD_COUNT; f++)
     if (sim->P->f[f].on && f != FIELD_XREB) all[nf++] = (FieldId)f;
   PetscCall(HaloRefresh(sim->halo, sim->P, nf, all));
-  if (sim->solid) PetscCall(CellsUpdatePairs(sim->solid->nl, sim->P));
-  if (sim->skin > 0) PetscCall(CellsRefreshPairs(sim->cells, sim->P)); /* the main list's pairs now (-wcsph_skin) */
+  if (sim->P->f[FIELD_XLIST].on) { /* WCSPH's skin with solids: the main list's pairs and the solids' list where the run made them */
+    SwapPositions(sim->P, FIELD_XLIST);
+    PetscCall(CellsRefreshPairs(sim->cells, sim->P));
+    PetscCall(SolidPrepare(sim));
+    SwapPositions(sim->P, FIELD_XLIST);
+  } else if (sim->skin > 0) PetscCall(CellsRefreshPairs(sim->cells, sim->P)); /* the main list's pairs now (-wcsph_skin) */
+  if (sim->solid) PetscCall(CellsUpdatePairs(sim->solid->nl, sim->P)); /* solid pairs: their current kernel values */
   PetscCall(PetscPrintf(sim->comm, "sphfsi: restarted from %s (written on %d rank(s)) at step %" PetscInt_FMT ", t = %g\n", sim->restart, (int)ranks, sim->step, (double)sim->t));
   PetscFunctionReturn(PETSC_SUCCESS);
 }

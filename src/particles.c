@@ -17,6 +17,7 @@ static const struct { const char *name; PetscInt width; } FieldInfo[FIELD_COUNT]
   [FIELD_KCORR] = {"kernel_correction", WIDTH_TENSOR}, [FIELD_FVIEW] = {"fluid_view", 3},
   [FIELD_AMEAN] = {"mean_acc", WIDTH_VECTOR},         [FIELD_XREB] = {"x_rebuild", WIDTH_VECTOR},
   [FIELD_DEFGRAD] = {"deformation_gradient", WIDTH_TENSOR}, [FIELD_GRAD0] = {"reference_gradient", WIDTH_FIT_OP}, [FIELD_PK1B] = {"pk1_gradient", WIDTH_FIT_GRAD},
+  [FIELD_XLIST] = {"x_list", WIDTH_VECTOR},
 };
 
 static PetscInt FieldWidth(PetscInt w, PetscInt dim)

@@ -218,6 +218,7 @@ static PetscErrorCode Rebuild(Sim sim, PetscBool full)
   PetscCall(PetscLogStagePush(sim->stage[STAGE_NEIGHBOUR]));
   PetscCall(CellsBuild(sim->cells, P));
   if (full && P->f[FIELD_XREB].on) PetscCall(PetscArraycpy(PField(P, FIELD_XREB), PField(P, FIELD_X), P->dim * P->n)); /* a restart has them */
+  if (full && P->f[FIELD_XLIST].on) PetscCall(PetscArraycpy(PField(P, FIELD_XLIST), PField(P, FIELD_X), P->dim * P->n));
   PetscCall(PetscLogStagePop());
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -268,6 +269,7 @@ PetscErrorCode SimUpdateNeighbours(Sim sim)
   PetscCall(PetscLogStagePop());
   PetscCall(PetscLogStagePush(sim->stage[STAGE_NEIGHBOUR]));
   PetscCall(CellsRefreshPairs(sim->cells, P));
+  if (P->f[FIELD_XLIST].on) PetscCall(PetscArraycpy(PField(P, FIELD_XLIST), x, D * P->n));
   PetscCall(PetscLogStagePop());
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -340,7 +342,7 @@ PetscErrorCode SimSetUp(Sim sim)
   /* a periodic length holds three cells: a skin that does not fit is made smaller (a short
    * periodic channel), down to none, rather than refuse a run that fits without it */
   for (PetscInt d = 0; d < sim->dim && sim->skin > 0; d++)
-    if (sim->periodic[d]) sim->skin = PetscMin(sim->skin, PetscMax(0, (1 - 1e-9) * (sim->dom_hi[d] - sim->dom_lo[d]) / 3 - 2.0 * sim->h_max));
+    if (sim->periodic[d]) sim->skin = PetscMin(sim->skin, PetscMax(0, (1 - 1e-9) * (sim->dom_hi[d] - sim->dom_lo[d]) / 3 - 2.0 * sim->h_max - (sim->solid ? sim->solid->skin * sim->dx : 0)));
   /* solids keep their neighbour lists over sub-steps, and WCSPH its main list over steps: cells
    * wide enough for both skins, since the solids' list is built from bins up to half the fluid's
    * skin old (SolidPrepare after every fluid step) */

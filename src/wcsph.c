@@ -11,21 +11,19 @@ PetscErrorCode WCSPHSetUp(Sim sim)
 {
   FluidMaterial *fl   = &sim->fl;
   PetscReal      skin = WCSPH_SKIN_DEFAULT;
-  PetscBool      skin_set = PETSC_FALSE;
   PetscFunctionBeginUser;
   PetscOptionsBegin(sim->comm, NULL, "WCSPH fluid", "WCSPH");
   PetscCall(OptReal("-wcsph_shift", "Particle shifting coefficient A (D = A h |v| dt, Skillen et al. 2013; none on the free surface, div r < 1.5, and next to it); 0 = off", "", fl->shift, &fl->shift, NULL));
   PetscCall(OptBool("-wcsph_wall_clip", "Clip the wall pressure (Adami extrapolation) at 0: fluid in tension next to a wall is not held on it", "", fl->wall_clip, &fl->wall_clip, NULL));
-  PetscCall(OptReal("-wcsph_skin", "Verlet skin of the neighbour list, in particle spacings: the pairs within 2h + skin are kept and the list is rebuilt only once some particle has moved half the skin; 0 rebuilds at every step (always, with solids)", "", skin, &skin, &skin_set));
+  PetscCall(OptReal("-wcsph_skin", "Verlet skin of the neighbour list, in particle spacings: the pairs within 2h + skin are kept and the list is rebuilt only once some particle has moved half the skin; 0 rebuilds at every step", "", skin, &skin, NULL));
   PetscOptionsEnd();
   PetscCheck(fl->shift >= 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-wcsph_shift %g must be >= 0", (double)fl->shift);
   PetscCheck(skin >= 0 && skin <= 2, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-wcsph_skin %g must be in [0, 2] particle spacings", (double)skin);
-  /* with solids the list is rebuilt at every step: the solids' sub-steps move them after the fluid's
-   * list is made, and their own list is built from its bins after every fluid step (sim.c) */
-  PetscCheck(!sim->has_solid || !skin_set || skin == 0, sim->comm, PETSC_ERR_USER_INPUT, "-wcsph_skin %g: a scene with solids rebuilds the neighbour list at every step; leave -wcsph_skin out", (double)skin);
-  if (sim->has_solid) skin = 0;
   sim->skin = skin * sim->dx;
   if (sim->skin > 0) PetscCall(ParticlesEnableField(sim->P, FIELD_XREB, PETSC_FALSE)); /* the positions at the last rebuild */
+  /* the solids' sub-steps move them after the list's pairs are computed, and their own list is made
+   * then (SolidPrepare): a restart needs those positions too */
+  if (sim->skin > 0 && sim->has_solid) PetscCall(ParticlesEnableField(sim->P, FIELD_XLIST, PETSC_FALSE));
   fl->lat_divr = KernelLatticeSum(&sim->kernel, LATTICE_DIVR, 0);
   PetscCall(ParticlesEnableField(sim->P, FIELD_ACC, PETSC_FALSE));
   PetscCall(ParticlesEnableField(sim->P, FIELD_DRHO, PETSC_FALSE));

@@ -38,7 +38,6 @@ check "-rebalance_threshold"  -case dam_break -rebalance_threshold 0.5
 check "-decomp_sparse_ranks"  -case dam_break -decomp_sparse_ranks 0
 check "-delta"                -case dam_break -delta 2
 check "-wcsph_skin"           -case dam_break -wcsph_skin 3
-check "-wcsph_skin"           -options_file cases/elastic_gate_wcsph.opts -wcsph_skin 0.3
 check "-start_jitter"         -case dam_break -start_jitter 0.5
 check "-h_factor"             -case dam_break -h_factor 0.5
 check "-kernel"               -case dam_break -kernel gauss

@@ -183,6 +183,16 @@ static PetscErrorCode ReserveNeighbours(Cells out, PetscInt cnt, PetscInt more)
 
 /* |x_a - x_b|^2 in D dimensions (D a constant where it is called, so that it unrolls); in 2D the
  * compiler's contraction of dx dx + dy dy from before, bit for bit. */
+/* Kernel values of particle a's pairs [s, e) of a list being built: the pairs of a's own h hold r^2
+ * in w (evaluated here, vectorised when all are), those of another h their values already. */
+static inline void OwnPairKernels(KernelType type, const PetscReal *h, PetscReal ha, const PetscInt *nbr, PetscReal *w, PetscReal *f, PetscInt s, PetscInt e, PetscBool mixed, PetscReal iha, PetscReal swa, PetscReal sfa)
+{
+  if (!mixed) UniformPairKernels(type, w + s, f + s, e - s, iha, swa, sfa);
+  else
+    for (PetscInt k = s; k < e; k++)
+      if (h[nbr[k]] == ha) PairKernel(type, PetscSqrtReal(w[k]), iha, swa, sfa, &w[k], &f[k]);
+}
+
 SPH_INLINE PetscReal PairDistance2(const PetscReal *restrict x, const PetscReal xa[], PetscInt b, const PetscInt D)
 {
   PetscReal dx = xa[0] - x[D * b], dy = xa[1] - x[D * b + 1], r2 = fma(dy, dy, dx * dx);
@@ -301,10 +311,7 @@ SPH_INLINE PetscErrorCode NeighbourPassD(Cells bins, Particles P, PetscBool (*ke
         nbr[cnt++] = b;
       }
     }
-    if (!mixed) UniformPairKernels(K->type, w + out->nstart[a], f + out->nstart[a], cnt - out->nstart[a], iha, swa, sfa);
-    else /* the pairs of another h hold their kernel values already */
-      for (PetscInt k = out->nstart[a]; k < cnt; k++)
-        if (h[nbr[k]] == ha) PairKernel(K->type, PetscSqrtReal(w[k]), iha, swa, sfa, &w[k], &f[k]);
+    OwnPairKernels(K->type, h, ha, nbr, w, f, out->nstart[a], cnt, mixed, iha, swa, sfa);
     out->max_nbr = PetscMax(out->max_nbr, cnt - out->nstart[a]);
   }
   out->nstart[n] = cnt;
@@ -391,10 +398,7 @@ SPH_INLINE void RefreshPairsD(Cells c, Particles P, const PetscInt D)
       }
       c->nbr[cnt++] = b;
     }
-    if (!mixed) UniformPairKernels(K->type, c->w + s, c->f + s, cnt - s, iha, swa, sfa);
-    else
-      for (PetscInt k = s; k < cnt; k++)
-        if (h[c->nbr[k]] == ha) PairKernel(K->type, PetscSqrtReal(c->w[k]), iha, swa, sfa, &c->w[k], &c->f[k]);
+    OwnPairKernels(K->type, h, ha, c->nbr, c->w, c->f, s, cnt, mixed, iha, swa, sfa);
     c->max_nbr = PetscMax(c->max_nbr, cnt - s);
   }
   c->nstart[c->npart] = cnt;

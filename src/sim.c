@@ -341,12 +341,15 @@ PetscErrorCode SimSetUp(Sim sim)
   }
   /* a periodic length holds three cells: a skin that does not fit is made smaller (a short
    * periodic channel), down to none, rather than refuse a run that fits without it */
-  for (PetscInt d = 0; d < sim->dim && sim->skin > 0; d++)
-    if (sim->periodic[d]) sim->skin = PetscMin(sim->skin, PetscMax(0, (1 - 1e-9) * (sim->dom_hi[d] - sim->dom_lo[d]) / 3 - 2.0 * sim->h_max - (sim->solid ? sim->solid->skin * sim->dx : 0)));
   /* solids keep their neighbour lists over sub-steps, and WCSPH its main list over steps: cells
    * wide enough for both skins, since the solids' list is built from bins up to half the fluid's
    * skin old (SolidPrepare after every fluid step) */
-  PetscCall(GridSetUp(&sim->grid, sim->dim, sim->dom_lo, sim->dom_hi, 2.0 * sim->h_max + sim->skin + (sim->solid ? sim->solid->skin * sim->dx : 0), sim->periodic));
+  {
+    const PetscReal reach = 2.0 * sim->h_max + (sim->solid ? sim->solid->skin * sim->dx : 0); /* the cell without the fluid's skin */
+    for (PetscInt d = 0; d < sim->dim && sim->skin > 0; d++)
+      if (sim->periodic[d]) sim->skin = PetscMin(sim->skin, PetscMax(0, (1 - 1e-9) * (sim->dom_hi[d] - sim->dom_lo[d]) / 3 - reach));
+    PetscCall(GridSetUp(&sim->grid, sim->dim, sim->dom_lo, sim->dom_hi, reach + sim->skin, sim->periodic));
+  }
   sim->decomp->split_solids = (PetscBool)(sim->decomp->split_solids && sim->has_fluid && sim->has_solid);
   PetscCall(DecompSetUp(sim->decomp, &sim->grid));
   PetscCall(CellsCreate(&sim->grid, &sim->kernel, &sim->cells));

@@ -7,8 +7,9 @@
  * rho, m, h, stress) have the names and shapes of a snapshot's.
  *
  * A restart on the same number of ranks continues bit for bit: it restores the partition and
- * repeats the run's last rebuild at the positions it had then (FIELD_XREB: solids move after it),
- * so neighbour lists, their order and every sum are the same.  On another number of ranks the
+ * repeats the run's last rebuild at the positions it had then (FIELD_XREB: solids move after it,
+ * and WCSPH's Verlet skin keeps a list over steps), then computes the pairs where the run last did
+ * (FIELD_XLIST, with solids and a skin), so neighbour lists, their order and every sum are the same.  On another number of ranks the
  * partition is made anew; neighbour sums do not depend on it (cells.h), so WCSPH and solids still
  * agree bit for bit, ISPH to the solver tolerance. */
 #pragma once

@@ -164,14 +164,19 @@ static void UniformPairKernels(KernelType type, PetscReal *restrict w, PetscReal
     }
 }
 
-/* Make room for `more` pairs after the first `cnt` of a list (doubling: the copies stay rare). */
-static PetscErrorCode ReserveNeighbours(Cells out, PetscInt cnt, PetscInt more)
+/* Make room for `more` pairs after the first `cnt` of a list, filled for particles [0, a) of n: the
+ * new capacity is what the rest of the list needs at the mean so far (+15 %), and at least 1.25 times
+ * the old one, so that the copies stay rare.  (Not doubling: with PETSc's heap, which superlu_dist
+ * keeps from returning memory to the system, a freed block stays resident; doubling a 3D list once
+ * left a hole of a third of the list in the peak memory.) */
+static PetscErrorCode ReserveNeighbours(Cells out, PetscInt cnt, PetscInt more, PetscInt a, PetscInt n)
 {
-  PetscInt  *nb;
+  PetscInt  *nb, need;
   PetscReal *nw, *nf;
   PetscFunctionBeginUser;
   if (cnt + more <= out->cap_nbr) PetscFunctionReturn(PETSC_SUCCESS);
-  out->cap_nbr = 2 * out->cap_nbr + more;
+  need         = (PetscInt)(1.15 * (PetscReal)cnt / (PetscReal)PetscMax(a, 1) * (PetscReal)(n - a));
+  out->cap_nbr = cnt + more + PetscMax(need, out->cap_nbr / 4);
   PetscCall(PetscMalloc3(out->cap_nbr, &nb, out->cap_nbr, &nw, out->cap_nbr, &nf));
   PetscCall(PetscArraycpy(nb, out->nbr, cnt));
   PetscCall(PetscArraycpy(nw, out->w, cnt));
@@ -224,6 +229,30 @@ SPH_INLINE PetscInt UniformCandidates(const PetscInt *restrict list, PetscInt s0
   return (PetscInt)(nb - nbr);
 }
 
+/* The candidate ranges of owned particle a in the binning c: the rows of its 3 (2D) or 9 (3D) stencil
+ * rows of three cells, and their total.  Returns whether a is `dry` (a wall of the main list) and
+ * no cell of its stencil holds fluid: then it gets no list. */
+SPH_INLINE PetscBool StencilRows(Cells c, PetscInt a, PetscBool dry, PetscInt r0[9], PetscInt r1[9], PetscInt *nrow, PetscInt *ncand, const PetscInt D)
+{
+  PetscInt ca = c->cell[a], ia = ca % c->n[0], ja = ca / c->n[0], ka = 0;
+  *nrow = 0; *ncand = 0;
+  if (D == 3) { ka = ja / c->n[1]; ja = ja % c->n[1]; } /* (2D: one layer, no division) */
+  for (PetscInt dk = D == 3 ? -1 : 0; dk <= (D == 3 ? 1 : 0); dk++) {
+    PetscInt k = ka + dk;
+    if (k < 0 || k >= c->n[2]) continue;
+    for (PetscInt dj = -1; dj <= 1; dj++) {
+      PetscInt j = ja + dj, i0 = PetscMax(ia - 1, 0), i1 = PetscMin(ia + 1, c->n[0] - 1), row = (k * c->n[1] + j) * c->n[0];
+      if (j < 0 || j >= c->n[1]) continue;
+      r0[*nrow] = c->start[row + i0];
+      r1[*nrow] = c->start[row + i1 + 1];
+      *ncand += r1[*nrow] - r0[*nrow];
+      (*nrow)++;
+      for (PetscInt i = i0; i <= i1 && dry; i++) dry = (PetscBool)!c->wet[row + i];
+    }
+  }
+  return dry;
+}
+
 /* Neighbour list into `out` of the owned particles that `keep` accepts (NULL: all), using the
  * binning of `bins`: pairs with r < 2 h_ab + skin, kernel values at r (zero beyond 2 h_ab).
  * Pairs of equal h (the usual case) use the cut-off and kernel normalisation of particle a.
@@ -233,7 +262,7 @@ SPH_INLINE PetscErrorCode NeighbourPassD(Cells bins, Particles P, PetscBool (*ke
 {
   Cells            c = bins;
   const PetscReal *x = PField(P, FIELD_X), *h = PField(P, FIELD_H);
-  const PetscInt  *list = c->list, *cstart = c->start;
+  const PetscInt  *list = c->list;
   PetscInt         n = P->n, ntot = P->n + P->ng, cnt = 0;
   PetscBool        uniform = PETSC_TRUE; /* one smoothing length for owned and ghosts: no h per candidate */
   const SPHKernel *K = out->kernel;
@@ -243,10 +272,6 @@ SPH_INLINE PetscErrorCode NeighbourPassD(Cells bins, Particles P, PetscBool (*ke
     PetscCall(PetscFree(out->nstart));
     out->cap_start = (3 * (n + 1)) / 2 + 16;
     PetscCall(PetscMalloc1(out->cap_start, &out->nstart));
-  }
-  if (!out->nbr) {
-    out->cap_nbr = PetscMax(64, (keep ? 4 : 32) * n);
-    PetscCall(PetscMalloc3(out->cap_nbr, &out->nbr, out->cap_nbr, &out->w, out->cap_nbr, &out->f));
   }
   for (PetscInt a = 1; a < ntot && uniform; a++) uniform = (PetscBool)(h[a] == h[0]);
   out->max_nbr = 0;
@@ -263,32 +288,29 @@ SPH_INLINE PetscErrorCode NeighbourPassD(Cells bins, Particles P, PetscBool (*ke
     for (PetscInt a = 0; a < ntot; a++)
       if (KindIsFluid(P->kind[a])) c->wet[c->cell[a]] = PETSC_TRUE;
   }
+  if (!out->nbr) { /* the first list: sized from the candidates, a sphere of the cut-off's volume in their cells' */
+    PetscReal est = 0, cells = PetscPowRealInt(3.0 * c->grid->cs, D), ball = D == 3 ? 4.0 / 3.0 * PETSC_PI : PETSC_PI;
+    PetscInt  most = 0;
+    for (PetscInt a = 0; a < n; a++) {
+      PetscInt r0[9], r1[9], nrow, ncand;
+      if ((keep && !keep(P->kind[a])) || StencilRows(c, a, (PetscBool)(!keep && KindIsWall(P->kind[a])), r0, r1, &nrow, &ncand, D)) continue;
+      est += ncand * ball * PetscPowRealInt(2.0 * h[a] + skin, D) / cells;
+      most = PetscMax(most, ncand);
+    }
+    out->cap_nbr = PetscMax(64, (PetscInt)(1.5 * est) + most); /* pages never written are not resident */
+    PetscCall(PetscMalloc3(out->cap_nbr, &out->nbr, out->cap_nbr, &out->w, out->cap_nbr, &out->f));
+  }
   for (PetscInt a = 0; a < n; a++) {
-    PetscInt  ca = c->cell[a], ia = ca % c->n[0], ja = ca / c->n[0], ka = 0, r0[9], r1[9], nrow = 0, ncand = 0;
+    PetscInt  r0[9], r1[9], nrow, ncand;
     PetscReal xa[3] = {x[D * a], x[D * a + 1], D == 3 ? x[D * a + 2] : 0}, ha = h[a], rca = 2.0 * ha + skin, rc2a = rca * rca;
     PetscReal swa = KernelSigma(K, ha), sfa = swa / (ha * ha), iha = 1.0 / ha;
     PetscBool mixed = PETSC_FALSE; /* a pair of another h: its kernel values are already in place */
-    PetscBool dry   = (PetscBool)(!keep && KindIsWall(P->kind[a])); /* no fluid in reach, until a wet cell is seen */
     PetscInt  *nbr;
     PetscReal *w, *f;
     out->nstart[a] = cnt;
     if (keep && !keep(P->kind[a])) continue;
-    if (D == 3) { ka = ja / c->n[1]; ja = ja % c->n[1]; } /* (2D: one layer, no division) */
-    for (PetscInt dk = D == 3 ? -1 : 0; dk <= (D == 3 ? 1 : 0); dk++) {
-      PetscInt k = ka + dk;
-      if (k < 0 || k >= c->n[2]) continue;
-      for (PetscInt dj = -1; dj <= 1; dj++) {
-        PetscInt j = ja + dj, i0 = PetscMax(ia - 1, 0), i1 = PetscMin(ia + 1, c->n[0] - 1), row = (k * c->n[1] + j) * c->n[0];
-        if (j < 0 || j >= c->n[1]) continue;
-        r0[nrow] = cstart[row + i0];
-        r1[nrow] = cstart[row + i1 + 1];
-        ncand += r1[nrow] - r0[nrow];
-        nrow++;
-        for (PetscInt i = i0; i <= i1 && dry; i++) dry = (PetscBool)!c->wet[row + i];
-      }
-    }
-    if (dry) continue;
-    PetscCall(ReserveNeighbours(out, cnt, ncand));
+    if (StencilRows(c, a, (PetscBool)(!keep && KindIsWall(P->kind[a])), r0, r1, &nrow, &ncand, D)) continue;
+    PetscCall(ReserveNeighbours(out, cnt, ncand, a, n));
     nbr = out->nbr; w = out->w; f = out->f;
     for (PetscInt r = 0; r < nrow; r++) {
       if (uniform) {

@@ -21,10 +21,12 @@ SPH_INLINE PetscErrorCode WallStateD(Sim sim, PetscBool pressure, const PetscInt
   for (PetscInt a = 0; a < P->n; a++) {
     PetscReal sw = 0, sp = 0, sg[3] = {0, 0, 0}, sv[3] = {0, 0, 0}, pg;
     PetscBool solid = KindIsSolid(P->kind[a]);
+    const PetscReal *wa;
     if (!(KindIsWall(P->kind[a]) || (solid && fv))) continue;
+    wa = CellsPairW(C, P, a);
     for (PetscInt k = C->nstart[a]; k < C->nstart[a + 1]; k++) {
       PetscInt  b = C->nbr[k];
-      PetscReal d[3], w = C->w[k];
+      PetscReal d[3], w = wa[k - C->nstart[a]];
       if (!KindIsFluid(P->kind[b])) continue;
       VSub(x + D * a, x + D * b, d, D);
       sw += w;

@@ -30,6 +30,7 @@ PetscErrorCode CellsDestroy(Cells *c)
   PetscCall(PetscFree3((*c)->nbr, (*c)->w, (*c)->f));
   PetscCall(PetscFree((*c)->wet));
   PetscCall(PetscFree2((*c)->cstart, (*c)->cnbr));
+  PetscCall(PetscFree2((*c)->wrow, (*c)->xk));
   PetscCall(PetscFree(*c));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -139,8 +140,8 @@ static inline void PairKernel(KernelType t, PetscReal r, PetscReal ih, PetscReal
 
 /* Kernel values of n pairs of smoothing length h (ih = 1 / h) from their r^2, stored in w: PairKernel
  * without branches, so that the compiler vectorises the square roots and divisions; one loop per
- * kernel, chosen outside it. */
-static void UniformPairKernels(KernelType type, PetscReal *restrict w, PetscReal *restrict f, PetscInt n, PetscReal ih, PetscReal sw, PetscReal sf)
+ * kernel, chosen outside it.  Not inlined: the build and CellsPairW run the same instructions. */
+static __attribute__((noinline)) void UniformPairKernels(KernelType type, PetscReal *restrict w, PetscReal *restrict f, PetscInt n, PetscReal ih, PetscReal sw, PetscReal sf)
 {
   if (type == KERNEL_CUBIC)
     for (PetscInt k = 0; k < n; k++) {
@@ -177,9 +178,9 @@ static PetscErrorCode ReserveNeighbours(Cells out, PetscInt cnt, PetscInt more, 
   if (cnt + more <= out->cap_nbr) PetscFunctionReturn(PETSC_SUCCESS);
   need         = (PetscInt)(1.15 * (PetscReal)cnt / (PetscReal)PetscMax(a, 1) * (PetscReal)(n - a));
   out->cap_nbr = cnt + more + PetscMax(need, out->cap_nbr / 4);
-  PetscCall(PetscMalloc3(out->cap_nbr, &nb, out->cap_nbr, &nw, out->cap_nbr, &nf));
+  PetscCall(PetscMalloc3(out->cap_nbr, &nb, out->drop_w ? 1 : out->cap_nbr, &nw, out->cap_nbr, &nf));
   PetscCall(PetscArraycpy(nb, out->nbr, cnt));
-  PetscCall(PetscArraycpy(nw, out->w, cnt));
+  if (!out->drop_w) PetscCall(PetscArraycpy(nw, out->w, cnt));
   PetscCall(PetscArraycpy(nf, out->f, cnt));
   PetscCall(PetscFree3(out->nbr, out->w, out->f));
   out->nbr = nb; out->w = nw; out->f = nf;
@@ -188,14 +189,40 @@ static PetscErrorCode ReserveNeighbours(Cells out, PetscInt cnt, PetscInt more, 
 
 /* |x_a - x_b|^2 in D dimensions (D a constant where it is called, so that it unrolls); in 2D the
  * compiler's contraction of dx dx + dy dy from before, bit for bit. */
-/* Kernel values of particle a's pairs [s, e) of a list being built: the pairs of a's own h hold r^2
- * in w (evaluated here, vectorised when all are), those of another h their values already. */
-static inline void OwnPairKernels(KernelType type, const PetscReal *h, PetscReal ha, const PetscInt *nbr, PetscReal *w, PetscReal *f, PetscInt s, PetscInt e, PetscBool mixed, PetscReal iha, PetscReal swa, PetscReal sfa)
+/* Kernel values of particle a's n pairs (nbr, w, f from a's first pair): the pairs of a's own h hold
+ * r^2 in w (evaluated here, vectorised when all are), those of another h their values already. */
+static inline void OwnPairKernels(KernelType type, const PetscReal *h, PetscReal ha, const PetscInt *nbr, PetscReal *w, PetscReal *f, PetscInt n, PetscBool mixed, PetscReal iha, PetscReal swa, PetscReal sfa)
 {
-  if (!mixed) UniformPairKernels(type, w + s, f + s, e - s, iha, swa, sfa);
+  if (!mixed) UniformPairKernels(type, w, f, n, iha, swa, sfa);
   else
-    for (PetscInt k = s; k < e; k++)
+    for (PetscInt k = 0; k < n; k++)
       if (h[nbr[k]] == ha) PairKernel(type, PetscSqrtReal(w[k]), iha, swa, sfa, &w[k], &f[k]);
+}
+
+/* Room for one particle's n pair values in the W/F scratch of drop_w. */
+static PetscErrorCode ReserveRow(Cells c, PetscInt n)
+{
+  PetscFunctionBeginUser;
+  if (!c->drop_w || n <= c->cap_wrow) PetscFunctionReturn(PETSC_SUCCESS);
+  PetscCall(PetscFree(c->wrow));
+  c->cap_wrow = 2 * n + 64;
+  PetscCall(PetscMalloc1(2 * c->cap_wrow, &c->wrow));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* drop_w: the positions (owned and ghosts) at which the list's kernel values were just evaluated. */
+static PetscErrorCode KeepKernelPositions(Cells c, Particles P)
+{
+  PetscInt m = P->dim * (P->n + P->ng);
+  PetscFunctionBeginUser;
+  if (!c->drop_w) PetscFunctionReturn(PETSC_SUCCESS);
+  if (m > c->cap_xk) {
+    PetscCall(PetscFree(c->xk));
+    c->cap_xk = (3 * m) / 2 + 16;
+    PetscCall(PetscMalloc1(c->cap_xk, &c->xk));
+  }
+  PetscCall(PetscArraycpy(c->xk, PField(P, FIELD_X), m));
+  PetscFunctionReturn(PETSC_SUCCESS);
 }
 
 SPH_INLINE PetscReal PairDistance2(const PetscReal *restrict x, const PetscReal xa[], PetscInt b, const PetscInt D)
@@ -213,10 +240,9 @@ SPH_INLINE PetscReal PairDistance2(const PetscReal *restrict x, const PetscReal 
  * candidate is stored and kept if it is a pair: in a splashing flow one candidate in three is a
  * pair, in no order a branch predictor learns, and this runs twice as fast as a test per
  * candidate (7 % slower on the initial lattice, where the test is predictable). */
-SPH_INLINE PetscInt UniformCandidates(const PetscInt *restrict list, PetscInt s0, PetscInt s1, const PetscReal *restrict x, PetscInt a, const PetscReal xa[], PetscReal rc2, PetscInt *restrict nbr, PetscReal *restrict w, PetscInt cnt, const PetscInt D)
+SPH_INLINE PetscInt UniformCandidates(const PetscInt *restrict list, PetscInt s0, PetscInt s1, const PetscReal *restrict x, PetscInt a, const PetscReal xa[], PetscReal rc2, PetscInt *restrict nbr, PetscReal *restrict wb, PetscInt cnt, const PetscInt D)
 {
-  PetscInt  *nb = nbr + cnt; /* pointers advanced by the test: no index to widen in the loop's chain */
-  PetscReal *wb = w + cnt;
+  PetscInt *nb = nbr + cnt; /* pointers advanced by the test: no index to widen in the loop's chain; wb: where pair cnt's r^2 goes */
   for (PetscInt s = s0; s < s1; s++) {
     PetscInt b = list[s];
     PetscReal r2 = PairDistance2(x, xa, b, D);
@@ -298,23 +324,24 @@ SPH_INLINE PetscErrorCode NeighbourPassD(Cells bins, Particles P, PetscBool (*ke
       most = PetscMax(most, ncand);
     }
     out->cap_nbr = PetscMax(64, (PetscInt)(1.5 * est) + most); /* pages never written are not resident */
-    PetscCall(PetscMalloc3(out->cap_nbr, &out->nbr, out->cap_nbr, &out->w, out->cap_nbr, &out->f));
+    PetscCall(PetscMalloc3(out->cap_nbr, &out->nbr, out->drop_w ? 1 : out->cap_nbr, &out->w, out->cap_nbr, &out->f));
   }
   for (PetscInt a = 0; a < n; a++) {
     PetscInt  r0[9], r1[9], nrow, ncand;
     PetscReal xa[3] = {x[D * a], x[D * a + 1], D == 3 ? x[D * a + 2] : 0}, ha = h[a], rca = 2.0 * ha + skin, rc2a = rca * rca;
     PetscReal swa = KernelSigma(K, ha), sfa = swa / (ha * ha), iha = 1.0 / ha;
     PetscBool mixed = PETSC_FALSE; /* a pair of another h: its kernel values are already in place */
-    PetscInt  *nbr;
-    PetscReal *w, *f;
+    PetscInt  *nbr, first = cnt; /* a's first pair */
+    PetscReal *wa, *f; /* wa: a's r^2 and W, in the list or (drop_w) in the scratch */
     out->nstart[a] = cnt;
     if (keep && !keep(P->kind[a])) continue;
     if (StencilRows(c, a, (PetscBool)(!keep && KindIsWall(P->kind[a])), r0, r1, &nrow, &ncand, D)) continue;
     PetscCall(ReserveNeighbours(out, cnt, ncand, a, n));
-    nbr = out->nbr; w = out->w; f = out->f;
+    PetscCall(ReserveRow(out, ncand));
+    nbr = out->nbr; f = out->f; wa = out->drop_w ? out->wrow : out->w + first;
     for (PetscInt r = 0; r < nrow; r++) {
       if (uniform) {
-        cnt = UniformCandidates(list, r0[r], r1[r], x, a, xa, rc2a, nbr, w, cnt, D);
+        cnt = UniformCandidates(list, r0[r], r1[r], x, a, xa, rc2a, nbr, wa + (cnt - first), cnt, D);
         continue;
       }
       for (PetscInt s = r0[r]; s < r1[r]; s++) {
@@ -322,22 +349,23 @@ SPH_INLINE PetscErrorCode NeighbourPassD(Cells bins, Particles P, PetscBool (*ke
         PetscReal r2 = PairDistance2(x, xa, b, D);
         if (h[b] == ha) {
           if (b == a || !(r2 < rc2a)) continue;
-          w[cnt] = r2;
+          wa[cnt - first] = r2;
         } else {
           PetscReal hab = PairH(ha, h[b]), rc = 2.0 * hab + skin, sw;
           if (b == a || !(r2 < rc * rc)) continue;
           sw = KernelSigma(K, hab);
-          PairKernel(K->type, PetscSqrtReal(r2), 1.0 / hab, sw, sw / (hab * hab), &w[cnt], &f[cnt]);
+          PairKernel(K->type, PetscSqrtReal(r2), 1.0 / hab, sw, sw / (hab * hab), &wa[cnt - first], &f[cnt]);
           mixed = PETSC_TRUE;
         }
         nbr[cnt++] = b;
       }
     }
-    OwnPairKernels(K->type, h, ha, nbr, w, f, out->nstart[a], cnt, mixed, iha, swa, sfa);
-    out->max_nbr = PetscMax(out->max_nbr, cnt - out->nstart[a]);
+    OwnPairKernels(K->type, h, ha, nbr + first, wa, f + first, cnt - first, mixed, iha, swa, sfa);
+    out->max_nbr = PetscMax(out->max_nbr, cnt - first);
   }
   out->nstart[n] = cnt;
   out->npart     = n;
+  PetscCall(KeepKernelPositions(out, P));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -402,25 +430,26 @@ SPH_INLINE void RefreshPairsD(Cells c, Particles P, const PetscInt D)
   for (PetscInt a = 0; a < c->npart; a++) {
     PetscReal ha = h[a], rca = 2.0 * ha, rc2a = rca * rca, swa = KernelSigma(K, ha), sfa = swa / (ha * ha), iha = 1.0 / ha;
     PetscReal xa[3] = {x[D * a], x[D * a + 1], D == 3 ? x[D * a + 2] : 0};
-    PetscBool mixed = PETSC_FALSE;
-    PetscInt  s     = cnt;
+    PetscBool  mixed = PETSC_FALSE;
+    PetscInt   s     = cnt;
+    PetscReal *wa    = c->drop_w ? c->wrow : c->w + s; /* the scratch holds the build's candidates, so any subset */
     c->nstart[a] = cnt;
     for (PetscInt k = c->cstart[a]; k < c->cstart[a + 1]; k++) {
       PetscInt  b  = c->cnbr[k];
       PetscReal r2 = PairDistance2(x, xa, b, D);
       if (h[b] == ha) {
         if (!(r2 < rc2a)) continue;
-        c->w[cnt] = r2;
+        wa[cnt - s] = r2;
       } else {
         PetscReal hab = PairH(ha, h[b]), rc = 2.0 * hab, sw;
         if (!(r2 < rc * rc)) continue;
         sw = KernelSigma(K, hab);
-        PairKernel(K->type, PetscSqrtReal(r2), 1.0 / hab, sw, sw / (hab * hab), &c->w[cnt], &c->f[cnt]);
+        PairKernel(K->type, PetscSqrtReal(r2), 1.0 / hab, sw, sw / (hab * hab), &wa[cnt - s], &c->f[cnt]);
         mixed = PETSC_TRUE;
       }
       c->nbr[cnt++] = b;
     }
-    OwnPairKernels(K->type, h, ha, c->nbr, c->w, c->f, s, cnt, mixed, iha, swa, sfa);
+    OwnPairKernels(K->type, h, ha, c->nbr + s, wa, c->f + s, cnt - s, mixed, iha, swa, sfa);
     c->max_nbr = PetscMax(c->max_nbr, cnt - s);
   }
   c->nstart[c->npart] = cnt;
@@ -431,5 +460,36 @@ PetscErrorCode CellsRefreshPairs(Cells c, Particles P)
   PetscFunctionBeginUser;
   PetscCheck(c->skin > 0 && c->cstart, PETSC_COMM_SELF, PETSC_ERR_ARG_WRONGSTATE, "CellsRefreshPairs needs a list built with a skin");
   SPH_DIM_DISPATCH(P->dim, RefreshPairsD, c, P);
+  PetscCall(KeepKernelPositions(c, P));
   PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* W of a's pairs again, as NeighbourPassD and RefreshPairsD evaluated them: r^2 from the same
+ * positions, the pairs of another h by PairKernel, a's own by OwnPairKernels. */
+SPH_INLINE const PetscReal *PairWD(Cells c, Particles P, PetscInt a, const PetscInt D)
+{
+  const PetscReal *x = c->xk, *h = PField(P, FIELD_H);
+  const SPHKernel *K = c->kernel;
+  const PetscInt   s = c->nstart[a], n = c->nstart[a + 1] - s, *nbr = c->nbr + s;
+  PetscReal        ha = h[a], swa = KernelSigma(K, ha), xa[3] = {x[D * a], x[D * a + 1], D == 3 ? x[D * a + 2] : 0};
+  PetscReal       *w = c->wrow, *f = c->wrow + c->cap_wrow;
+  PetscBool        mixed = PETSC_FALSE;
+  for (PetscInt j = 0; j < n; j++) {
+    PetscInt  b  = nbr[j];
+    PetscReal r2 = PairDistance2(x, xa, b, D);
+    if (h[b] == ha) w[j] = r2;
+    else {
+      PetscReal hab = PairH(ha, h[b]), sw = KernelSigma(K, hab);
+      PairKernel(K->type, PetscSqrtReal(r2), 1.0 / hab, sw, sw / (hab * hab), &w[j], &f[j]);
+      mixed = PETSC_TRUE;
+    }
+  }
+  OwnPairKernels(K->type, h, ha, nbr, w, f, n, mixed, 1.0 / ha, swa, swa / (ha * ha));
+  return w;
+}
+
+const PetscReal *CellsPairW(Cells c, Particles P, PetscInt a)
+{
+  if (!c->drop_w) return c->w + c->nstart[a];
+  return SPH_DIM_DISPATCH(P->dim, PairWD, c, P, a);
 }

@@ -195,6 +195,7 @@ SPH_INLINE PetscErrorCode DensityFreeSurfaceSourceD(Sim sim, const PetscInt D)
       if (!KindIsSolid(P->kind[a])) rho[a] = rho0; /* a solid keeps its own */
       continue;
     }
+    const PetscReal *wa = CellsPairW(C, P, a);
     sw = m[a] * KernelW(&sim->kernel, 0, h[a]);
     for (PetscInt k = C->nstart[a]; k < C->nstart[a + 1]; k++) {
       PetscInt  b = C->nbr[k];
@@ -202,7 +203,7 @@ SPH_INLINE PetscErrorCode DensityFreeSurfaceSourceD(Sim sim, const PetscInt D)
       VSub(x + D * a, x + D * b, d, D);
       VSub(vs + D * b, vs + D * a, dvs, D);
       FluidView(fv, P->kind[b], b, m, rho, NULL, &mb, &rb, &pb);
-      sw += mb * C->w[k];
+      sw += mb * wa[k - C->nstart[a]];
       divr -= mb / rho0 * F * VDot(d, d, D);
       div += mb * F * VDot(dvs, d, D);
     }
@@ -340,14 +341,17 @@ SPH_INLINE PetscErrorCode DriftD(Sim sim, const PetscInt D)
     ShiftGrad sg = {{0}, {0}};
     for (PetscInt i = 0; i < D; i++) xs[D * a + i] = 0;
     if (!KindIsFluid(P->kind[a])) continue;
+    const PetscReal *wa = eps != 0 ? CellsPairW(C, P, a) : NULL; /* W only for XSPH */
     for (PetscInt k = C->nstart[a]; k < C->nstart[a + 1]; k++) {
       PetscInt  b = C->nbr[k];
       PetscReal d[3], dvab[3];
       VSub(x + D * a, x + D * b, d, D);
       VSub(v + D * a, v + D * b, dvab, D);
       if (KindIsFluid(P->kind[b])) {
-        PetscReal w = XSPHWeight(C->w[k], m[b], rho[a], rho[b]);
-        for (PetscInt i = 0; i < D; i++) sx[i] -= w * dvab[i];
+        if (wa) {
+          PetscReal w = XSPHWeight(wa[k - C->nstart[a]], m[b], rho[a], rho[b]);
+          for (PetscInt i = 0; i < D; i++) sx[i] -= w * dvab[i];
+        }
         if (fs[b] > 0) near_fs = PETSC_TRUE;
         if (dv) ShiftGradAdd(&sg, m[b] / rho0, C->f[k], d, dvab, D);
       }

@@ -284,11 +284,12 @@ SPH_INLINE void WallNormal(Particles P, Cells C, PetscInt a, PetscReal n[], cons
 {
   const PetscReal *x = PField(P, FIELD_X);
   PetscReal        nn;
+  const PetscReal *wa = CellsPairW(C, P, a);
   for (PetscInt i = 0; i < D; i++) n[i] = 0;
   for (PetscInt k = C->nstart[a]; k < C->nstart[a + 1]; k++) {
     PetscInt b = C->nbr[k];
     if (!KindIsFluid(P->kind[b])) continue;
-    for (PetscInt i = 0; i < D; i++) n[i] += C->w[k] * (x[D * b + i] - x[D * a + i]);
+    for (PetscInt i = 0; i < D; i++) n[i] += wa[k - C->nstart[a]] * (x[D * b + i] - x[D * a + i]);
   }
   nn = PetscSqrtReal(VDot(n, n, D));
   if (nn > 0)

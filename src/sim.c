@@ -8,6 +8,7 @@
 #include <sphfsi/io.h>
 #include <sphfsi/kernel.h>
 #include <sphfsi/checkpoint.h>
+
 #include <sphfsi/guard.h>
 
 const char *const FluidSchemes[] = {"wcsph", "isph", "FluidScheme", "FLUID_", NULL};
@@ -354,6 +355,14 @@ PetscErrorCode SimSetUp(Sim sim)
   PetscCall(DecompSetUp(sim->decomp, &sim->grid));
   PetscCall(CellsCreate(&sim->grid, &sim->kernel, &sim->cells));
   sim->cells->skin = sim->skin;
+  { /* W is read in few places (wall state, ISPH's density and wall normals, XSPH), F in all: the
+     * list keeps F, and W is recomputed where read (the same bits; docs/performance.md item 15) */
+    PetscBool store = PETSC_FALSE;
+    PetscOptionsBegin(sim->comm, NULL, "Neighbour list", "Sim");
+    PetscCall(OptBool("-neighbour_store_w", "Keep each pair's kernel value W in the neighbour list (8 B a pair more) instead of recomputing it where it is read; the same results bit for bit", "", store, &store, NULL));
+    PetscOptionsEnd();
+    sim->cells->drop_w = (PetscBool)!store;
+  }
   sim->next_probe = sim->next_out = 0;
   sim->next_ckpt  = sim->ckpt_interval;
   if (sim->restart[0]) PetscCall(CheckpointRestart(sim)); /* the particles and state of the checkpoint */

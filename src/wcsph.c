@@ -77,8 +77,9 @@ SPH_INLINE PetscErrorCode ContinuityD(Sim sim, const PetscInt D)
     PetscReal dr = 0, dd = 0, sxs[3] = {0, 0, 0}, c[3] = {0, 0, 0}, divr = 0;
     PetscBool near = PETSC_FALSE;
     ShiftGrad sg = {{0}, {0}};
-    const PetscReal *xa = x + D * a, *va = v + D * a, ra = rho[a];
+    const PetscReal *xa = x + D * a, *va = v + D * a, ra = rho[a], *wa;
     if (!KindIsFluid(P->kind[a])) continue;
+    wa = xs ? CellsPairW(C, P, a) : NULL;
     for (PetscInt k = C->nstart[a]; k < C->nstart[a + 1]; k++) {
       PetscInt  b = C->nbr[k];
       PetscReal d[3], dvab[3], F = C->f[k], vb = m[b] / rho[b];
@@ -99,7 +100,7 @@ SPH_INLINE PetscErrorCode ContinuityD(Sim sim, const PetscInt D)
         dd += PairH(h[a], h[b]) * vb * (-2.0 * F) * (rho[b] - ra - dh);
       }
       if (xs) {
-        PetscReal w = XSPHWeight(C->w[k], m[b], ra, rho[b]);
+        PetscReal w = XSPHWeight(wa[k - C->nstart[a]], m[b], ra, rho[b]);
         for (PetscInt i = 0; i < D; i++) sxs[i] -= w * dvab[i];
       }
     }

@@ -64,12 +64,14 @@ static PetscReal Dist2(const PetscReal *x, PetscInt D, PetscInt a, PetscInt b)
  * pairs is random, as in a splashing flow) against all pairs with r < 2 h_ab by brute force, with
  * one smoothing length and with two; two particles share a position (a pair at r = 0).  With a
  * skin (in dx): the list built with it, then every particle moved by just under half the skin in a
- * random direction and the list refreshed from its candidates (CellsRefreshPairs). */
+ * random direction and the list refreshed from its candidates (CellsRefreshPairs).  A second list
+ * that keeps no W (drop_w) must hold the same pairs and F, and CellsPairW the same W bit for bit,
+ * also after the particles have moved on without a new list. */
 static PetscErrorCode CheckNeighbours(const SPHKernel *K, PetscBool mixed, PetscReal skin)
 {
   Particles   P;
   Grid        g;
-  Cells       C;
+  Cells       C, Cd;
   const PetscInt D = K->dim;
   PetscReal   dx = 0.01, h0 = K->h_factor * dx, lo[3] = {0, 0, 0}, hi[3] = {0.2, 0.15, 0.12};
   PetscBool   per[3] = {PETSC_FALSE, PETSC_FALSE, PETSC_FALSE};
@@ -93,8 +95,11 @@ static PetscErrorCode CheckNeighbours(const SPHKernel *K, PetscBool mixed, Petsc
   }
   PetscCall(GridSetUp(&g, D, lo, hi, 2 * h0 + skin * dx, per));
   PetscCall(CellsCreate(&g, K, &C));
-  C->skin = skin * dx;
+  PetscCall(CellsCreate(&g, K, &Cd));
+  C->skin = Cd->skin = skin * dx;
+  Cd->drop_w = PETSC_TRUE;
   PetscCall(CellsBuild(C, P));
+  PetscCall(CellsBuild(Cd, P));
   if (skin > 0) {
     PetscReal *x = PField(P, FIELD_X);
     for (PetscInt a = 0; a < n; a++) {
@@ -108,6 +113,7 @@ static PetscErrorCode CheckNeighbours(const SPHKernel *K, PetscBool mixed, Petsc
       for (PetscInt d = 0; d < D; d++) x[D * a + d] += 0.499 * skin * dx * u[d] / norm;
     }
     PetscCall(CellsRefreshPairs(C, P));
+    PetscCall(CellsRefreshPairs(Cd, P));
   }
   PetscCall(PetscCalloc1(n, &mark));
   for (PetscInt a = 0; a < n; a++) {
@@ -133,7 +139,16 @@ static PetscErrorCode CheckNeighbours(const SPHKernel *K, PetscBool mixed, Petsc
   }
   PetscCall(PetscPrintf(PETSC_COMM_WORLD, "neighbours (%dD, %s, %s%s): %d particles, %d pairs as by brute force, max error of W %.1e, of F %.1e (relative)\n", (int)D, KernelTypes[K->type], mixed ? "two smoothing lengths" : "one smoothing length", skin > 0 ? ", refreshed after moves of half the skin" : "", (int)n, (int)pairs, (double)errw, (double)errf));
   PetscCheck(errw < 1e-12 && errf < 1e-12, PETSC_COMM_SELF, PETSC_ERR_PLIB, "Kernel values of the list differ from KernelW/KernelF");
+  for (PetscInt pass = 0; pass < 2; pass++) { /* the list without W; pass 1: the particles moved on since it was made */
+    PetscCheck(!memcmp(C->nstart, Cd->nstart, (n + 1) * sizeof(PetscInt)) && !memcmp(C->nbr, Cd->nbr, pairs * sizeof(PetscInt)) && !memcmp(C->f, Cd->f, pairs * sizeof(PetscReal)), PETSC_COMM_SELF, PETSC_ERR_PLIB, "The list without W has other pairs or F");
+    for (PetscInt a = 0; a < n; a++) {
+      const PetscReal *w = CellsPairW(Cd, P, a);
+      PetscCheck(!memcmp(w, C->w + C->nstart[a], (C->nstart[a + 1] - C->nstart[a]) * sizeof(PetscReal)), PETSC_COMM_SELF, PETSC_ERR_PLIB, "CellsPairW of particle %d differs from the stored W (pass %d)", (int)a, (int)pass);
+    }
+    for (PetscInt a = 0; a < D * n; a++) PField(P, FIELD_X)[a] += 0.1 * dx;
+  }
   PetscCall(PetscFree(mark));
+  PetscCall(CellsDestroy(&Cd));
   PetscCall(CellsDestroy(&C));
   PetscCall(PetscRandomDestroy(&rnd));
   PetscCall(ParticlesDestroy(&P));

@@ -19,6 +19,9 @@ struct _p_Cells {
   PetscReal   skin;                    /* Verlet skin of CellsBuild's list (0: none) */
   PetscInt   *cstart, *cnbr, cap_cstart, cap_cnbr; /* with a skin: the candidates, r < 2 h_ab + skin at the build */
   const SPHKernel *kernel; /* the run's kernel (W, F of the pairs) */
+  PetscBool   drop_w;          /* the main list keeps F but not W (8 B a pair): CellsPairW recomputes W */
+  PetscReal  *wrow, *xk;       /* drop_w: one particle's W and F scratch (cap_wrow each); positions of the last kernel evaluation */
+  PetscInt    cap_wrow, cap_xk;
 };
 
 PetscErrorCode CellsCreate(const Grid *g, const SPHKernel *K, Cells *c);
@@ -30,6 +33,10 @@ PetscErrorCode CellsBuild(Cells c, Particles P);
 /* With a skin: the list anew from the candidates at the current positions (complete while no
  * particle has moved skin / 2 since CellsBuild), with their kernel values. */
 PetscErrorCode CellsRefreshPairs(Cells c, Particles P);
+/* W of owned particle a's pairs, the pair nstart[a] + j at index j: the list's own, or with drop_w
+ * recomputed here with the build's operations at the build's positions (the same bits).  Valid
+ * until the next call. */
+const PetscReal *CellsPairW(Cells c, Particles P, PetscInt a);
 /* Cells with only a neighbour list (no bins of their own): for CellsBuildSubList. */
 PetscErrorCode CellsCreateList(const SPHKernel *K, Cells *c);
 /* Neighbour list in `sub` of the owned particles whose kind `keep` accepts, with the binning of

@@ -30,7 +30,8 @@ PetscErrorCode CellsDestroy(Cells *c)
   PetscCall(PetscFree3((*c)->nbr, (*c)->w, (*c)->f));
   PetscCall(PetscFree((*c)->wet));
   PetscCall(PetscFree2((*c)->cstart, (*c)->cnbr));
-  PetscCall(PetscFree2((*c)->wrow, (*c)->xk));
+  PetscCall(PetscFree((*c)->wrow)); /* two allocations, not one PetscMalloc2 */
+  PetscCall(PetscFree((*c)->xk));
   PetscCall(PetscFree(*c));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -140,8 +141,9 @@ static inline void PairKernel(KernelType t, PetscReal r, PetscReal ih, PetscReal
 
 /* Kernel values of n pairs of smoothing length h (ih = 1 / h) from their r^2, stored in w: PairKernel
  * without branches, so that the compiler vectorises the square roots and divisions; one loop per
- * kernel, chosen outside it.  Not inlined: the build and CellsPairW run the same instructions. */
-static __attribute__((noinline)) void UniformPairKernels(KernelType type, PetscReal *restrict w, PetscReal *restrict f, PetscInt n, PetscReal ih, PetscReal sw, PetscReal sf)
+ * kernel, chosen outside it.  Neither inlined nor cloned (noipa): the build and CellsPairW run the
+ * same instructions. */
+static __attribute__((noipa)) void UniformPairKernels(KernelType type, PetscReal *restrict w, PetscReal *restrict f, PetscInt n, PetscReal ih, PetscReal sw, PetscReal sf)
 {
   if (type == KERNEL_CUBIC)
     for (PetscInt k = 0; k < n; k++) {
@@ -390,6 +392,7 @@ PetscErrorCode CellsUpdatePairs(Cells sub, Particles P)
   const PetscReal *x = PField(P, FIELD_X), *h = PField(P, FIELD_H);
   const PetscInt   D = P->dim;
   PetscFunctionBeginUser;
+  PetscCheck(!sub->drop_w, PETSC_COMM_SELF, PETSC_ERR_ARG_WRONGSTATE, "CellsUpdatePairs needs a list that keeps W");
   for (PetscInt a = 0; a < sub->npart; a++)
     for (PetscInt k = sub->nstart[a]; k < sub->nstart[a + 1]; k++) {
       PetscInt  b = sub->nbr[k];

@@ -474,9 +474,12 @@ SPH_INLINE const PetscReal *PairWD(Cells c, Particles P, PetscInt a, const Petsc
   const PetscReal *x = c->xk, *h = PField(P, FIELD_H);
   const SPHKernel *K = c->kernel;
   const PetscInt   s = c->nstart[a], n = c->nstart[a + 1] - s, *nbr = c->nbr + s;
-  PetscReal        ha = h[a], swa = KernelSigma(K, ha), xa[3] = {x[D * a], x[D * a + 1], D == 3 ? x[D * a + 2] : 0};
-  PetscReal       *w = c->wrow, *f = c->wrow + c->cap_wrow;
+  PetscReal        ha = h[a], swa = KernelSigma(K, ha), xa[3] = {0, 0, 0};
+  PetscReal       *w = c->wrow, *f;
   PetscBool        mixed = PETSC_FALSE;
+  if (!n) return w; /* (no scratch yet on a rank whose particles have no pairs) */
+  f = w + c->cap_wrow;
+  for (PetscInt i = 0; i < D; i++) xa[i] = x[D * a + i];
   for (PetscInt j = 0; j < n; j++) {
     PetscInt  b  = nbr[j];
     PetscReal r2 = PairDistance2(x, xa, b, D);

@@ -168,8 +168,8 @@ static __attribute__((noipa)) void UniformPairKernels(KernelType type, PetscReal
 }
 
 /* Make room for `more` pairs after the first `cnt` of a list, filled for particles [0, a) of n: the
- * new capacity is what the rest of the list needs at the mean so far (+15 %), and at least 1.25 times
- * the old one, so that the copies stay rare.  (Not doubling: with PETSc's heap, which superlu_dist
+ * new capacity adds what the rest of the list needs at the mean so far (+15 %), and at least a
+ * quarter of the old capacity, so that the copies stay rare.  (Not doubling: with PETSc's heap, which superlu_dist
  * keeps from returning memory to the system, a freed block stays resident; doubling a 3D list once
  * left a hole of a third of the list in the peak memory.) */
 static PetscErrorCode ReserveNeighbours(Cells out, PetscInt cnt, PetscInt more, PetscInt a, PetscInt n)
@@ -189,8 +189,13 @@ static PetscErrorCode ReserveNeighbours(Cells out, PetscInt cnt, PetscInt more, 
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-/* |x_a - x_b|^2 in D dimensions (D a constant where it is called, so that it unrolls); in 2D the
- * compiler's contraction of dx dx + dy dy from before, bit for bit. */
+/* W and F of a pair of smoothing lengths ha and hb at r^2, with the pair's h_ab (Eq. 13's mean). */
+static inline void OtherHPairKernel(const SPHKernel *K, PetscReal ha, PetscReal hb, PetscReal r2, PetscReal *w, PetscReal *f)
+{
+  PetscReal hab = PairH(ha, hb), sw = KernelSigma(K, hab);
+  PairKernel(K->type, PetscSqrtReal(r2), 1.0 / hab, sw, sw / (hab * hab), w, f);
+}
+
 /* Kernel values of particle a's n pairs (nbr, w, f from a's first pair): the pairs of a's own h hold
  * r^2 in w (evaluated here, vectorised when all are), those of another h their values already. */
 static inline void OwnPairKernels(KernelType type, const PetscReal *h, PetscReal ha, const PetscInt *nbr, PetscReal *w, PetscReal *f, PetscInt n, PetscBool mixed, PetscReal iha, PetscReal swa, PetscReal sfa)
@@ -227,6 +232,8 @@ static PetscErrorCode KeepKernelPositions(Cells c, Particles P)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* |x_a - x_b|^2 in D dimensions (D a constant where it is called, so that it unrolls); in 2D the
+ * compiler's contraction of dx dx + dy dy from before, bit for bit. */
 SPH_INLINE PetscReal PairDistance2(const PetscReal *restrict x, const PetscReal xa[], PetscInt b, const PetscInt D)
 {
   PetscReal dx = xa[0] - x[D * b], dy = xa[1] - x[D * b + 1], r2 = fma(dy, dy, dx * dx);
@@ -353,10 +360,9 @@ SPH_INLINE PetscErrorCode NeighbourPassD(Cells bins, Particles P, PetscBool (*ke
           if (b == a || !(r2 < rc2a)) continue;
           wa[cnt - first] = r2;
         } else {
-          PetscReal hab = PairH(ha, h[b]), rc = 2.0 * hab + skin, sw;
+          PetscReal rc = 2.0 * PairH(ha, h[b]) + skin;
           if (b == a || !(r2 < rc * rc)) continue;
-          sw = KernelSigma(K, hab);
-          PairKernel(K->type, PetscSqrtReal(r2), 1.0 / hab, sw, sw / (hab * hab), &wa[cnt - first], &f[cnt]);
+          OtherHPairKernel(K, ha, h[b], r2, &wa[cnt - first], &f[cnt]);
           mixed = PETSC_TRUE;
         }
         nbr[cnt++] = b;
@@ -444,10 +450,9 @@ SPH_INLINE void RefreshPairsD(Cells c, Particles P, const PetscInt D)
         if (!(r2 < rc2a)) continue;
         wa[cnt - s] = r2;
       } else {
-        PetscReal hab = PairH(ha, h[b]), rc = 2.0 * hab, sw;
+        PetscReal rc = 2.0 * PairH(ha, h[b]);
         if (!(r2 < rc * rc)) continue;
-        sw = KernelSigma(K, hab);
-        PairKernel(K->type, PetscSqrtReal(r2), 1.0 / hab, sw, sw / (hab * hab), &wa[cnt - s], &c->f[cnt]);
+        OtherHPairKernel(K, ha, h[b], r2, &wa[cnt - s], &c->f[cnt]);
         mixed = PETSC_TRUE;
       }
       c->nbr[cnt++] = b;
@@ -485,8 +490,7 @@ SPH_INLINE const PetscReal *PairWD(Cells c, Particles P, PetscInt a, const Petsc
     PetscReal r2 = PairDistance2(x, xa, b, D);
     if (h[b] == ha) w[j] = r2;
     else {
-      PetscReal hab = PairH(ha, h[b]), sw = KernelSigma(K, hab);
-      PairKernel(K->type, PetscSqrtReal(r2), 1.0 / hab, sw, sw / (hab * hab), &w[j], &f[j]);
+      OtherHPairKernel(K, ha, h[b], r2, &w[j], &f[j]);
       mixed = PETSC_TRUE;
     }
   }

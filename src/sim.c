@@ -8,7 +8,6 @@
 #include <sphfsi/io.h>
 #include <sphfsi/kernel.h>
 #include <sphfsi/checkpoint.h>
-
 #include <sphfsi/guard.h>
 
 const char *const FluidSchemes[] = {"wcsph", "isph", "FluidScheme", "FLUID_", NULL};

@@ -45,10 +45,11 @@ PetscErrorCode SceneListNames(char *buf, size_t len)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-/* One particle at p (sim->dim coordinates) of spacing dx: mass rho0 dx^dim; the next id. */
-static PetscErrorCode AddPoint(Sim sim, ParticleKind kind, const PetscReal p[], PetscReal dx, PetscReal rho0)
+/* One particle at p (coordinates of the layout) spaced s[d] along each of its directions: mass rho0
+ * times their product (and dz when extruding); smoothing length from the nominal spacing dx; the next id. */
+static PetscErrorCode AddPointSpaced(Sim sim, ParticleKind kind, const PetscReal p[], const PetscReal s[], PetscReal dx, PetscReal rho0)
 {
-  PetscReal m = rho0 * dx * dx;
+  PetscReal m = rho0 * s[0] * s[1];
   PetscFunctionBeginUser;
   if (sim->extrude.n > 0) { /* p is a point of the 2D layout */
     m *= sim->extrude.dz;
@@ -59,12 +60,28 @@ static PetscErrorCode AddPoint(Sim sim, ParticleKind kind, const PetscReal p[], 
     }
     PetscFunctionReturn(PETSC_SUCCESS);
   }
-  if (sim->dim == 3) m *= dx;
+  if (sim->dim == 3) m *= s[2];
   {
     PetscInt id = sim->next_id++;
     if (id % sim->size == sim->rank) PetscCall(ParticlesAdd(sim->P, id, kind, p, m, sim->kernel.h_factor * dx, rho0));
   }
   PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* One particle at p of spacing dx in every direction: mass rho0 dx^dim. */
+static PetscErrorCode AddPoint(Sim sim, ParticleKind kind, const PetscReal p[], PetscReal dx, PetscReal rho0)
+{
+  const PetscReal s[3] = {dx, dx, dx};
+  PetscFunctionBeginUser;
+  PetscCall(AddPointSpaced(sim, kind, p, s, dx, rho0));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscReal SceneFitSpacing(PetscReal extent, PetscReal dx, PetscInt *n)
+{
+  *n = RoundToInt(extent / dx);
+  if (*n < 1 || PetscAbsReal(*n * dx - extent) <= 1e-9 * extent) return dx;
+  return extent / *n;
 }
 
 PetscErrorCode SceneExtrudeBegin(Sim sim, PetscInt n, PetscReal z0, PetscReal dz)
@@ -104,8 +121,9 @@ static PetscReal IdUniform(PetscInt id, unsigned salt)
   return 2.0 * (PetscReal)(z >> 11) / 9007199254740992.0 - 1.0;
 }
 
-/* Fluid lattices take -start_jitter: each particle displaced by up to that fraction of dx in every direction. */
-PetscErrorCode SceneAddBlock(Sim sim, ParticleKind kind, const PetscReal lo[], const PetscInt n[], PetscReal dx, PetscReal rho0)
+/* A lattice spaced s[d] along each direction of the layout; fluid lattices take -start_jitter: each
+ * particle displaced by up to that fraction of dx in every direction. */
+static PetscErrorCode AddBlockSpaced(Sim sim, ParticleKind kind, const PetscReal lo[], const PetscInt n[], const PetscReal s[], PetscReal dx, PetscReal rho0)
 {
   const PetscReal jit = kind == KIND_FLUID ? sim->start_jitter * dx : 0;
   const PetscInt  D = SceneLayoutDim(sim), nz = D == 3 ? n[2] : 1;
@@ -113,11 +131,19 @@ PetscErrorCode SceneAddBlock(Sim sim, ParticleKind kind, const PetscReal lo[], c
   for (PetscInt k = 0; k < nz; k++)
     for (PetscInt j = 0; j < n[1]; j++)
       for (PetscInt i = 0; i < n[0]; i++) {
-        PetscInt  id = sim->next_id, idx[3] = {i, j, k}; /* the id AddPoint hands out */
+        PetscInt  id = sim->next_id, idx[3] = {i, j, k}; /* the id AddPointSpaced hands out */
         PetscReal p[3];
-        for (PetscInt d = 0; d < D; d++) p[d] = lo[d] + idx[d] * dx + jit * IdUniform(id, (unsigned)d);
-        PetscCall(AddPoint(sim, kind, p, dx, rho0));
+        for (PetscInt d = 0; d < D; d++) p[d] = lo[d] + idx[d] * s[d] + jit * IdUniform(id, (unsigned)d);
+        PetscCall(AddPointSpaced(sim, kind, p, s, dx, rho0));
       }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode SceneAddBlock(Sim sim, ParticleKind kind, const PetscReal lo[], const PetscInt n[], PetscReal dx, PetscReal rho0)
+{
+  const PetscReal s[3] = {dx, dx, dx};
+  PetscFunctionBeginUser;
+  PetscCall(AddBlockSpaced(sim, kind, lo, n, s, dx, rho0));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -131,14 +157,14 @@ PetscErrorCode SceneAddLattice(Sim sim, ParticleKind kind, PetscReal x0, PetscRe
 PetscErrorCode SceneAddBox(Sim sim, ParticleKind kind, const PetscReal b[], PetscReal dx, PetscReal rho0)
 {
   const PetscInt D = SceneLayoutDim(sim);
-  PetscReal      first[3] = {0, 0, 0};
+  PetscReal      first[3] = {0, 0, 0}, s[3] = {dx, dx, dx};
   PetscInt       n[3]     = {1, 1, 1};
   PetscFunctionBeginUser;
   for (PetscInt d = 0; d < D; d++) {
-    first[d] = b[d] + 0.5 * dx;
-    n[d]     = RoundToInt((b[D + d] - b[d]) / dx);
+    s[d]     = SceneFitSpacing(b[D + d] - b[d], dx, &n[d]);
+    first[d] = b[d] + 0.5 * s[d];
   }
-  PetscCall(SceneAddBlock(sim, kind, first, n, dx, rho0));
+  PetscCall(AddBlockSpaced(sim, kind, first, n, s, dx, rho0));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -192,9 +218,10 @@ PetscErrorCode SceneAddTankBox(Sim sim, const PetscReal lo[], const PetscReal hi
 {
   const PetscInt D = sim->dim, up = D - 1;
   PetscInt       n[3] = {1, 1, 1}, a[3], b[3];
+  PetscReal      s[3] = {dx, dx, dx}; /* horizontally as the water's box fills (SceneAddBox); dx upwards */
   PetscFunctionBeginUser;
   for (PetscInt d = 0; d < D; d++) {
-    n[d] = RoundToInt((hi[d] - lo[d]) / dx);
+    if (d != up) s[d] = SceneFitSpacing(hi[d] - lo[d], dx, &n[d]);
     a[d] = -rows;
     b[d] = n[d] + rows;
   }
@@ -208,10 +235,10 @@ PetscErrorCode SceneAddTankBox(Sim sim, const PetscReal lo[], const PetscReal hi
         for (PetscInt d = 0; d < D; d++) {
           PetscInt out = idx[d] < 0 ? -idx[d] - 1 : (d != up && idx[d] >= n[d]) ? idx[d] - n[d] : -1;
           layer        = PetscMax(layer, out);
-          p[d]         = lo[d] + (idx[d] + 0.5) * dx;
+          p[d]         = lo[d] + (idx[d] + 0.5) * s[d];
         }
         if (layer < 0) continue; /* the water's box (and the open space above it) */
-        PetscCall(AddPoint(sim, layer ? KIND_DUMMY : KIND_WALL, p, dx, sim->fl.rho0));
+        PetscCall(AddPointSpaced(sim, layer ? KIND_DUMMY : KIND_WALL, p, s, dx, sim->fl.rho0));
       }
   PetscFunctionReturn(PETSC_SUCCESS);
 }

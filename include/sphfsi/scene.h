@@ -49,9 +49,14 @@ PetscErrorCode SceneAddLattice(Sim sim, ParticleKind kind, PetscReal x0, PetscRe
 /* Walls of `rows` rows (first row KIND_WALL, the rest KIND_DUMMY) around the rectangle
  * [x0, x1] x [y0, ...): floor below y0, side walls left of x0 and right of x1 up to y1. */
 PetscErrorCode SceneAddTank(Sim sim, PetscReal x0, PetscReal x1, PetscReal y0, PetscReal y1, PetscReal dx, PetscInt rows, PetscBool left, PetscBool right);
-/* A lattice of one kind filling the box b (its low corner, then its high corner: x0,y0,x1,y1 in 2D,
- * x0,y0,z0,x1,y1,z1 in 3D) at spacing dx (its extent rounded to whole particles), the first
- * particle at the low corner + dx/2; rho0 sets the mass. */
+/* The spacing of n particles along a side of length extent at nominal spacing dx: n = extent / dx
+ * rounded, the spacing dx where the side is a multiple of dx, else extent / n, so that the lattice
+ * fills the side exactly (SPHERIC Test 2's 0.55 m column would stand 0.56 m high at dx = 0.02 m). */
+PetscReal SceneFitSpacing(PetscReal extent, PetscReal dx, PetscInt *n);
+/* A lattice of one kind filling the box b exactly (its low corner, then its high corner: x0,y0,x1,y1
+ * in 2D, x0,y0,z0,x1,y1,z1 in 3D) at spacing dx, each side with its whole number of particles
+ * (SceneFitSpacing), the first particle half a spacing inside the low corner; mass rho0 times the
+ * spacings' product, smoothing length from dx. */
 PetscErrorCode SceneAddBox(Sim sim, ParticleKind kind, const PetscReal b[], PetscReal dx, PetscReal rho0);
 /* An obstacle of wall particles filling the box b (as SceneAddBox) on a lattice of spacing dx: the
  * particles within dx of the faces that meet water are walls, the others dummies; faces: the low
@@ -59,7 +64,8 @@ PetscErrorCode SceneAddBox(Sim sim, ParticleKind kind, const PetscReal b[], Pets
 PetscErrorCode SceneAddWallBox(Sim sim, const PetscReal b[], PetscReal dx, const PetscBool faces[]);
 /* Walls of `rows` layers (the layer next to the water KIND_WALL, the rest KIND_DUMMY) around the
  * water box [lo, hi] in any dimension: under its floor and beside it in every horizontal direction,
- * the sides up to `top` (the vertical is the last direction). */
+ * the sides up to `top` (the vertical is the last direction); spaced horizontally as SceneAddBox
+ * fills the box, so that the walls stand on its faces, and dx upwards. */
 PetscErrorCode SceneAddTankBox(Sim sim, const PetscReal lo[], const PetscReal hi[], PetscReal top, PetscReal dx, PetscInt rows);
 /* Domain box (square in 3D) of a tank [0, L] with `rows` rows of wall particles under and beside it, up to y = top. */
 void SceneTankDomain(Sim sim, PetscReal L, PetscReal top, PetscInt rows);

@@ -289,9 +289,10 @@ static PetscErrorCode Populate(Sim sim)
   const PetscInt D = sim->dim, up = D - 1;
   for (PetscInt i = 0; i < c->nfluid; i++) { /* at rest: hydrostatic below the lattice's top */
     const Box *F     = &c->fluid[i];
-    PetscInt   first = sim->P->n;
+    PetscInt   first = sim->P->n, n;
+    PetscReal  s     = SceneFitSpacing(F->b[D + up] - F->b[up], F->s, &n);
     PetscCall(SceneAddBox(sim, KIND_FLUID, F->b, F->s, sim->fl.rho0));
-    PetscCall(SceneHydrostaticDensity(sim, first, F->b[up] + RoundToInt((F->b[D + up] - F->b[up]) / F->s) * F->s));
+    PetscCall(SceneHydrostaticDensity(sim, first, F->b[up] + n * s));
   }
   for (PetscInt i = 0; i < c->ntank; i++) {
     const Box *T = &c->tank[i];

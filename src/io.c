@@ -328,7 +328,7 @@ PetscErrorCode IOSummary(Sim sim)
   PetscCall(RootCheck(sim, err, "summary.json"));
   if (!sim->rank) {
     fprintf(f, "{\n  \"version\": \"%s\",\n  \"commit\": \"%s\",\n", SphfsiVersion(), SphfsiCommit());
-    fprintf(f, "  \"case\": \"%s\",\n  \"fluid\": \"%s\",\n  \"ranks\": %d,\n", sim->scene->name, sim->has_fluid ? FluidSchemes[sim->fluid] : "none", sim->size);
+    fprintf(f, "  \"case\": \"%s\",\n  \"dim\": %d,\n  \"fluid\": \"%s\",\n  \"ranks\": %d,\n", sim->scene->name, (int)sim->dim, sim->has_fluid ? FluidSchemes[sim->fluid] : "none", sim->size);
     JsonString(f, "status", !sim->guard->state ? "completed" : sim->guard->state == GUARD_STOP ? "stopped" : "fault");
     if (sim->guard->state) JsonString(f, "message", sim->guard->msg);
     if (sim->restart[0]) JsonString(f, "restarted_from", sim->restart);

@@ -3,7 +3,7 @@
 # (cases/boxes/*.opts, -case boxes) give the same particles and the same state as the built-in scenes
 # after 0.05 s on the same ranks, bit for bit, and so does the elastic gate (two particle sizes, a
 # solid, its clamp, a wall box, outflow; both fluids) after 0.01 s; cases/dam_break_obstacle.opts
-# (a case that is no built-in scene) runs.
+# (a case that is no built-in scene) runs; a box whose sides are not multiples of dx is filled exactly.
 MPI=$1; OUT=$2
 mkdir -p "$OUT"
 bad=0
@@ -34,6 +34,29 @@ ref = 1.5 * q * L**4 / (E * H * H) + q * L * L / (2 * (5 / 6) * 7.15e5)
 sag = -rows[-1][5]
 print(f"boxes: 3D solid beam at rest: sag {1e3*sag:.4f} mm against beam theory {1e3*ref:.4f} mm ({100*(sag/ref-1):+.2f} %, bound 3 %), sideways {abs(rows[-1][4]):.1e} m")
 assert abs(sag / ref - 1) < 0.03 and abs(rows[-1][4]) < 1e-9, "the 3D beam given as boxes misses beam theory"
+PY
+# a box whose sides are not multiples of dx is filled exactly (SceneFitSpacing): SPHERIC Test 2's
+# column 1.228 x 1 x 0.55 m and its obstacle at dx = 0.04 m hold their volume (the mass over rho0),
+# and their outer particles sit half a spacing inside each face (before: 1.24 x 1 x 0.56 m of water)
+timeout 300 $MPI $BIN -options_file cases/boxes/spheric_test2.opts -max_steps 1 -output_interval 1 -progress_every 0 -output_dir "$OUT/fill" > "$OUT/fill.log" 2>&1 || { echo "boxes: cases/boxes/spheric_test2.opts failed"; bad=1; }
+python3 - "$OUT/fill" <<'PY' || bad=1
+import glob, sys
+import h5py, numpy as np
+with h5py.File(sorted(glob.glob(sys.argv[1] + "/particles_*.h5"))[0]) as f:
+    x, kind, m = f["x"][:], f["kind"][:].ravel(), f["m"][:].ravel()
+bad = []
+for name, sel, box in (("water", kind == 0, (1.992, 0, 0, 3.22, 1, 0.55)),
+                       ("obstacle", (kind >= 1) & (kind <= 2) & (x[:, 0] > 0.6) & (x[:, 0] < 0.9) & (x[:, 1] > 0.25) & (x[:, 1] < 0.75) & (x[:, 2] > 0), (0.6635, 0.2985, 0, 0.8245, 0.7015, 0.161))):
+    lo, hi = np.array(box[:3]), np.array(box[3:])
+    vol = m[sel].sum() / 1000
+    xs = x[sel]
+    u = [np.unique(np.round(xs[:, d], 9)) for d in range(3)]
+    s = [(u[d][-1] - u[d][0]) / (len(u[d]) - 1) for d in range(3)]  # the lattice's spacing along each axis
+    gap = max(max(abs(xs[:, d].min() - s[d] / 2 - lo[d]), abs(hi[d] - s[d] / 2 - xs[:, d].max())) for d in range(3))
+    print(f"boxes: {name} filled: volume {vol:.6f} m^3 against {np.prod(hi - lo):.6f}, faces off by {gap:.1e} m")
+    if abs(vol / np.prod(hi - lo) - 1) > 1e-9 or gap > 1e-9:
+        bad.append(name)
+assert not bad, f"boxes: not filled exactly: {bad}"
 PY
 timeout 300 $MPI $BIN -options_file cases/dam_break_obstacle.opts -t_end 0.02 -output_interval 0.01 -progress_every 0 -output_dir "$OUT/obstacle" > "$OUT/obstacle.log" 2>&1 || { echo "boxes: cases/dam_break_obstacle.opts failed: status $?"; bad=1; }
 grep -q '"status": "completed"' "$OUT/obstacle/summary.json" 2>/dev/null && echo "boxes: cases/dam_break_obstacle.opts runs" || { echo "boxes: cases/dam_break_obstacle.opts did not complete"; bad=1; }

@@ -36,7 +36,8 @@ for ax, comp in zip(axes, ("dx", "dy")):
         rms = e.get(f"tip_{comp}_err_rms")
         if rms is None:  # a run that did not find the reference data: the scene's comparison, here
             rms = rms_against(load(f"antoci2007_exp_tip{comp}__chrono.csv", f"{comp}_m"), rows, f"tip_{comp}")
-        lab = ("3D, " if s.get("dim") == 3 else "") + f"{s['fluid']} + {s.get('solid_formulation', 'updated')} solid, dx {1000 * s['dx']:.3g} mm" + (f": RMS {1000 * rms:.1f} mm" if rms is not None else "")
+        dim = s.get("dim") or (3 if os.path.exists(d + "/options_used") and "-dim 3" in open(d + "/options_used").read() else 2)  # runs before summary.json had "dim"
+        lab = ("3D, " if dim == 3 else "") + f"{s['fluid']} + {s.get('solid_formulation', 'updated')} solid, dx {1000 * s['dx']:.3g} mm" + (f": RMS {1000 * rms:.1f} mm" if rms is not None else "")
         ax.plot([float(r["t"]) for r in rows], [1000 * float(r[f"tip_{comp}"]) for r in rows], label=lab)
     for name, style, lab in ((f"antoci2007_exp_tip{comp}__chrono.csv", "ko", "experiment"),
                              (f"antoci2007_exp_tip{comp}__fsi_etvf.csv", "k^", "experiment (2nd digitisation)"),

@@ -39,7 +39,7 @@ print(f"wrote {png}")
 # the errors as the scene defines them (src/scenes/spheric_test2.c): at the reference's points with t
 # up to the run's end, |sim - ref| (sim interpolated linearly), rms over H = 0.55 m and rho g H
 rg, Hw = 1000 * 9.81 * 0.55, 0.55
-print("| run | H1–H4 rms / H | P1–P8 rms / ρgH | P1 peak (kPa), at t (s) | experiment | P1 first above 1 kPa (s), experiment |")
+print("| run | H1–H4 rms / H | P1–P8 rms / ρgH | P1's first peak (kPa, the largest before t = 1 s), at t (s) | experiment | P1 first above 1 kPa (s), experiment |")
 print("|---|---|---|---|---|---|")
 for label, rows in sims:
     t = np.array([float(r["t"]) for r in rows])
@@ -51,6 +51,7 @@ for label, rows in sims:
     hs = " / ".join(f"{rms(h, {'H1': 'H3', 'H3': 'H1'}.get(h, h) + '_m', Hw):.3f}" for h in ["H1", "H2", "H3", "H4"])
     ps = " / ".join(f"{rms(p, p + '_Pa', rg):.2f}" for p in [f"P{k}" for k in range(1, 9)])
     p1 = np.array([float(r["P1"]) for r in rows])
-    k, ke = int(np.argmax(p1)), int(np.argmax(ref["P1_Pa"][keep]))
+    first = ref["time_s"] < 1.0  # the impact of the front, not what comes later
+    k, ke = int(np.argmax(np.where(t < 1.0, p1, -np.inf))), int(np.argmax(np.where(first, ref["P1_Pa"], -np.inf)))
     rise, rise_exp = t[np.argmax(p1 > 1000)], ref["time_s"][np.argmax(ref["P1_Pa"] > 1000)]  # the front's arrival at the box
-    print(f"| {label} | {hs} | {ps} | {p1[k] / 1000:.1f} at {t[k]:.3f} | {ref['P1_Pa'][keep][ke] / 1000:.1f} at {ref['time_s'][keep][ke]:.3f} | {rise:.3f}, {rise_exp:.3f} |")
+    print(f"| {label} | {hs} | {ps} | {p1[k] / 1000:.1f} at {t[k]:.3f} | {ref['P1_Pa'][ke] / 1000:.1f} at {ref['time_s'][ke]:.3f} | {rise:.3f}, {rise_exp:.3f} |")

@@ -11,8 +11,9 @@
  * The experiment's t = 0 is the release.  Fluid that leaves the domain above the tank (1.6 m) is
  * removed (outflow; counted in the mass balance).  Errors against the experiment
  * (refdata spheric_test2_kleefsman2005_3D_pressure_waterlevel.csv): pressures as the rms of
- * |p - p_exp| / (rho g H) over [0, t_end] and the peak (largest value over the run: the impact on
- * the front face) against the experiment's; levels as the rms and max of |h - h_exp| / H. */
+ * |p - p_exp| / (rho g H) over [0, t_end], the peak (largest value over the run) and the first peak
+ * (largest before t = 1 s: the front's impact, which the issue's target names; a run's later spikes
+ * do not hide it) against the experiment's; levels as the rms and max of |h - h_exp| / H. */
 #include <sphfsi/scene.h>
 #include <sphfsi/options_used.h>
 #include <sphfsi/refdata.h>
@@ -130,14 +131,17 @@ static PetscErrorCode Errors(Sim sim, FILE *f)
   for (PetscInt k = 0; k < NSENSOR; k++) {
     Series    ref = {0};
     PetscBool found;
-    PetscReal rms, max, pe, te, ps, ts;
+    PetscReal rms, max, pe, te, ps, ts, fe, tfe, fs, tfs;
     PetscInt  n;
     PetscCall(RefDataLoad(sim, file, "time_s", PCols[k], &ref, &found));
     if (found && f) {
       SeriesPeak(&ref, 0, sim->t, &pe, &te);
       SeriesPeak(&c->pres[k], 0, sim->t, &ps, &ts);
+      SeriesPeak(&ref, 0, PetscMin(1.0, sim->t), &fe, &tfe);
+      SeriesPeak(&c->pres[k], 0, PetscMin(1.0, sim->t), &fs, &tfs);
       PetscCall(SeriesCompare(&c->pres[k], &ref, 1.0, 1.0, 0, sim->t, PETSC_FALSE, &rms, &max, &n)); /* in Pa */
       fprintf(f, "\"P%d_err_rms\": %.6g, \"P%d_peak\": %.6g, \"P%d_peak_exp\": %.6g, \"P%d_peak_t\": %.6g, \"P%d_peak_t_exp\": %.6g, ", (int)k + 1, (double)(rms / rg), (int)k + 1, (double)ps, (int)k + 1, (double)pe, (int)k + 1, (double)ts, (int)k + 1, (double)te);
+      fprintf(f, "\"P%d_first_peak\": %.6g, \"P%d_first_peak_exp\": %.6g, \"P%d_first_peak_t\": %.6g, \"P%d_first_peak_t_exp\": %.6g, ", (int)k + 1, (double)fs, (int)k + 1, (double)fe, (int)k + 1, (double)tfs, (int)k + 1, (double)tfe);
     }
     PetscCall(SeriesDestroy(&ref));
   }

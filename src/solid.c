@@ -81,7 +81,6 @@ PetscErrorCode SolidSetUp(Sim sim)
   if (s->formulation == SOLID_TOTAL) {
     PetscCall(ParticlesEnableField(sim->P, FIELD_X0, PETSC_TRUE)); /* the reference configuration */
     PetscCall(ParticlesEnableField(sim->P, FIELD_DEFGRAD, PETSC_TRUE));
-    PetscCall(ParticlesEnableField(sim->P, FIELD_GRAD0, PETSC_FALSE));
     PetscCall(ParticlesEnableField(sim->P, FIELD_PK1B, PETSC_TRUE));
   }
   if (fluid) {
@@ -126,6 +125,8 @@ PetscErrorCode SolidDestroy(Solid *s)
   PetscCall(PetscFree((*s)->R));
   PetscCall(PetscFree((*s)->f0));
   PetscCall(PetscFree((*s)->xref));
+  PetscCall(PetscFree((*s)->G0));
+  PetscCall(PetscFree((*s)->gslot));
   PetscCall(CellsDestroy(&(*s)->nl));
   PetscCall(PetscFree(*s));
   PetscFunctionReturn(PETSC_SUCCESS);

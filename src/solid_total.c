@@ -132,9 +132,8 @@ SPH_INLINE PetscErrorCode TotalPrepareD(Sim sim, const PetscInt D)
   Cells            C = s->nl;
   Particles        P = sim->P;
   const PetscReal *X = PField(P, FIELD_X0), *m = PField(P, FIELD_M), *h = PField(P, FIELD_H), rho0 = sim->sl.rho0;
-  PetscReal       *G = PField(P, FIELD_GRAD0);
   const PetscInt   nbmax = NB(D), nb = s->order == 2 ? nbmax : D, n2 = nbmax * nbmax;
-  PetscInt         npair = 0, npairs = C->nstart[C->npart];
+  PetscInt         npair = 0, npairs = C->nstart[C->npart], nsolid = 0;
 
   PetscFunctionBeginUser;
   if (s->clamp_face && !s->faces_placed) PetscCall(ClampFacesD(sim, D)); /* the reference never changes: once per run (a restart finds them in X0) */
@@ -144,12 +143,24 @@ SPH_INLINE PetscErrorCode TotalPrepareD(Sim sim, const PetscInt D)
     s->cap_ref = C->cap_nbr;
     PetscCall(PetscMalloc1(s->cap_ref, &s->f0));
   }
+  if (P->n > s->cap_gslot) {
+    PetscCall(PetscFree(s->gslot));
+    s->cap_gslot = (3 * P->n) / 2 + 16;
+    PetscCall(PetscMalloc1(s->cap_gslot, &s->gslot));
+  }
+  for (PetscInt a = 0; a < P->n; a++) s->gslot[a] = KindIsSolid(P->kind[a]) ? nsolid++ : -1;
+  if (nsolid > s->cap_G0) {
+    PetscCall(PetscFree(s->G0));
+    s->cap_G0 = (3 * nsolid) / 2 + 16;
+    PetscCall(PetscMalloc1(n2 * s->cap_G0, &s->G0));
+  }
   for (PetscInt a = 0; a < P->n; a++) {
-    PetscReal M[81] = {0}, M2[81] = {0};
+    PetscReal M[81] = {0}, M2[81] = {0}, *G;
     if (!KindIsSolid(P->kind[a])) continue;
+    G = s->G0 + n2 * s->gslot[a];
     for (PetscInt k = C->nstart[a]; k < C->nstart[a + 1]; k++) s->f0[k] = 0;
     if (s->clamp_face && P->kind[a] == KIND_CLAMP) { /* no fit, no energy; a face point keeps its pairs with the solids that fit it, for the support's reaction */
-      PetscCall(PetscArrayzero(G + n2 * a, n2));
+      PetscCall(PetscArrayzero(G, n2));
       if (!ClampFace(P, a)) continue;
       for (PetscInt k = C->nstart[a]; k < C->nstart[a + 1]; k++) {
         PetscInt  b = C->nbr[k];
@@ -174,10 +185,10 @@ SPH_INLINE PetscErrorCode TotalPrepareD(Sim sim, const PetscInt D)
       for (PetscInt i = 0; i < nb; i++)
         for (PetscInt j = 0; j < nb; j++) M[nbmax * i + j] += w * p[i] * p[j];
     }
-    if (nb == nbmax && Inverse(nbmax, nbmax, M, G + n2 * a)) continue;
+    if (nb == nbmax && Inverse(nbmax, nbmax, M, G)) continue;
     for (PetscInt i = 0; i < D; i++) /* order 1, or a corner with too few neighbours for order 2 */
       for (PetscInt j = 0; j < D; j++) M2[nbmax * i + j] = M[nbmax * i + j];
-    PetscCheck(Inverse(D, nbmax, M2, G + n2 * a), PETSC_COMM_SELF, PETSC_ERR_ARG_OUTOFRANGE, "Solid particle %" PetscInt_FMT " has too few neighbours in its reference configuration for a gradient: a solid must be at least 2 particles thick", P->id[a]);
+    PetscCheck(Inverse(D, nbmax, M2, G), PETSC_COMM_SELF, PETSC_ERR_ARG_OUTOFRANGE, "Solid particle %" PetscInt_FMT " has too few neighbours in its reference configuration for a gradient: a solid must be at least 2 particles thick", P->id[a]);
   }
   /* the search runs in the current configuration: a body stretched by more than the skin over
    * 2 h loses pairs of its reference configuration, which the global count shows */
@@ -268,7 +279,7 @@ SPH_INLINE PetscErrorCode DeformationAndStressD(Sim sim, const PetscInt D)
   Solid                s = sim->solid;
   Particles            P = sim->P;
   const SolidMaterial *sm = &sim->sl;
-  const PetscReal     *h = PField(P, FIELD_H), *G = PField(P, FIELD_GRAD0);
+  const PetscReal     *h = PField(P, FIELD_H);
   PetscReal           *F = PField(P, FIELD_DEFGRAD), *Q = PField(P, FIELD_PK1B), *rho = PField(P, FIELD_RHO), *p = PField(P, FIELD_P), *S = PField(P, FIELD_S);
   const FieldId        refresh[] = {FIELD_DEFGRAD, FIELD_PK1B};
   const PetscInt       nb = NB(D), ns = D * (D + 1) / 2;
@@ -283,7 +294,7 @@ SPH_INLINE PetscErrorCode DeformationAndStressD(Sim sim, const PetscInt D)
       continue;
     }
     Fit(sim, a, A, D);
-    if (!ParticleEnergy(sm, G + nb * nb * a, A, h[a], s->quadrature ? dxa * dxa / 24 : 0, F + D * D * a, Q + D * nb * a, &W, D)) /* inverted: the run guard stops on the NaN and names the particle */
+    if (!ParticleEnergy(sm, s->G0 + nb * nb * s->gslot[a], A, h[a], s->quadrature ? dxa * dxa / 24 : 0, F + D * D * a, Q + D * nb * a, &W, D)) /* inverted: the run guard stops on the NaN and names the particle */
       for (PetscInt q = 0; q < D * nb; q++) Q[D * nb * a + q] = NAN;
   }
   PetscCall(PetscLogStagePush(sim->stage[STAGE_HALO]));
@@ -368,7 +379,7 @@ SPH_INLINE PetscReal TotalStrainEnergyD(Sim sim, const PetscInt D)
   Solid            s = sim->solid;
   Cells            C = s->nl;
   Particles        P = sim->P;
-  const PetscReal *F = PField(P, FIELD_DEFGRAD), *m = PField(P, FIELD_M), *X = PField(P, FIELD_X0), *x = PField(P, FIELD_X), *h = PField(P, FIELD_H), *G = PField(P, FIELD_GRAD0);
+  const PetscReal *F = PField(P, FIELD_DEFGRAD), *m = PField(P, FIELD_M), *X = PField(P, FIELD_X0), *x = PField(P, FIELD_X), *h = PField(P, FIELD_H);
   const PetscReal  ir0 = 1.0 / sim->sl.rho0;
   const PetscInt   nb = NB(D);
   PetscReal        e = 0;
@@ -376,7 +387,7 @@ SPH_INLINE PetscReal TotalStrainEnergyD(Sim sim, const PetscInt D)
     PetscReal A[27], Fa[9], dxa = h[a] / sim->kernel.h_factor, ea;
     if (!KindIsSolid(P->kind[a]) || (s->clamp_face && P->kind[a] == KIND_CLAMP)) continue;
     Fit(sim, a, A, D);
-    if (!ParticleEnergy(&sim->sl, G + nb * nb * a, A, h[a], s->quadrature ? dxa * dxa / 24 : 0, Fa, NULL, &ea, D)) ea = NAN;
+    if (!ParticleEnergy(&sim->sl, s->G0 + nb * nb * s->gslot[a], A, h[a], s->quadrature ? dxa * dxa / 24 : 0, Fa, NULL, &ea, D)) ea = NAN;
     if (s->hourglass > 0)
       for (PetscInt k = C->nstart[a]; k < C->nstart[a + 1]; k++) {
         PetscInt  b = C->nbr[k];

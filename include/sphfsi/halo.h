@@ -4,8 +4,8 @@
 #include <sphfsi/decomp.h>
 #include <petscsf.h>
 
-/* the widest field: FIELD_GRAD0 in 3D, 9 x 9 */
-#define HALO_MAX_WIDTH 81
+/* the widest field: FIELD_PK1B in 3D, 3 x 9 */
+#define HALO_MAX_WIDTH 27
 
 typedef struct _p_Halo *Halo;
 struct _p_Halo {

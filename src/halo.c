@@ -240,3 +240,41 @@ PetscErrorCode HaloRefreshKinds(Halo h, Particles P, PetscBool (*keep)(PetscInt)
   PetscCall(Refresh(h, P, h->sf_kinds, h->kinds_ghost, h->nkinds, nf, f));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
+
+/* Compact arrays that only some particles carry (slot[a] >= 0; the owned ones' slots first, then the
+ * ghosts'): the SF from each owner's slot to its ghosts' slots, whose leaves index the array past
+ * the nown owned slots.  The owners' slots reach the ghosts over the halo's own SF. */
+PetscErrorCode HaloSlotSF(Halo h, Particles P, const PetscInt *slot, PetscInt nown, PetscSF *sf)
+{
+  const PetscSFNode *all;
+  PetscSFNode       *remote;
+  PetscInt          *ghost_slot, *ilocal, n = 0;
+  PetscFunctionBeginUser;
+  PetscCall(PetscSFDestroy(sf));
+  PetscCall(PetscSFGetGraph(h->sf, NULL, NULL, NULL, &all));
+  PetscCall(PetscMalloc3(P->ng + 1, &ghost_slot, P->ng + 1, &ilocal, P->ng + 1, &remote));
+  PetscCall(PetscSFBcastBegin(h->sf, MPIU_INT, slot, ghost_slot, MPI_REPLACE));
+  PetscCall(PetscSFBcastEnd(h->sf, MPIU_INT, slot, ghost_slot, MPI_REPLACE));
+  for (PetscInt j = 0; j < P->ng; j++) {
+    if (slot[P->n + j] < 0) continue;
+    PetscCheck(ghost_slot[j] >= 0, PETSC_COMM_SELF, PETSC_ERR_PLIB, "Ghost %" PetscInt_FMT " has a slot but its owner has none", j);
+    ilocal[n]         = slot[P->n + j] - nown;
+    remote[n].rank    = all[j].rank;
+    remote[n++].index = ghost_slot[j];
+  }
+  PetscCall(PetscSFCreate(h->comm, sf));
+  PetscCall(PetscSFSetGraph(*sf, nown, n, ilocal, PETSC_COPY_VALUES, remote, PETSC_COPY_VALUES));
+  PetscCall(PetscSFSetUp(*sf));
+  PetscCall(PetscFree3(ghost_slot, ilocal, remote));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* The owners' values of compact arrays a[k] (width[k] reals a slot, at most HALO_MAX_WIDTH) into
+ * their ghosts' slots, over an SF of HaloSlotSF. */
+PetscErrorCode HaloRefreshSlots(Halo h, PetscSF sf, PetscInt nown, PetscInt na, const PetscInt width[], PetscReal *const a[])
+{
+  PetscFunctionBeginUser;
+  for (PetscInt k = 0; k < na; k++) PetscCall(PetscSFBcastBegin(sf, h->unit[width[k]], a[k], a[k] + nown * width[k], MPI_REPLACE));
+  for (PetscInt k = 0; k < na; k++) PetscCall(PetscSFBcastEnd(sf, h->unit[width[k]], a[k], a[k] + nown * width[k], MPI_REPLACE));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}

@@ -4,9 +4,8 @@ const char *const ParticleKindNames[] = {"fluid", "wall", "dummy", "solid", "cla
 
 /* A field's width: a fixed number of reals, or one that follows the dimension d (WIDTH_VECTOR: d,
  * WIDTH_SYM: the d (d + 1) / 2 components of a symmetric tensor, WIDTH_TENSOR: d x d; the
- * total-Lagrangian solid's second-order fit of n = d + d (d + 1) / 2 terms: WIDTH_FIT_GRAD d x n;
- * its n x n reference operator is the solid's own, solid.h). */
-enum { WIDTH_VECTOR = -1, WIDTH_SYM = -2, WIDTH_TENSOR = -3, WIDTH_FIT_GRAD = -5 };
+ * total-Lagrangian solid's fit operators are its own arrays over solid particles, solid.h). */
+enum { WIDTH_VECTOR = -1, WIDTH_SYM = -2, WIDTH_TENSOR = -3 };
 static const struct { const char *name; PetscInt width; } FieldInfo[FIELD_COUNT] = {
   [FIELD_X] = {"x", WIDTH_VECTOR},         [FIELD_V] = {"v", WIDTH_VECTOR},         [FIELD_RHO] = {"rho", 1},
   [FIELD_P] = {"p", 1},                    [FIELD_M] = {"m", 1},                    [FIELD_H] = {"h", 1},
@@ -16,7 +15,6 @@ static const struct { const char *name; PetscInt width; } FieldInfo[FIELD_COUNT]
   [FIELD_NORMAL] = {"normal", WIDTH_VECTOR}, [FIELD_ROW] = {"row", 1},
   [FIELD_KCORR] = {"kernel_correction", WIDTH_TENSOR}, [FIELD_FVIEW] = {"fluid_view", 3},
   [FIELD_AMEAN] = {"mean_acc", WIDTH_VECTOR},         [FIELD_XREB] = {"x_rebuild", WIDTH_VECTOR},
-  [FIELD_DEFGRAD] = {"deformation_gradient", WIDTH_TENSOR}, [FIELD_PK1B] = {"pk1_gradient", WIDTH_FIT_GRAD},
   [FIELD_XLIST] = {"x_list", WIDTH_VECTOR},
 };
 
@@ -26,7 +24,6 @@ static PetscInt FieldWidth(PetscInt w, PetscInt dim)
   case WIDTH_VECTOR: return dim;
   case WIDTH_SYM: return dim * (dim + 1) / 2;
   case WIDTH_TENSOR: return dim * dim;
-  case WIDTH_FIT_GRAD: return dim * (dim + dim * (dim + 1) / 2);
   default: return w;
   }
 }

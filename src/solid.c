@@ -80,8 +80,6 @@ PetscErrorCode SolidSetUp(Sim sim)
   if (s->gradient == SOLID_GRAD_CORRECTED && s->formulation == SOLID_UPDATED) PetscCall(ParticlesEnableField(sim->P, FIELD_KCORR, PETSC_FALSE)); /* ghosts: refreshed when computed */
   if (s->formulation == SOLID_TOTAL) {
     PetscCall(ParticlesEnableField(sim->P, FIELD_X0, PETSC_TRUE)); /* the reference configuration */
-    PetscCall(ParticlesEnableField(sim->P, FIELD_DEFGRAD, PETSC_TRUE));
-    PetscCall(ParticlesEnableField(sim->P, FIELD_PK1B, PETSC_TRUE));
   }
   if (fluid) {
     PetscCall(ParticlesEnableField(sim->P, FIELD_FVIEW, PETSC_TRUE));
@@ -126,7 +124,9 @@ PetscErrorCode SolidDestroy(Solid *s)
   PetscCall(PetscFree((*s)->f0));
   PetscCall(PetscFree((*s)->xref));
   PetscCall(PetscFree((*s)->G0));
-  PetscCall(PetscFree((*s)->gslot));
+  PetscCall(PetscFree((*s)->slot));
+  PetscCall(PetscFree2((*s)->Fd, (*s)->Qd));
+  PetscCall(PetscSFDestroy(&(*s)->sf_slot));
   PetscCall(CellsDestroy(&(*s)->nl));
   PetscCall(PetscFree(*s));
   PetscFunctionReturn(PETSC_SUCCESS);

@@ -126,6 +126,39 @@ static PetscBool InFit(Solid s, Particles P, PetscInt a, PetscInt b)
   return (PetscBool)(P->kind[a] == KIND_SOLID && (P->kind[b] == KIND_SOLID || ClampFace(P, b)));
 }
 
+/* The solid's own arrays (solid.h) for this rebuild's particles: each owned and ghost solid's slot,
+ * the room, and the SF that refreshes the ghosts' slots. */
+static PetscErrorCode SolidSlots(Sim sim, const PetscInt D)
+{
+  Solid          s = sim->solid;
+  Particles      P = sim->P;
+  const PetscInt nb = NB(D), nt = P->n + P->ng;
+  PetscFunctionBeginUser;
+  if (nt > s->cap_slot) {
+    PetscCall(PetscFree(s->slot));
+    s->cap_slot = (3 * nt) / 2 + 16;
+    PetscCall(PetscMalloc1(s->cap_slot, &s->slot));
+  }
+  s->nslot = 0;
+  for (PetscInt a = 0; a < nt; a++) {
+    if (a == P->n) s->nown = s->nslot;
+    s->slot[a] = KindIsSolid(P->kind[a]) ? s->nslot++ : -1;
+  }
+  if (!P->ng) s->nown = s->nslot;
+  if (s->nown > s->cap_G0) {
+    PetscCall(PetscFree(s->G0));
+    s->cap_G0 = (3 * s->nown) / 2 + 16;
+    PetscCall(PetscMalloc1(nb * nb * s->cap_G0, &s->G0));
+  }
+  if (s->nslot > s->cap_FQ) {
+    PetscCall(PetscFree2(s->Fd, s->Qd));
+    s->cap_FQ = (3 * s->nslot) / 2 + 16;
+    PetscCall(PetscMalloc2(D * D * s->cap_FQ, &s->Fd, D * nb * s->cap_FQ, &s->Qd));
+  }
+  PetscCall(HaloSlotSF(sim->halo, P, s->slot, s->nown, &s->sf_slot));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 SPH_INLINE PetscErrorCode TotalPrepareD(Sim sim, const PetscInt D)
 {
   Solid            s = sim->solid;
@@ -133,7 +166,7 @@ SPH_INLINE PetscErrorCode TotalPrepareD(Sim sim, const PetscInt D)
   Particles        P = sim->P;
   const PetscReal *X = PField(P, FIELD_X0), *m = PField(P, FIELD_M), *h = PField(P, FIELD_H), rho0 = sim->sl.rho0;
   const PetscInt   nbmax = NB(D), nb = s->order == 2 ? nbmax : D, n2 = nbmax * nbmax;
-  PetscInt         npair = 0, npairs = C->nstart[C->npart], nsolid = 0;
+  PetscInt         npair = 0, npairs = C->nstart[C->npart];
 
   PetscFunctionBeginUser;
   if (s->clamp_face && !s->faces_placed) PetscCall(ClampFacesD(sim, D)); /* the reference never changes: once per run (a restart finds them in X0) */
@@ -143,21 +176,11 @@ SPH_INLINE PetscErrorCode TotalPrepareD(Sim sim, const PetscInt D)
     s->cap_ref = C->cap_nbr;
     PetscCall(PetscMalloc1(s->cap_ref, &s->f0));
   }
-  if (P->n > s->cap_gslot) {
-    PetscCall(PetscFree(s->gslot));
-    s->cap_gslot = (3 * P->n) / 2 + 16;
-    PetscCall(PetscMalloc1(s->cap_gslot, &s->gslot));
-  }
-  for (PetscInt a = 0; a < P->n; a++) s->gslot[a] = KindIsSolid(P->kind[a]) ? nsolid++ : -1;
-  if (nsolid > s->cap_G0) {
-    PetscCall(PetscFree(s->G0));
-    s->cap_G0 = (3 * nsolid) / 2 + 16;
-    PetscCall(PetscMalloc1(n2 * s->cap_G0, &s->G0));
-  }
+  PetscCall(SolidSlots(sim, D));
   for (PetscInt a = 0; a < P->n; a++) {
     PetscReal M[81] = {0}, M2[81] = {0}, *G;
     if (!KindIsSolid(P->kind[a])) continue;
-    G = s->G0 + n2 * s->gslot[a];
+    G = s->G0 + n2 * s->slot[a];
     for (PetscInt k = C->nstart[a]; k < C->nstart[a + 1]; k++) s->f0[k] = 0;
     if (s->clamp_face && P->kind[a] == KIND_CLAMP) { /* no fit, no energy; a face point keeps its pairs with the solids that fit it, for the support's reaction */
       PetscCall(PetscArrayzero(G, n2));
@@ -280,30 +303,32 @@ SPH_INLINE PetscErrorCode DeformationAndStressD(Sim sim, const PetscInt D)
   Particles            P = sim->P;
   const SolidMaterial *sm = &sim->sl;
   const PetscReal     *h = PField(P, FIELD_H);
-  PetscReal           *F = PField(P, FIELD_DEFGRAD), *Q = PField(P, FIELD_PK1B), *rho = PField(P, FIELD_RHO), *p = PField(P, FIELD_P), *S = PField(P, FIELD_S);
-  const FieldId        refresh[] = {FIELD_DEFGRAD, FIELD_PK1B};
-  const PetscInt       nb = NB(D), ns = D * (D + 1) / 2;
+  PetscReal           *rho = PField(P, FIELD_RHO), *p = PField(P, FIELD_P), *S = PField(P, FIELD_S);
+  const PetscInt       nb = NB(D), ns = D * (D + 1) / 2, *slot = s->slot;
+  PetscReal *const     FQ[2]    = {s->Fd, s->Qd};
+  const PetscInt       width[2] = {D * D, D * nb};
 
   PetscFunctionBeginUser;
   for (PetscInt a = 0; a < P->n; a++) {
     PetscReal A[27], dxa = h[a] / sim->kernel.h_factor, W;
     if (!KindIsSolid(P->kind[a])) continue;
     if (s->clamp_face && P->kind[a] == KIND_CLAMP) { /* a boundary: no strain, no energy */
-      for (PetscInt i = 0; i < D * D; i++) F[D * D * a + i] = i % (D + 1) == 0;
-      PetscCall(PetscArrayzero(Q + D * nb * a, D * nb));
+      for (PetscInt i = 0; i < D * D; i++) s->Fd[D * D * slot[a] + i] = i % (D + 1) == 0;
+      PetscCall(PetscArrayzero(s->Qd + D * nb * slot[a], D * nb));
       continue;
     }
     Fit(sim, a, A, D);
-    if (!ParticleEnergy(sm, s->G0 + nb * nb * s->gslot[a], A, h[a], s->quadrature ? dxa * dxa / 24 : 0, F + D * D * a, Q + D * nb * a, &W, D)) /* inverted: the run guard stops on the NaN and names the particle */
-      for (PetscInt q = 0; q < D * nb; q++) Q[D * nb * a + q] = NAN;
+    if (!ParticleEnergy(sm, s->G0 + nb * nb * slot[a], A, h[a], s->quadrature ? dxa * dxa / 24 : 0, s->Fd + D * D * slot[a], s->Qd + D * nb * slot[a], &W, D)) /* inverted: the run guard stops on the NaN and names the particle */
+      for (PetscInt q = 0; q < D * nb; q++) s->Qd[D * nb * slot[a] + q] = NAN;
   }
   PetscCall(PetscLogStagePush(sim->stage[STAGE_HALO]));
-  PetscCall(HaloRefreshKinds(sim->halo, P, SolidKeep, 2, refresh));
+  PetscCall(HaloRefreshSlots(sim->halo, s->sf_slot, s->nown, 2, width, FQ));
   PetscCall(PetscLogStagePop());
   for (PetscInt a = 0; a < P->n + P->ng; a++) {
-    const PetscReal *Fa = F + D * D * a;
+    const PetscReal *Fa;
     PetscReal        Sk[9], J;
     if (!KindIsSolid(P->kind[a])) continue;
+    Fa = s->Fd + D * D * slot[a];
     J = NeoHookeanPK2D(sm->K, sm->G, Fa, Sk, D);
     if (J <= 0) { rho[a] = NAN; continue; }
     rho[a] = sm->rho0 / J;
@@ -321,7 +346,8 @@ SPH_INLINE PetscErrorCode MomentumD(Sim sim, const PetscInt D)
   Particles            P = sim->P;
   const SolidMaterial *sm = &sim->sl;
   const PetscReal     *X = PField(P, FIELD_X0), *x = PField(P, FIELD_X), *v = PField(P, FIELD_V), *m = PField(P, FIELD_M), *h = PField(P, FIELD_H), *rho = PField(P, FIELD_RHO);
-  const PetscReal     *F = PField(P, FIELD_DEFGRAD), *Q = PField(P, FIELD_PK1B);
+  const PetscReal     *F = s->Fd, *Q = s->Qd;
+  const PetscInt      *slot = s->slot;
   PetscReal           *acc = PField(P, FIELD_ACC), support[3] = {0, 0, 0}, load[3] = {0, 0, 0};
   const PetscReal      ir0 = 1.0 / sm->rho0;
   const PetscInt       nb = NB(D);
@@ -329,8 +355,9 @@ SPH_INLINE PetscErrorCode MomentumD(Sim sim, const PetscInt D)
   PetscFunctionBeginUser;
   for (PetscInt a = 0; a < P->n; a++) {
     PetscReal        ac[3] = {0, 0, 0}, fl[3] = {0, 0, 0}, hg[3] = {0, 0, 0};
-    const PetscReal *Qa = Q + D * nb * a;
+    const PetscReal *Qa;
     if (!KindIsSolid(P->kind[a])) continue;
+    Qa = Q + D * nb * slot[a];
     for (PetscInt k = C->nstart[a]; k < C->nstart[a + 1]; k++) {
       PetscInt  b = C->nbr[k];
       PetscReal d[3];
@@ -338,7 +365,7 @@ SPH_INLINE PetscErrorCode MomentumD(Sim sim, const PetscInt D)
       if (!KindIsSolid(P->kind[b])) continue;
       VSub(x + D * a, x + D * b, d, D);
       if (s->f0[k] != 0) {
-        const PetscReal *Qb = Q + D * nb * b;
+        const PetscReal *Qb = Q + D * nb * slot[b];
         PetscReal        c = -m[b] * ir0 * s->f0[k] * ir0, Xab[3], Xba[3], pa[9], pb[9];
         VSub(X + D * b, X + D * a, Xab, D);
         for (PetscInt i = 0; i < D; i++) Xba[i] = -Xab[i];
@@ -349,7 +376,7 @@ SPH_INLINE PetscErrorCode MomentumD(Sim sim, const PetscInt D)
         if (s->hourglass > 0 && !(s->clamp_face && P->kind[b] == KIND_CLAMP)) {
           PetscReal xab[3];
           for (PetscInt i = 0; i < D; i++) xab[i] = -d[i];
-          HourglassAcc(s->hourglass * sm->G * m[b] * ir0 * -s->f0[k] * ir0, F + D * D * a, F + D * D * b, Xab, xab, hg, D);
+          HourglassAcc(s->hourglass * sm->G * m[b] * ir0 * -s->f0[k] * ir0, F + D * D * slot[a], F + D * D * slot[b], Xab, xab, hg, D);
         }
       }
       if (C->f[k] != 0 && sm->alpha > 0) {
@@ -379,7 +406,7 @@ SPH_INLINE PetscReal TotalStrainEnergyD(Sim sim, const PetscInt D)
   Solid            s = sim->solid;
   Cells            C = s->nl;
   Particles        P = sim->P;
-  const PetscReal *F = PField(P, FIELD_DEFGRAD), *m = PField(P, FIELD_M), *X = PField(P, FIELD_X0), *x = PField(P, FIELD_X), *h = PField(P, FIELD_H);
+  const PetscReal *m = PField(P, FIELD_M), *X = PField(P, FIELD_X0), *x = PField(P, FIELD_X), *h = PField(P, FIELD_H);
   const PetscReal  ir0 = 1.0 / sim->sl.rho0;
   const PetscInt   nb = NB(D);
   PetscReal        e = 0;
@@ -387,14 +414,14 @@ SPH_INLINE PetscReal TotalStrainEnergyD(Sim sim, const PetscInt D)
     PetscReal A[27], Fa[9], dxa = h[a] / sim->kernel.h_factor, ea;
     if (!KindIsSolid(P->kind[a]) || (s->clamp_face && P->kind[a] == KIND_CLAMP)) continue;
     Fit(sim, a, A, D);
-    if (!ParticleEnergy(&sim->sl, s->G0 + nb * nb * s->gslot[a], A, h[a], s->quadrature ? dxa * dxa / 24 : 0, Fa, NULL, &ea, D)) ea = NAN;
+    if (!ParticleEnergy(&sim->sl, s->G0 + nb * nb * s->slot[a], A, h[a], s->quadrature ? dxa * dxa / 24 : 0, Fa, NULL, &ea, D)) ea = NAN;
     if (s->hourglass > 0)
       for (PetscInt k = C->nstart[a]; k < C->nstart[a + 1]; k++) {
         PetscInt  b = C->nbr[k];
         PetscReal Xab[3], xab[3];
         VSub(X + D * b, X + D * a, Xab, D);
         VSub(x + D * b, x + D * a, xab, D);
-        if (s->f0[k] != 0) ea += HourglassEnergy(0.5 * s->hourglass * sim->sl.G * m[b] * ir0 * -s->f0[k], F + D * D * a, Xab, xab, D);
+        if (s->f0[k] != 0) ea += HourglassEnergy(0.5 * s->hourglass * sim->sl.G * m[b] * ir0 * -s->f0[k], Fa, Xab, xab, D);
       }
     e += m[a] * ir0 * ea;
   }

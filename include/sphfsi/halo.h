@@ -4,7 +4,7 @@
 #include <sphfsi/decomp.h>
 #include <petscsf.h>
 
-/* the widest field: FIELD_PK1B in 3D, 3 x 9 */
+/* the widest array refreshed: the total-Lagrangian solid's Q in 3D, 3 x 9 (HaloRefreshSlots) */
 #define HALO_MAX_WIDTH 27
 
 typedef struct _p_Halo *Halo;
@@ -32,3 +32,8 @@ PetscErrorCode HaloRefresh(Halo h, Particles P, PetscInt nf, const FieldId f[]);
 /* The same for the ghosts whose kind `keep` accepts (the solid's sub-steps, between fluid steps,
  * change only the solids: refreshing the fluid's ghosts too costs most of a 3D FSI sub-step). */
 PetscErrorCode HaloRefreshKinds(Halo h, Particles P, PetscBool (*keep)(PetscInt), PetscInt nf, const FieldId f[]);
+/* Compact arrays that only some particles carry, slot[a] >= 0 (owned slots [0, nown), then the
+ * ghosts'): the SF from the owners' slots to their ghosts' (built after each HaloBuild), and the
+ * refresh of na such arrays of width[k] reals a slot over it. */
+PetscErrorCode HaloSlotSF(Halo h, Particles P, const PetscInt *slot, PetscInt nown, PetscSF *sf);
+PetscErrorCode HaloRefreshSlots(Halo h, PetscSF sf, PetscInt nown, PetscInt na, const PetscInt width[], PetscReal *const a[]);

@@ -33,8 +33,6 @@ typedef enum {
   FIELD_AMEAN, /* solid with ISPH: mean acceleration over the last fluid step (2; ppe.c) */
   FIELD_XREB,  /* scenes with solids: position at the last rebuild (dim); solids move after it, and a
                   restart rebuilds the neighbour lists there to continue exactly (checkpoint.h) */
-  FIELD_DEFGRAD, /* total-Lagrangian solid: deformation gradient F (dim x dim, row-major, F_ij = dx_i / dX_j) */
-  FIELD_PK1B,    /* total-Lagrangian solid: derivative of the energy by the fit, dW/dA (2 x 5 or 3 x 9, row-major; P G01 to first order) */
   FIELD_XLIST,   /* WCSPH's Verlet skin with solids: position when the main list's pairs were last computed (a
                     refresh or a rebuild); the solids move after it, and a restart computes them there (checkpoint.h) */
   FIELD_COUNT

@@ -26,12 +26,17 @@ struct _p_Solid {
   PetscReal     hourglass; /* total: hourglass-control coefficient alpha (Ganzenmueller 2015); 0 = off */
   PetscReal    *f0;        /* total: (dW/dr)/r of each pair of nl in the reference configuration (0: not neighbours there) */
   PetscInt      cap_ref;
-  PetscReal    *G0;        /* total: each owned solid's reference fit operator G (NB x NB, row-major; solid_total.c), in
-                              the order of gslot.  Recomputed at every SolidPrepare, so it is the solid's own and not a
-                              particle field, which every fluid particle, migration, checkpoint and the run guard's
-                              copy would carry (81 reals a particle in 3D) */
-  PetscInt     *gslot;     /* total: index into G0 of each owned particle (-1: not a solid) */
-  PetscInt      cap_G0, cap_gslot;
+  /* total: arrays over the solid particles only (solid_total.c), not particle fields, which every
+   * fluid particle, migration, checkpoint and the run guard's copy would carry (117 reals a particle
+   * in 3D).  Each is recomputed where it is used: G at every SolidPrepare, F and Q in every
+   * SolidRates. */
+  PetscInt     *slot;      /* each owned and ghost particle's index in them (-1: not a solid): owned solids
+                              0 .. nown - 1 in order, then the ghosts; set at every SolidPrepare */
+  PetscInt      nown, nslot, cap_slot;
+  PetscReal    *G0;        /* owned solids: the reference fit operator G (NB x NB, row-major) */
+  PetscReal    *Fd, *Qd;   /* owned and ghost solids: deformation gradient F (D x D) and dW/dA Q (D x NB), row-major */
+  PetscInt      cap_G0, cap_FQ;
+  PetscSF       sf_slot;   /* owners' slots to their ghosts' (HaloSlotSF) */
   PetscInt      npair_ref; /* total: number of reference-configuration pairs of the whole body, counted at the first SolidPrepare */
   Cells         nl;       /* neighbours of owned solids within 2 h + skin: valid while no solid moved skin / 2 */
   PetscReal     skin;     /* in units of dx */

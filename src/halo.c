@@ -274,6 +274,7 @@ PetscErrorCode HaloSlotSF(Halo h, Particles P, const PetscInt *slot, PetscInt no
 PetscErrorCode HaloRefreshSlots(Halo h, PetscSF sf, PetscInt nown, PetscInt na, const PetscInt width[], PetscReal *const a[])
 {
   PetscFunctionBeginUser;
+  for (PetscInt k = 0; k < na; k++) PetscCheck(width[k] >= 1 && width[k] <= HALO_MAX_WIDTH, h->comm, PETSC_ERR_ARG_OUTOFRANGE, "Halo refresh of %" PetscInt_FMT " reals a slot: raise HALO_MAX_WIDTH (%d)", width[k], HALO_MAX_WIDTH);
   for (PetscInt k = 0; k < na; k++) PetscCall(PetscSFBcastBegin(sf, h->unit[width[k]], a[k], a[k] + nown * width[k], MPI_REPLACE));
   for (PetscInt k = 0; k < na; k++) PetscCall(PetscSFBcastEnd(sf, h->unit[width[k]], a[k], a[k] + nown * width[k], MPI_REPLACE));
   PetscFunctionReturn(PETSC_SUCCESS);

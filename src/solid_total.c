@@ -141,10 +141,10 @@ static PetscErrorCode SolidSlots(Sim sim, const PetscInt D)
   }
   s->nslot = 0;
   for (PetscInt a = 0; a < nt; a++) {
-    if (a == P->n) s->nown = s->nslot;
     s->slot[a] = KindIsSolid(P->kind[a]) ? s->nslot++ : -1;
+    if (a == P->n - 1) s->nown = s->nslot; /* the owned come first */
   }
-  if (!P->ng) s->nown = s->nslot;
+  if (!P->n) s->nown = 0;
   if (s->nown > s->cap_G0) {
     PetscCall(PetscFree(s->G0));
     s->cap_G0 = (3 * s->nown) / 2 + 16;
@@ -310,16 +310,18 @@ SPH_INLINE PetscErrorCode DeformationAndStressD(Sim sim, const PetscInt D)
 
   PetscFunctionBeginUser;
   for (PetscInt a = 0; a < P->n; a++) {
-    PetscReal A[27], dxa = h[a] / sim->kernel.h_factor, W;
+    PetscReal A[27], dxa = h[a] / sim->kernel.h_factor, W, *Fa, *Qa;
     if (!KindIsSolid(P->kind[a])) continue;
+    Fa = s->Fd + D * D * slot[a];
+    Qa = s->Qd + D * nb * slot[a];
     if (s->clamp_face && P->kind[a] == KIND_CLAMP) { /* a boundary: no strain, no energy */
-      for (PetscInt i = 0; i < D * D; i++) s->Fd[D * D * slot[a] + i] = i % (D + 1) == 0;
-      PetscCall(PetscArrayzero(s->Qd + D * nb * slot[a], D * nb));
+      for (PetscInt i = 0; i < D * D; i++) Fa[i] = i % (D + 1) == 0;
+      PetscCall(PetscArrayzero(Qa, D * nb));
       continue;
     }
     Fit(sim, a, A, D);
-    if (!ParticleEnergy(sm, s->G0 + nb * nb * slot[a], A, h[a], s->quadrature ? dxa * dxa / 24 : 0, s->Fd + D * D * slot[a], s->Qd + D * nb * slot[a], &W, D)) /* inverted: the run guard stops on the NaN and names the particle */
-      for (PetscInt q = 0; q < D * nb; q++) s->Qd[D * nb * slot[a] + q] = NAN;
+    if (!ParticleEnergy(sm, s->G0 + nb * nb * slot[a], A, h[a], s->quadrature ? dxa * dxa / 24 : 0, Fa, Qa, &W, D)) /* inverted: the run guard stops on the NaN and names the particle */
+      for (PetscInt q = 0; q < D * nb; q++) Qa[q] = NAN;
   }
   PetscCall(PetscLogStagePush(sim->stage[STAGE_HALO]));
   PetscCall(HaloRefreshSlots(sim->halo, s->sf_slot, s->nown, 2, width, FQ));

@@ -371,7 +371,7 @@ PetscErrorCode SceneWaterDepth(Sim sim, const SceneColumnKernel *ck, PetscInt n,
     if (!KindIsFluid(P->kind[a])) continue;
     for (PetscInt g = 0; g < n; g++) {
       PetscReal s = D == 3 ? PetscSqrtReal(PetscSqr(xg[H * g] - x[D * a]) + PetscSqr(xg[H * g + 1] - x[D * a + 1])) : xg[g] - x[D * a];
-      depth[g] += m[a] / rho[a] * ColumnKernel(ck, s, h[a]);
+      depth[g] += SceneFluidVolume(sim, m[a], rho[a]) * ColumnKernel(ck, s, h[a]);
     }
   }
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, depth, n, MPIU_REAL, MPI_SUM, sim->comm));

@@ -101,5 +101,12 @@ typedef struct {
 void SceneColumnKernelInit(Sim sim, SceneColumnKernel *ck);
 /* Depths at n gauges; xg holds each gauge's horizontal position (x in 2D, x,y in 3D) (collective). */
 PetscErrorCode SceneWaterDepth(Sim sim, const SceneColumnKernel *ck, PetscInt n, const PetscReal *xg, PetscReal *depth);
+/* A fluid particle's volume for the probes: m / rho in WCSPH.  ISPH's rho is rho* by summation
+ * (Eq. 17), which falls short within 2h of a free surface (to ~0.6 rho0 in a thin sheet), while an
+ * incompressible particle keeps the volume m / rho0. */
+static inline PetscReal SceneFluidVolume(Sim sim, PetscReal m, PetscReal rho)
+{
+  return m / (sim->fluid == FLUID_ISPH ? sim->fl.rho0 : rho);
+}
 /* Largest fluid speed (collective). */
 PetscErrorCode SceneMaxSpeed(Sim sim, PetscReal *vmax);

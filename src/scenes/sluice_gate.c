@@ -167,7 +167,7 @@ static PetscErrorCode Probe(Sim sim, PetscReal *vals)
   for (PetscInt a = 0; a < P->n; a++) {
     PetscReal V, xa = x[2 * a];
     if (!KindIsFluid(P->kind[a])) continue;
-    V = m[a] / rho[a];
+    V = SceneFluidVolume(sim, m[a], rho[a]);
     s[0] += V * v[2 * a] * BSpline1(xa - xc, dx);
     s[1] += V * BSpline1(xa - c->x_up, 2 * c->dxc);
     s[2] += V * BSpline1(xa - c->x_down, dx);

@@ -315,7 +315,7 @@ PetscErrorCode SceneProbePressure(Sim sim, const PetscReal x0[], PetscReal *pval
     w = KernelW(&sim->kernel, PetscSqrtReal(VDot(d, d, D)), h[a]);
     if (w <= 0) continue;
     gd = VDot(sim->g, d, D);
-    s[0] += w * (p[a] + rho[a] * gd);
+    s[0] += w * (p[a] + SceneFluidDensity(sim, rho[a]) * gd);
     s[1] += w;
   }
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, s, 2, MPIU_REAL, MPI_SUM, sim->comm));

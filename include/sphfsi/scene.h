@@ -86,7 +86,7 @@ PetscErrorCode SceneZonesSetUp(Sim sim, PetscReal dc, PetscReal *W, PetscReal *f
  * right wall of height top at x_end when right. */
 PetscErrorCode SceneAddZonedWater(Sim sim, PetscReal dc, PetscReal W, PetscReal fine, PetscReal H, PetscReal top, PetscInt rows, PetscReal x_end, PetscBool right);
 /* Shepard interpolation of the fluid pressure at a point, each neighbour's value carried to the
- * point hydrostatically: p(x0) = sum (p_b + rho_b g.(x0 - x_b)) W / sum W (collective). */
+ * point hydrostatically: p(x0) = sum (p_b + rho_b g.(x0 - x_b)) W / sum W, rho_b by SceneFluidDensity (collective). */
 PetscErrorCode SceneProbePressure(Sim sim, const PetscReal x0[], PetscReal *p);
 /* Level gauges: the water depth under a point, as the volume of fluid per unit length (2D) or area
  * (3D) on the vertical line through it, sum_b V_b W_col(s), with W_col(s) = int W(sqrt(s^2 + t^2)) dt
@@ -101,12 +101,16 @@ typedef struct {
 void SceneColumnKernelInit(Sim sim, SceneColumnKernel *ck);
 /* Depths at n gauges; xg holds each gauge's horizontal position (x in 2D, x,y in 3D) (collective). */
 PetscErrorCode SceneWaterDepth(Sim sim, const SceneColumnKernel *ck, PetscInt n, const PetscReal *xg, PetscReal *depth);
-/* A fluid particle's volume for the probes: m / rho in WCSPH.  ISPH's rho is rho* by summation
- * (Eq. 17), which falls short within 2h of a free surface (to ~0.6 rho0 in a thin sheet), while an
- * incompressible particle keeps the volume m / rho0. */
+/* A fluid particle's density and volume for the probes: rho and m / rho in WCSPH.  ISPH's rho is
+ * rho* by summation (Eq. 17), which falls short within 2h of a free surface (to ~0.6 rho0 in a thin
+ * sheet), while incompressible water keeps rho0 and the volume m / rho0. */
+static inline PetscReal SceneFluidDensity(Sim sim, PetscReal rho)
+{
+  return sim->fluid == FLUID_ISPH ? sim->fl.rho0 : rho;
+}
 static inline PetscReal SceneFluidVolume(Sim sim, PetscReal m, PetscReal rho)
 {
-  return m / (sim->fluid == FLUID_ISPH ? sim->fl.rho0 : rho);
+  return m / SceneFluidDensity(sim, rho);
 }
 /* Largest fluid speed (collective). */
 PetscErrorCode SceneMaxSpeed(Sim sim, PetscReal *vmax);

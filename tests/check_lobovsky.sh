@@ -49,6 +49,6 @@ python3 - "$OUT/isph_gauge" <<'PY'
 import csv, sys
 rows = list(csv.DictReader(open(sys.argv[1] + "/probes.csv")))
 dev = max(abs(float(r["H1"]) / 0.3 - 1) for r in rows)
-print(f"lobovsky (isph): gauge H1 in the still column, largest |h / H - 1| to t = 0.02 s: {100 * dev:.3f} % (bound 0.5 %), {len(rows)} samples")
+print(f"lobovsky: levels and arrivals within bounds (above); ISPH gauge H1 in the still column, largest |h / H - 1| to t = 0.02 s: {100 * dev:.3f} % (bound 0.5 %), {len(rows)} samples")
 assert len(rows) > 3 and dev < 0.005, "the ISPH level gauge does not read the column's depth"
 PY

@@ -140,11 +140,9 @@ static PetscErrorCode SolidSlots(Sim sim, const PetscInt D)
     PetscCall(PetscMalloc1(s->cap_slot, &s->slot));
   }
   s->nslot = 0;
-  for (PetscInt a = 0; a < nt; a++) {
-    s->slot[a] = KindIsSolid(P->kind[a]) ? s->nslot++ : -1;
-    if (a == P->n - 1) s->nown = s->nslot; /* the owned come first */
-  }
-  if (!P->n) s->nown = 0;
+  for (PetscInt a = 0; a < P->n; a++) s->slot[a] = KindIsSolid(P->kind[a]) ? s->nslot++ : -1;
+  s->nown = s->nslot; /* the owned first, then the ghosts */
+  for (PetscInt a = P->n; a < nt; a++) s->slot[a] = KindIsSolid(P->kind[a]) ? s->nslot++ : -1;
   if (s->nown > s->cap_G0) {
     PetscCall(PetscFree(s->G0));
     s->cap_G0 = (3 * s->nown) / 2 + 16;

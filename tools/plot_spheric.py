@@ -1,6 +1,7 @@
 #!/usr/bin/env python3
 """SPHERIC Test 2 (3D dam break onto a box): pressures P1, P3, P5, P7 on the box and water levels
-H1..H4 of spheric_test2 runs against Kleefsman et al. (2005).
+H1..H4 of spheric_test2 runs against Kleefsman et al. (2005); prints the errors as the scene defines
+them, and the depth ahead of the column against Ritter's dam-break solution.
 Usage: tools/plot_spheric.py PNG LABEL=OUTDIR [LABEL=OUTDIR ...]"""
 import csv, os, sys
 import numpy as np

@@ -22,16 +22,19 @@ import numpy as np
 
 OUT = sys.argv[1] if len(sys.argv) > 1 else "out/study"
 # scene: title, error key (absolute value taken), its description, display unit and scale, a
-# second error shown for information (key, short name[, its unit and scale]), and optionally the self-convergence of a
-# probe (probes.csv column, short name, display unit and scale): the rms difference of its curve
-# from the next coarser run of the same scheme, with the order of those differences
+# second error shown for information (key, short name[, its unit and scale]), and optionally the self-convergence of
+# probes (probes.csv column or tuple of columns, short name, display unit and scale), one table column each: the
+# rms difference of the probe's curve from the next coarser run of the same scheme (rms over the columns of a
+# tuple), with the order of those differences
 SCENES = {
     "dam_break": ("Dam break", "front_rel_err_rms", "surge front against Martin & Moyce 1952, rms relative error", "%", 100,
-                  ("height_rel_err_rms", "column height rms"), ("front_x", "front: change from the coarser run", "mm", 1e3)),
+                  ("height_rel_err_rms", "column height rms"), ("front_x", "front: change from the coarser run", "mm", 1e3),
+                  ("height_left", "column height: change", "mm", 1e3)),
     "dam_break_lobovsky": ("Dam break, Lobovsky et al. 2014", "levels_err_rms",
                            "water levels H1–H4 against Lobovsky et al. 2014 (H = 0.3 m) to t√(g/H) = 4, rms over the "
                            "four gauges of the rms |h − h_exp| / H", "% of H", 100,
-                           ("P1_peak_rel_err", "P1's first peak against the experiment's, relative", "%", 100)),
+                           ("P1_peak_rel_err", "P1's first peak against the experiment's, relative", "%", 100),
+                           (("H1", "H2", "H3", "H4"), "levels: change from the coarser run", "% of H", 100 / 0.3)),
     "taylor_green": ("Taylor–Green, Re 100", "l2_vel_err_final", "L2 velocity error at t_end, relative", "%", 100,
                      ("e_kin_rel_err_final", "E_kin")),
     "poiseuille": ("Poiseuille", "l2_vel_err_final", "L2 velocity error at t_end, relative (Morris et al. 1997)", "%", 100,
@@ -192,10 +195,10 @@ def main():
         md.append(f"## {title}\n\nError: {what} ({unit}). {head}.\n")
         strip_res = lambda o: re.sub(r" -(dx|plate_ny|dx_coarse) \S+", "", o)
         md.append("Schemes: " + "; ".join(f"{SCHEME[s]}: `{strip_res(o)}`" for s, o in opts.items()) + "\n")
-        sc_head = f" {selfc[0][1]} ({selfc[0][2]}) (order) |" if selfc else ""
+        sc_head = "".join(f" {c[1]} ({c[2]}) (order) |" for c in selfc)
         md.append(f"| scheme | resolution | dx (m) | particles | steps | wall s | elapsed s | CPU s | load | error ({unit}) | order | {n2} ({unit2}) |{sc_head}")
-        md.append("|---|---|---|---|---|---|---|---|---|---|---|---|" + ("---|" if selfc else ""))
-        prev, prev_curve = {}, {}
+        md.append("|---|---|---|---|---|---|---|---|---|---|---|---|" + "---|" * len(selfc))
+        prev, prev_curve = {}, [{} for _ in selfc]
         for r in runs:
             run = r["run"]
             load_s = f"{run['load_before']:.2f} → {run['load_after']:.2f}" if run else "–"
@@ -213,7 +216,7 @@ def main():
                 order = f"{math.log(p[1] / e) / math.log(p[0] / r['dx']):.2f}"
             if e: prev[r["scheme"]] = (r["dx"], e)
             e2 = err_of(r, k2)
-            sc_cell = (" " + self_convergence(scene, r, selfc[0], prev_curve) + " |") if selfc else ""
+            sc_cell = "".join(" " + self_convergence(scene, r, c, pc) + " |" for c, pc in zip(selfc, prev_curve))
             md.append(f"| {SCHEME[r['scheme']]} | {res_label(r['lab'])} | {s['dx']:.4g} | {r['particles0'] or s['particles']} | "
                       f"{s['steps']} | {s['wall_s']:.3g} | {el} | {cpu} | {load_s} | {'–' if e is None else f'{e * scale:.3g}'} | "
                       f"{order} | {'–' if e2 is None else f'{e2 * scale2:.3g}'} |{sc_cell}")
@@ -233,21 +236,23 @@ def main():
 
 
 def self_convergence(scene, r, spec, prev):
-    """The rms difference of probe column spec[0] from the same scheme's previous (coarser) run on 301
-    times over their common span, scaled to spec[3]; the order of successive differences. prev keeps
-    per scheme (dx, t, y, difference)."""
-    col, _, unit, scale = spec
+    """The rms difference of probe column spec[0] (or of the columns of a tuple, rms over them) from the
+    same scheme's previous (coarser) run on 301 times over their common span, scaled to spec[3]; the
+    order of successive differences. prev keeps per scheme (dx, t, y, difference)."""
+    cols, _, unit, scale = spec
+    cols = (cols,) if isinstance(cols, str) else cols
     f = f"{OUT}/{scene}/{r['name']}/probes.csv"
     if not os.path.exists(f): return "–"
     rows = [l.split(",") for l in open(f).read().splitlines()]
-    i = rows[0].index(col) if col in rows[0] else -1
-    if i < 0 or len(rows) < 3: return "–"
-    t = np.array([float(x[0]) for x in rows[1:]]); y = np.array([float(x[i]) for x in rows[1:]])
+    if any(c not in rows[0] for c in cols) or len(rows) < 3: return "–"
+    data = np.array([[float(v) for v in x] for x in rows[1:]])
+    t, y = data[:, 0], data[:, [rows[0].index(c) for c in cols]]
     p, cell = prev.get(r["scheme"]), "–"
     diff = None
     if p:
         tt = np.linspace(0, min(t[-1], p[1][-1]), 301)
-        diff = float(np.sqrt(np.mean((np.interp(tt, t, y) - np.interp(tt, p[1], p[2])) ** 2)))
+        d = [np.interp(tt, t, y[:, j]) - np.interp(tt, p[1], p[2][:, j]) for j in range(len(cols))]
+        diff = float(np.sqrt(np.mean(np.square(d))))
         cell = f"{diff * scale:.3g}"
         if p[3] and diff > 0 and p[0] != r["dx"]:
             cell += f" ({math.log(p[3] / diff) / math.log(p[0] / r['dx']):.2f})"

@@ -28,13 +28,13 @@ OUT = sys.argv[1] if len(sys.argv) > 1 else "out/study"
 # tuple), with the order of those differences
 SCENES = {
     "dam_break": ("Dam break", "front_rel_err_rms", "surge front against Martin & Moyce 1952, rms relative error", "%", 100,
-                  ("height_rel_err_rms", "column height rms"), ("front_x", "front: change from the coarser run", "mm", 1e3),
-                  ("height_left", "column height: change", "mm", 1e3)),
+                  ("height_rel_err_rms", "column height rms"), ("front_x", "front's change from the coarser run", "mm", 1e3),
+                  ("height_left", "column height's change", "mm", 1e3)),
     "dam_break_lobovsky": ("Dam break, Lobovsky et al. 2014", "levels_err_rms",
                            "water levels H1–H4 against Lobovsky et al. 2014 (H = 0.3 m) to t√(g/H) = 4, rms over the "
                            "four gauges of the rms |h − h_exp| / H", "% of H", 100,
                            ("P1_peak_rel_err", "P1's first peak against the experiment's, relative", "%", 100),
-                           (("H1", "H2", "H3", "H4"), "levels: change from the coarser run", "% of H", 100 / 0.3)),
+                           (("H1", "H2", "H3", "H4"), "levels' change from the coarser run", "% of H", 100 / 0.3)),
     "taylor_green": ("Taylor–Green, Re 100", "l2_vel_err_final", "L2 velocity error at t_end, relative", "%", 100,
                      ("e_kin_rel_err_final", "E_kin")),
     "poiseuille": ("Poiseuille", "l2_vel_err_final", "L2 velocity error at t_end, relative (Morris et al. 1997)", "%", 100,
@@ -198,7 +198,7 @@ def main():
         sc_head = "".join(f" {c[1]} ({c[2]}) (order) |" for c in selfc)
         md.append(f"| scheme | resolution | dx (m) | particles | steps | wall s | elapsed s | CPU s | load | error ({unit}) | order | {n2} ({unit2}) |{sc_head}")
         md.append("|---|---|---|---|---|---|---|---|---|---|---|---|" + "---|" * len(selfc))
-        prev, prev_curve = {}, [{} for _ in selfc]
+        prev, prev_curve, changes = {}, [{} for _ in selfc], {}
         for r in runs:
             run = r["run"]
             load_s = f"{run['load_before']:.2f} → {run['load_after']:.2f}" if run else "–"
@@ -217,11 +217,19 @@ def main():
             if e: prev[r["scheme"]] = (r["dx"], e)
             e2 = err_of(r, k2)
             sc_cell = "".join(" " + self_convergence(scene, r, c, pc) + " |" for c, pc in zip(selfc, prev_curve))
+            for c, pc in zip(selfc, prev_curve):
+                if pc[r["scheme"]][3] is not None: changes.setdefault((c[1], c[2], c[3], r["scheme"]), []).append(pc[r["scheme"]][3])
             md.append(f"| {SCHEME[r['scheme']]} | {res_label(r['lab'])} | {s['dx']:.4g} | {r['particles0'] or s['particles']} | "
                       f"{s['steps']} | {s['wall_s']:.3g} | {el} | {cpu} | {load_s} | {'–' if e is None else f'{e * scale:.3g}'} | "
                       f"{order} | {'–' if e2 is None else f'{e2 * scale2:.3g}'} |{sc_cell}")
         md.append("")
         md += [f"- {x}" for x in compare(scene, runs, key, unit, scale)]
+        for (name, u, sc, scheme), d in changes.items():
+            if len(d) < 2: continue
+            falls = all(y < x for x, y in zip(d, d[1:]))
+            md.append(f"- {SCHEME[scheme]}, {name}: {' → '.join(f'{x * sc:.3g}' for x in d)} {u}, "
+                      + ("falls at every refinement: the runs converge (self-convergence)." if falls
+                         else "does not fall at every refinement."))
         md.append("")
         plot(scene, title, runs, key, what, unit, scale)
         md.append(f"![{title}]({scene}.png)\n")

@@ -34,7 +34,7 @@ SCENES = {
                            "water levels H1–H4 against Lobovsky et al. 2014 (H = 0.3 m) to t√(g/H) = 4, rms over the "
                            "four gauges of the rms |h − h_exp| / H", "% of H", 100,
                            ("P1_peak_rel_err", "P1's first peak against the experiment's, relative", "%", 100),
-                           (("H1", "H2", "H3", "H4"), "levels' change from the coarser run", "% of H", 100 / 0.3)),
+                           (("H1", "H2", "H3", "H4"), "levels' change from the coarser run", "% of H", 100 / 0.3)),  # H = 0.3 m
     "taylor_green": ("Taylor–Green, Re 100", "l2_vel_err_final", "L2 velocity error at t_end, relative", "%", 100,
                      ("e_kin_rel_err_final", "E_kin")),
     "poiseuille": ("Poiseuille", "l2_vel_err_final", "L2 velocity error at t_end, relative (Morris et al. 1997)", "%", 100,
@@ -217,8 +217,9 @@ def main():
             if e: prev[r["scheme"]] = (r["dx"], e)
             e2 = err_of(r, k2)
             sc_cell = "".join(" " + self_convergence(scene, r, c, pc) + " |" for c, pc in zip(selfc, prev_curve))
-            for c, pc in zip(selfc, prev_curve):
-                if pc[r["scheme"]][3] is not None: changes.setdefault((c[1], c[2], c[3], r["scheme"]), []).append(pc[r["scheme"]][3])
+            for c, pc in zip(selfc, prev_curve):   # this run's change, for the line under the table
+                d = pc.get(r["scheme"], (None,) * 4)[3]
+                if d is not None: changes.setdefault((c[1], c[2], c[3], r["scheme"]), []).append(d)
             md.append(f"| {SCHEME[r['scheme']]} | {res_label(r['lab'])} | {s['dx']:.4g} | {r['particles0'] or s['particles']} | "
                       f"{s['steps']} | {s['wall_s']:.3g} | {el} | {cpu} | {load_s} | {'–' if e is None else f'{e * scale:.3g}'} | "
                       f"{order} | {'–' if e2 is None else f'{e2 * scale2:.3g}'} |{sc_cell}")

@@ -216,16 +216,18 @@ def main():
                 order = f"{math.log(p[1] / e) / math.log(p[0] / r['dx']):.2f}"
             if e: prev[r["scheme"]] = (r["dx"], e)
             e2 = err_of(r, k2)
-            sc_cell = "".join(" " + self_convergence(scene, r, c, pc) + " |" for c, pc in zip(selfc, prev_curve))
-            for c, pc in zip(selfc, prev_curve):   # this run's change, for the line under the table
-                d = pc.get(r["scheme"], (None,) * 4)[3]
-                if d is not None: changes.setdefault((c[1], c[2], c[3], r["scheme"]), []).append(d)
+            sc_cell = ""
+            for i, (c, pc) in enumerate(zip(selfc, prev_curve)):
+                cell, d = self_convergence(scene, r, c, pc)
+                sc_cell += f" {cell} |"
+                if d is not None: changes.setdefault((i, r["scheme"]), []).append(d)   # for the line under the table
             md.append(f"| {SCHEME[r['scheme']]} | {res_label(r['lab'])} | {s['dx']:.4g} | {r['particles0'] or s['particles']} | "
                       f"{s['steps']} | {s['wall_s']:.3g} | {el} | {cpu} | {load_s} | {'–' if e is None else f'{e * scale:.3g}'} | "
                       f"{order} | {'–' if e2 is None else f'{e2 * scale2:.3g}'} |{sc_cell}")
         md.append("")
         md += [f"- {x}" for x in compare(scene, runs, key, unit, scale)]
-        for (name, u, sc, scheme), d in changes.items():
+        for (i, scheme), d in changes.items():
+            _, name, u, sc = selfc[i]
             if len(d) < 2: continue
             falls = all(y < x for x, y in zip(d, d[1:]))
             md.append(f"- {SCHEME[scheme]}, {name}: {' → '.join(f'{x * sc:.3g}' for x in d)} {u}, "
@@ -247,13 +249,14 @@ def main():
 def self_convergence(scene, r, spec, prev):
     """The rms difference of probe column spec[0] (or of the columns of a tuple, rms over them) from the
     same scheme's previous (coarser) run on 301 times over their common span, scaled to spec[3]; the
-    order of successive differences. prev keeps per scheme (dx, t, y, difference)."""
+    order of successive differences. Returns the table cell and the difference (None for a scheme's
+    first run or a run without probes); prev keeps per scheme (dx, t, y, difference)."""
     cols, _, unit, scale = spec
     cols = (cols,) if isinstance(cols, str) else cols
     f = f"{OUT}/{scene}/{r['name']}/probes.csv"
-    if not os.path.exists(f): return "–"
+    if not os.path.exists(f): return "–", None
     rows = [l.split(",") for l in open(f).read().splitlines()]
-    if any(c not in rows[0] for c in cols) or len(rows) < 3: return "–"
+    if any(c not in rows[0] for c in cols) or len(rows) < 3: return "–", None
     data = np.array([[float(v) for v in x] for x in rows[1:]])
     t, y = data[:, 0], data[:, [rows[0].index(c) for c in cols]]
     p, cell = prev.get(r["scheme"]), "–"
@@ -266,7 +269,7 @@ def self_convergence(scene, r, spec, prev):
         if p[3] and diff > 0 and p[0] != r["dx"]:
             cell += f" ({math.log(p[3] / diff) / math.log(p[0] / r['dx']):.2f})"
     prev[r["scheme"]] = (r["dx"], t, y, diff)
-    return cell
+    return cell, diff
 
 
 def plot(scene, title, runs, key, what, unit, scale):

@@ -112,5 +112,13 @@ static inline PetscReal SceneFluidVolume(Sim sim, PetscReal m, PetscReal rho)
 {
   return m / SceneFluidDensity(sim, rho);
 }
+/* Water level at a wall: the fluid's volume in a strip of the given width along the wall over the
+ * width, each particle counted with this share of its volume, s its distance from the wall: its
+ * volume spread over a slab dx wide (cloud in cell), so that the level changes continuously as
+ * particles cross the strip's edge instead of by dx^2 / width (2D) at once. */
+static inline PetscReal SceneStripShare(PetscReal s, PetscReal width, PetscReal dx)
+{
+  return PetscClipInterval((width - s) / dx + 0.5, 0, 1);
+}
 /* Largest fluid speed (collective). */
 PetscErrorCode SceneMaxSpeed(Sim sim, PetscReal *vmax);

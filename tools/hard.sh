@@ -10,9 +10,10 @@
 #     mean floor pressure over t >= 5 s within 3 % of rho g H, its std <= 1 % of rho g H, max speed
 #     <= 0.01 sqrt(g H), max displacement by id between the first and last snapshot <= 1 dx; ISPH:
 #     no particle flagged free surface (dataset free_surface) more than 3 dx below the top row.
-#  2. dam_break_{wcsph,isph}[_shift]: cases/dam_break.opts at dx = a/40 (3200 fluid particles) to
-#     t = 0.65 s (t sqrt(g/H) = 6.0, H = 2a), with and without shifting (-wcsph_shift 1 /
-#     -isph_shift 1): completed, mass_rel_drift exactly 0 and the fluid count constant, no fluid
+#  2. dam_break_{wcsph,isph}, dam_break_wcsph_shift, dam_break_isph_noshift: cases/dam_break.opts at
+#     dx = a/40 (3200 fluid particles) to t = 0.65 s (t sqrt(g/H) = 6.0, H = 2a), with and without
+#     shifting (WCSPH: the case file's none and -wcsph_shift 1; ISPH: the case file's -isph_shift 1
+#     and -isph_shift 0): completed, mass_rel_drift exactly 0 and the fluid count constant, no fluid
 #     centre beyond a wall's inner face in any snapshot (every 0.05 s).  The tank is 1 m high: the
 #     run-up jet at the far wall and its splash rise above the default wall (3 column heights,
 #     0.34 m; an ISPH run at a/40 threw a particle over it at t = 0.40 s); this case is about the
@@ -42,7 +43,7 @@
 #
 # Environment:
 #   HARD_CASES    space-separated subset of: hydrostatic_wcsph hydrostatic_isph dam_break_wcsph
-#                 dam_break_wcsph_shift dam_break_isph dam_break_isph_shift taylor_green_re1000
+#                 dam_break_wcsph_shift dam_break_isph dam_break_isph_noshift taylor_green_re1000
 #                 plate_vf005 gate_soft gate_stiff dt_too_large (default: all)
 #   HARD_REUSE=1  do not run again what out/hard/RUN/hard_run.json says has run: only check
 #   NP            MPI ranks (2)
@@ -53,7 +54,7 @@ MPI="${MPIEXEC:-mpiexec} ${MPIEXEC_FLAGS:-} -n $NP"
 BIN=${BINDIR:-bin}
 OUT=${HARD_OUT:-out/hard}
 TMO=${HARD_TIMEOUT:-2400}
-ALL="hydrostatic_wcsph hydrostatic_isph dam_break_wcsph dam_break_wcsph_shift dam_break_isph dam_break_isph_shift taylor_green_re1000 plate_vf005 gate_soft gate_stiff dt_too_large taylor_green_l200 dam_break_isph_a100_rtol1e-4 dam_break_lobovsky_isph cantilever_large"
+ALL="hydrostatic_wcsph hydrostatic_isph dam_break_wcsph dam_break_wcsph_shift dam_break_isph dam_break_isph_noshift taylor_green_re1000 plate_vf005 gate_soft gate_stiff dt_too_large taylor_green_l200 dam_break_isph_a100_rtol1e-4 dam_break_lobovsky_isph cantilever_large"
 CASES=${HARD_CASES:-$ALL}
 for c in $CASES; do [[ " $ALL " == *" $c "* ]] || { echo "HARD_CASES: unknown case $c (cases: $ALL)" >&2; exit 2; }; done
 [ -x "$BIN/sphfsi" ] || { echo "run make hard (needs $BIN/sphfsi)" >&2; exit 1; }
@@ -100,7 +101,7 @@ done
 A=0.05715
 DB="-options_file cases/dam_break.opts -dx $(python3 -c "print(f'{$A/40:.9g}')") -tank_height 1.0 -t_end 0.65 -output_interval 0.05"
 has_wcsph_shift=$("$BIN/sphfsi" -case dam_break -help 2>/dev/null | grep -c -- "-wcsph_shift")
-for c in dam_break_wcsph dam_break_wcsph_shift dam_break_isph dam_break_isph_shift; do
+for c in dam_break_wcsph dam_break_wcsph_shift dam_break_isph dam_break_isph_noshift; do
   has $c || continue
   case $c in
     dam_break_wcsph) run $c -- $DB -fluid wcsph ;;
@@ -108,7 +109,7 @@ for c in dam_break_wcsph dam_break_wcsph_shift dam_break_isph dam_break_isph_shi
       if [ "$has_wcsph_shift" -gt 0 ]; then run $c -- $DB -fluid wcsph -wcsph_shift 1
       else skip $c "-wcsph_shift not available"; fi ;;
     dam_break_isph) run $c -- $DB -fluid isph ;;
-    dam_break_isph_shift) run $c -- $DB -fluid isph -isph_shift 1 ;;
+    dam_break_isph_noshift) run $c -- $DB -fluid isph -isph_shift 0 ;;
   esac
   check $c
 done

@@ -52,12 +52,10 @@ static PetscErrorCode Populate(Sim sim)
 }
 
 /* front_x: leading fluid particle + dx/2 (= a at t = 0).  height_left: the mean water depth within
- * w = a/10 of the wall behind the column (SceneStripShare), a fixed width whatever dx.  Martin &
- * Moyce read the bulk surface at the wall off photographs.  Before, this probe was the highest
- * particle within 1.5 dx of the wall: it jumped by ~1 mm from one sample to the next at every
- * resolution (3 dx at a/160), which hid the height's self-convergence; a depth gauge on the wall
- * face, whose kernel spans 2.6 dx, reads ISPH's 1 dx gap along the wall as half the depth
- * (docs/convergence.md).  Over a fixed width, an O(dx) gap is an O(dx) error. */
+ * w = a/10 of the wall behind the column (SceneStripShare), the bulk surface that Martin & Moyce
+ * read off photographs.  The width is fixed whatever dx, so that an O(dx) defect at the wall (a gap,
+ * a corner) is an O(dx) error; the highest particle near the wall scattered by ~1 mm at every
+ * resolution (docs/convergence.md). */
 static PetscErrorCode Probe(Sim sim, PetscReal *vals)
 {
   DamBreak        *c = (DamBreak *)sim->scene_ctx;

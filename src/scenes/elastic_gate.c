@@ -116,8 +116,8 @@ static PetscErrorCode Populate(Sim sim)
 
 /* tip_dx, tip_dy: mean displacement of the gate's bottom row; water_level: the fluid's volume in a
  * strip 4 dx wide at the back wall over the strip's width (SceneStripShare; a drop stuck to the wall
- * above the surface moves it by dx / 4 only); load_x: the water's horizontal force on the gate (N/m; mean over
- * the last step's solid sub-steps).  In 3D, per unit width of the slab. */
+ * above the surface moves it by dx / 4 only); load_x: the water's horizontal force on the gate
+ * (N/m; mean over the last step's solid sub-steps).  In 3D, per unit width of the slab. */
 static PetscErrorCode Probe(Sim sim, PetscReal *vals)
 {
   Gate      *c = (Gate *)sim->scene_ctx;

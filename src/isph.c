@@ -331,10 +331,12 @@ SPH_INLINE PetscErrorCode DriftD(Sim sim, const PetscInt D)
   PetscReal       *dv = NULL; /* velocity corrections of shifted particles, applied after the loop (2D) */
 
   PetscFunctionBeginUser;
-  PetscCall(PetscLogStagePush(sim->stage[STAGE_HALO]));
-  PetscCall(HaloRefresh(sim->halo, P, 1, vel));
-  PetscCall(PetscLogStagePop());
   if (s->shift > 0 && sim->fl.shift_correct) PetscCall(PetscCalloc1(D * P->n, &dv));
+  if (eps != 0 || dv) { /* only XSPH and the shift's velocity correction read the neighbours' v */
+    PetscCall(PetscLogStagePush(sim->stage[STAGE_HALO]));
+    PetscCall(HaloRefresh(sim->halo, P, 1, vel));
+    PetscCall(PetscLogStagePop());
+  }
   for (PetscInt a = 0; a < P->n; a++) {
     PetscReal sx[3] = {0, 0, 0}, c[3] = {0, 0, 0};
     PetscBool near_fs = PETSC_FALSE;

@@ -32,6 +32,8 @@
 #     case 3's bounds; dam_break_isph_a100_rtol1e-4: case 2 at a/100 with -ppe_ksp_rtol 1e-4 (a splashing
 #     particle went through the far wall there); dam_break_lobovsky_isph: cases/dam_break_lobovsky.opts
 #     with ISPH at H/40 to t sqrt(g/H) = 8, case 2's bounds (it faulted at the impact).
+#     dam_break_obstacle_isph: cases/dam_break_obstacle.opts with ISPH, its walls 2 m high, to t = 1 s:
+#     case 2's bounds, and no fluid centre inside the obstacle.
 #  8. (issue 25) cantilever_large: the total-Lagrangian solid (-solid_formulation total) as the elastic
 #     gate's plate (79 x 5 mm, rubber, 10 across) under a uniform load 25x the gate's water load
 #     (gravity 450 m/s^2), brought to rest by -solid_damping, to 0.4 s: at rest, the end turned past
@@ -44,7 +46,9 @@
 # Environment:
 #   HARD_CASES    space-separated subset of: hydrostatic_wcsph hydrostatic_isph dam_break_wcsph
 #                 dam_break_wcsph_shift dam_break_isph dam_break_isph_noshift taylor_green_re1000
-#                 plate_vf005 gate_soft gate_stiff dt_too_large (default: all)
+#                 plate_vf005 gate_soft gate_stiff dt_too_large taylor_green_l200
+#                 dam_break_isph_a100_rtol1e-4 dam_break_lobovsky_isph dam_break_obstacle_isph
+#                 cantilever_large (default: all)
 #   HARD_REUSE=1  do not run again what out/hard/RUN/hard_run.json says has run: only check
 #   NP            MPI ranks (2)
 #   MPIEXEC, MPIEXEC_FLAGS, BINDIR (bin), HARD_TIMEOUT (s per run, 2400), HARD_OUT (out/hard)
@@ -54,7 +58,7 @@ MPI="${MPIEXEC:-mpiexec} ${MPIEXEC_FLAGS:-} -n $NP"
 BIN=${BINDIR:-bin}
 OUT=${HARD_OUT:-out/hard}
 TMO=${HARD_TIMEOUT:-2400}
-ALL="hydrostatic_wcsph hydrostatic_isph dam_break_wcsph dam_break_wcsph_shift dam_break_isph dam_break_isph_noshift taylor_green_re1000 plate_vf005 gate_soft gate_stiff dt_too_large taylor_green_l200 dam_break_isph_a100_rtol1e-4 dam_break_lobovsky_isph cantilever_large"
+ALL="hydrostatic_wcsph hydrostatic_isph dam_break_wcsph dam_break_wcsph_shift dam_break_isph dam_break_isph_noshift taylor_green_re1000 plate_vf005 gate_soft gate_stiff dt_too_large taylor_green_l200 dam_break_isph_a100_rtol1e-4 dam_break_lobovsky_isph dam_break_obstacle_isph cantilever_large"
 CASES=${HARD_CASES:-$ALL}
 for c in $CASES; do [[ " $ALL " == *" $c "* ]] || { echo "HARD_CASES: unknown case $c (cases: $ALL)" >&2; exit 2; }; done
 [ -x "$BIN/sphfsi" ] || { echo "run make hard (needs $BIN/sphfsi)" >&2; exit 1; }
@@ -163,6 +167,10 @@ fi
 if has dam_break_lobovsky_isph; then
   run dam_break_lobovsky_isph -- -options_file cases/dam_break_lobovsky.opts -fluid isph -output_interval 0.05
   check dam_break_lobovsky_isph
+fi
+if has dam_break_obstacle_isph; then
+  run dam_break_obstacle_isph -- -options_file cases/dam_break_obstacle.opts -fluid isph -tank_1 0,0.584,0,2.0 -output_interval 0.05
+  check dam_break_obstacle_isph
 fi
 
 printf '{"ranks": %d, "commit": "%s", "date": "%s", "wall_s": %d, "reused": %s, "nproc": %s}\n' \

@@ -329,10 +329,19 @@ def wall_boxes(run):
 def obstacle_clearance(x, b, dx):
     """Signed distance of each centre x from the box b = (x0, y0, x1, y1), in dx (negative: inside)."""
     x0, y0, x1, y1 = b
-    out = np.hypot(np.maximum.reduce([x0 - x[:, 0], x[:, 0] - x1, 0 * x[:, 0]]),
-                   np.maximum.reduce([y0 - x[:, 1], x[:, 1] - y1, 0 * x[:, 1]]))
+    out = np.hypot(np.maximum(np.maximum(x0 - x[:, 0], x[:, 0] - x1), 0),
+                   np.maximum(np.maximum(y0 - x[:, 1], x[:, 1] - y1), 0))
     depth = np.minimum.reduce([x[:, 0] - x0, x1 - x[:, 0], x[:, 1] - y0, y1 - x[:, 1]])
     return np.where(out > 0, out, -depth) / dx
+
+
+def dam_break_scale(r):
+    """The column height H of a dam-break run and the t sqrt(g/H) it must reach."""
+    if r.summary.get("case") == "dam_break_lobovsky":
+        return DB_LOBOVSKY_H, DB_LOBOVSKY_TAU
+    if r.name.startswith("dam_break_obstacle"):
+        return DB_OBSTACLE_H, DB_OBSTACLE_TAU
+    return DB_H, DB_TAU
 
 
 def check_dam_break(runs):
@@ -362,8 +371,7 @@ def check_dam_break(runs):
         vmax = max(vmax, np.linalg.norm(d["v"][fl], axis=1).max())
     # a completed run reached its t_end, which need not fall on a snapshot
     tlast = r.summary["t_end"] if r.summary.get("status") == "completed" else snap(snaps[-1])["time"]
-    H, tau_min = (DB_LOBOVSKY_H, DB_LOBOVSKY_TAU) if r.summary.get("case") == "dam_break_lobovsky" else \
-        (DB_OBSTACLE_H, DB_OBSTACLE_TAU) if r.name.startswith("dam_break_obstacle") else (DB_H, DB_TAU)
+    H, tau_min = dam_break_scale(r)
     tau = tlast * math.sqrt(G / H)
     mass = r.summary["mass_rel_drift"]
     fails = []

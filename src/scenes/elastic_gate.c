@@ -115,14 +115,15 @@ static PetscErrorCode Populate(Sim sim)
 }
 
 /* tip_dx, tip_dy: mean displacement of the gate's bottom row; water_level: the fluid's volume in a
- * strip 4 dx wide at the back wall over the strip's width (SceneStripShare; a drop stuck to the wall
- * above the surface moves it by dx / 4 only); load_x: the water's horizontal force on the gate
- * (N/m; mean over the last step's solid sub-steps).  In 3D, per unit width of the slab. */
+ * strip 4 dx wide at the back wall over the strip's width, measured as the dam break's column height
+ * (SceneFluidVolume, SceneStripShare; a drop stuck to the wall above the surface moves it by dx / 4
+ * only); load_x: the water's horizontal force on the gate (N/m; mean over the last step's solid
+ * sub-steps).  In 3D, per unit width of the slab. */
 static PetscErrorCode Probe(Sim sim, PetscReal *vals)
 {
   Gate      *c = (Gate *)sim->scene_ctx;
   Particles  P = sim->P;
-  PetscReal *x = PField(P, FIELD_X), *x0 = PField(P, FIELD_X0), *m = PField(P, FIELD_M), s[4] = {0, 0, 0, 0}, strip = 4 * sim->dx;
+  PetscReal *x = PField(P, FIELD_X), *x0 = PField(P, FIELD_X0), *m = PField(P, FIELD_M), *rho = PField(P, FIELD_RHO), s[4] = {0, 0, 0, 0}, strip = 4 * sim->dx;
   PetscInt   D = sim->dim;
   PetscFunctionBeginUser;
   for (PetscInt a = 0; a < P->n; a++) {
@@ -131,7 +132,7 @@ static PetscErrorCode Probe(Sim sim, PetscReal *vals)
       s[1] += x[D * a + 1] - x0[D * a + 1];
       s[2] += 1;
     }
-    if (KindIsFluid(P->kind[a])) s[3] += m[a] / sim->fl.rho0 * SceneStripShare(x[D * a], strip, sim->dx);
+    if (KindIsFluid(P->kind[a])) s[3] += SceneFluidVolume(sim, m[a], rho[a]) * SceneStripShare(x[D * a], strip, sim->dx);
   }
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, s, 4, MPIU_REAL, MPI_SUM, sim->comm));
   vals[0] = s[2] > 0 ? s[0] / s[2] : 0;

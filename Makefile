@@ -18,7 +18,7 @@ ifdef PETSC_DIR
   CC           := $(PCC)
 else
   PETSC_CFLAGS := $(shell pkg-config --cflags PETSc 2>/dev/null) $(shell pkg-config --cflags hdf5-mpi 2>/dev/null || pkg-config --cflags hdf5 2>/dev/null)
-  PETSC_LIBS   := $(shell pkg-config --libs PETSc 2>/dev/null)
+  PETSC_LIBS   := $(shell pkg-config --libs PETSc 2>/dev/null) $(shell pkg-config --libs hdf5-mpi 2>/dev/null || pkg-config --libs hdf5 2>/dev/null)
   # hypre, when PETSc has it: src/csr_hypre.c builds hypre matrices itself
   PETSC_VARS   := $(shell pkg-config --variable=prefix PETSc 2>/dev/null)/lib/petsc/conf/petscvariables
   PETSC_CFLAGS += $(shell sed -n 's/^HYPRE_INCLUDE = //p' $(PETSC_VARS) 2>/dev/null)
@@ -101,7 +101,7 @@ deps:
 CASE ?= elastic_gate
 run: deps
 	@$(MAKE) --no-print-directory all
-	$(MPIEXEC) $(MPIEXEC_FLAGS) -n $(NP) $(BIN) -options_file cases/$(CASE).opts $(ARGS)
+	$(MPIEXEC) $(MPIEXEC_FLAGS) -n $(NP) $(BIN) -options_file cases/$(CASE).opts -overwrite $(ARGS)
 
 # The test suite on 2 MPI ranks; ends with 'N passed, N failed'.  SAN=1: the unit tests built with
 # AddressSanitizer + UndefinedBehaviorSanitizer (bin/san/).

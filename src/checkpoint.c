@@ -1,6 +1,7 @@
 #include <sphfsi/checkpoint.h>
 #include <sphfsi/guard.h>
 #include <sphfsi/io.h>
+#include <sphfsi/io_space.h>
 #include <sphfsi/scene.h>
 #include <sphfsi/refdata.h>
 #include <sphfsi/isph.h>
@@ -245,10 +246,18 @@ PetscErrorCode CheckpointSave(Sim sim)
 {
   SimState s;
   char     path[PETSC_MAX_PATH_LEN];
+  PetscReal bytes;
+  PetscBool ok;
   PetscFunctionBeginUser;
+  PetscCall(IOSpaceCheckpoint(sim, &bytes));
+  PetscCall(IOSpaceReserve(sim, "checkpoint.h5", bytes, &ok));
+  if (!ok) PetscFunctionReturn(PETSC_SUCCESS); /* the previous checkpoint stays */
   PetscCall(PetscSNPrintf(path, sizeof(path), "%s/checkpoint.h5", sim->outdir));
   PetscCall(StateView(sim, &s));
+  PetscCall(IOSpacePushWrite(path));
   PetscCall(CheckpointWrite(sim, &s, path));
+  PetscCall(IOSpacePopWrite());
+  if (sim->guard->state == GUARD_IO) PetscFunctionReturn(PETSC_SUCCESS); /* not renamed into place */
   sim->nckpt++;
   if (sim->ckpt_interval > 0)
     while (sim->next_ckpt <= sim->t + 1e-12 * sim->t_end) sim->next_ckpt += sim->ckpt_interval;
@@ -315,7 +324,7 @@ static PetscErrorCode CheckHeader(Sim sim, PetscViewer v, PetscInt *ranks, Petsc
  * is reported. */
 static PetscBool RunControl(const char *name)
 {
-  const char *exact[]  = {"-restart", "-t_end", "-max_steps", "-max_wall_time", "-checkpoint_interval", "-output_dir", "-output_interval", "-probe_interval", "-progress_every", "-dt", "-cfl", "-dt_min", "-unused_options", "-refdata_dir", "-help"};
+  const char *exact[]  = {"-restart", "-t_end", "-max_steps", "-max_wall_time", "-checkpoint_interval", "-output_dir", "-output_interval", "-probe_interval", "-progress_every", "-dt", "-cfl", "-dt_min", "-unused_options", "-refdata_dir", "-help", "-overwrite", "-max_memory"};
   const char *prefix[] = {"-log", "-info", "-malloc", "-options_", "-ppe_ksp_monitor", "-ppe_ksp_view", "-ppe_ksp_converged"};
   for (size_t k = 0; k < sizeof(exact) / sizeof(exact[0]); k++)
     if (!strcmp(name, exact[k])) return PETSC_TRUE;
@@ -499,6 +508,7 @@ PetscErrorCode CheckpointRestart(Sim sim)
     SwapPositions(sim->P, FIELD_XLIST);
   } else if (sim->skin > 0) PetscCall(CellsRefreshPairs(sim->cells, sim->P)); /* the main list's pairs now (-wcsph_skin) */
   if (sim->solid) PetscCall(CellsUpdatePairs(sim->solid->nl, sim->P)); /* solid pairs: their current kernel values */
+  sim->ckpt_t = sim->t; /* the state the last checkpoint holds (summary.json) */
   PetscCall(PetscPrintf(sim->comm, "sphfsi: restarted from %s (written on %d rank(s)) at step %" PetscInt_FMT ", t = %g\n", sim->restart, (int)ranks, sim->step, (double)sim->t));
   PetscFunctionReturn(PETSC_SUCCESS);
 }

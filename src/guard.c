@@ -1,17 +1,20 @@
 #include <sphfsi/guard.h>
 #include <sphfsi/options_used.h>
 #include <sphfsi/io.h>
+#include <sphfsi/io_space.h>
 #include <signal.h>
 #include <stdarg.h>
 
 /* The program's one global: the signal a handler saw (0: none).  A handler may do no more than set
  * a flag of this type; the time loop reads it at the end of each step and the ranks agree on it in
- * the step's reduction.  The same signal twice ends the process at once (a user who insists). */
+ * the step's reduction.  A second signal ends the process at once (a user who insists, or a launcher
+ * that will not wait): the last complete checkpoint stays, as a checkpoint is renamed into place only
+ * when whole, and summary.json already says the run was stopped (sim.c writes it first). */
 static volatile sig_atomic_t caught_signal = 0;
 
 static void OnSignal(int sig)
 {
-  if (caught_signal == sig) {
+  if (caught_signal) {
     signal(sig, SIG_DFL);
     raise(sig);
     return;
@@ -290,13 +293,50 @@ PetscErrorCode GuardStepEnd(Sim sim, PetscBool *progress)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+PetscErrorCode GuardIOFault(Sim sim, const char *fmt, ...)
+{
+  Guard   g = sim->guard;
+  va_list ap;
+  size_t  len;
+  PetscFunctionBeginUser;
+  if (g->state == GUARD_IO) PetscFunctionReturn(PETSC_SUCCESS);
+  va_start(ap, fmt);
+  PetscCall(PetscVSNPrintf(g->msg, sizeof(g->msg), fmt, &len, ap));
+  va_end(ap);
+  g->state = GUARD_IO;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode GuardCheckSetUp(Sim sim, const char *when)
+{
+  Guard g = sim->guard;
+  int   sig = (int)caught_signal;
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &sig, 1, MPI_INT, MPI_MAX, sim->comm));
+  if (!sig) PetscFunctionReturn(PETSC_SUCCESS);
+  g->state = GUARD_STOP;
+  PetscCall(PetscSNPrintf(g->msg, sizeof(g->msg), "received %s during set-up, %s", SignalName(sig), when));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode GuardAnnounceStop(Sim sim)
+{
+  PetscFunctionBeginUser;
+  PetscCall(PetscPrintf(sim->comm, "sphfsi: stopped at step %" PetscInt_FMT ", t = %g: %s.\n", sim->step, (double)sim->t, sim->guard->msg));
+  if (!sim->rank) fflush(PETSC_STDOUT); /* before a launcher's kill can take it */
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 PetscErrorCode GuardFinish(Sim sim)
 {
   Guard g = sim->guard;
   char  path[PETSC_MAX_PATH_LEN];
   PetscFunctionBeginUser;
-  if (g->state == GUARD_STOP) { /* SimRun wrote the checkpoint */
-    PetscCall(PetscPrintf(sim->comm, "sphfsi: stopped at step %" PetscInt_FMT ", t = %g: %s.\nsphfsi: checkpoint written to %s/checkpoint.h5: continue with the same options and -restart %s/checkpoint.h5 (exit status %d)\n", sim->step, (double)sim->t, g->msg, sim->outdir, sim->outdir, SIM_EXIT_STOPPED));
+  if (g->state == GUARD_IO) {
+    PetscCall(PetscFPrintf(sim->comm, PETSC_STDERR, "sphfsi: error: %s (exit status %d)\n", g->msg, SIM_EXIT_IO));
+    sim->exit_status = SIM_EXIT_IO;
+  } else if (g->state == GUARD_STOP) { /* SimRun announced the stop and wrote the checkpoint */
+    PetscCall(PetscPrintf(sim->comm, "sphfsi: checkpoint written to %s/checkpoint.h5: continue with -restart %s/checkpoint.h5 (its options are taken from it; options given override them) (exit status %d)\n", sim->outdir, sim->outdir, SIM_EXIT_STOPPED));
     sim->exit_status = SIM_EXIT_STOPPED;
   } else if (g->state == GUARD_FAULT) {
     PetscCall(PetscPrintf(sim->comm, "sphfsi: FAULT: %s\n", g->msg));
@@ -306,7 +346,19 @@ PetscErrorCode GuardFinish(Sim sim)
       PetscFunctionReturn(PETSC_SUCCESS);
     }
     PetscCall(PetscSNPrintf(path, sizeof(path), "%s/last_good.h5", sim->outdir));
+    {
+      PetscReal bytes;
+      PetscBool ok;
+      PetscCall(IOSpaceCheckpoint(sim, &bytes));
+      PetscCall(IOSpaceReserve(sim, "last_good.h5", bytes, &ok));
+      if (!ok) {
+        PetscCall(PetscFPrintf(sim->comm, PETSC_STDERR, "sphfsi: error: %s (exit status %d)\n", g->msg, SIM_EXIT_FAULT));
+        PetscFunctionReturn(PETSC_SUCCESS);
+      }
+    }
+    PetscCall(IOSpacePushWrite(path));
     PetscCall(CheckpointWrite(sim, &g->good, path));
+    PetscCall(IOSpacePopWrite());
     PetscCall(IOWriteXDMFOne(sim, "last_good.xmf", "last_good.h5", g->good.r[0], g->good.i[1]));
     PetscCall(PetscPrintf(sim->comm, "sphfsi: the last good state, step %" PetscInt_FMT " (t = %g), is in %s: a checkpoint with the datasets of a snapshot, to look at (last_good.xmf in ParaView) or to restart from with -restart %s and a smaller -dt or -cfl.  No NaN was written to any output file (exit status %d)\n", g->good.i[0], (double)g->good.r[0], path, path, SIM_EXIT_FAULT));
     sim->exit_status = SIM_EXIT_FAULT;

@@ -5,51 +5,21 @@
 #include <sphfsi/isph.h>
 #include <sphfsi/solid.h>
 #include <sphfsi/guard.h>
+#include <sphfsi/outdir.h>
+#include <sphfsi/io_space.h>
 #include <unistd.h>
 #include <petscviewerhdf5.h>
 #include <sys/stat.h>
 #include <errno.h>
 #include <sys/resource.h>
 
-/* mkdir -p on rank 0; every rank learns whether it worked, and checks that it sees the directory
- * too (on a cluster the output must be on a file system that every node shares).  The probe file
- * has a name of this run (no node can have it cached as absent), and a rank that does not see it
- * looks again for a few seconds (network file systems cache directory entries). */
-static PetscErrorCode MakeDir(Sim sim, const char *dir)
-{
-  int  msg[2] = {0, (int)getpid()}, blind = 0; /* error, name of the probe */
-  char probe[PETSC_MAX_PATH_LEN];
-  PetscFunctionBeginUser;
-  PetscCallMPI(MPI_Bcast(&msg[1], 1, MPI_INT, 0, sim->comm));
-  PetscCall(PetscSNPrintf(probe, sizeof(probe), "%s/.sphfsi_probe_%d", dir, msg[1]));
-  if (!sim->rank) {
-    char path[PETSC_MAX_PATH_LEN];
-    PetscCall(PetscStrncpy(path, dir, sizeof(path)));
-    for (char *p = path + 1; *p; p++)
-      if (*p == '/') { *p = 0; if (mkdir(path, 0775) && errno != EEXIST) msg[0] = errno; *p = '/'; }
-    if (mkdir(path, 0775) && errno != EEXIST) msg[0] = errno;
-    if (!msg[0]) {
-      FILE *f;
-      if (!(f = fopen(probe, "w"))) msg[0] = errno;
-      else fclose(f);
-    }
-  }
-  PetscCallMPI(MPI_Bcast(msg, 1, MPI_INT, 0, sim->comm));
-  PetscCheck(!msg[0], sim->comm, PETSC_ERR_FILE_OPEN, "Cannot create or write the output directory %s (%s): choose another -output_dir", dir, strerror(msg[0]));
-  for (int k = 0; sim->rank && k < 20 && access(probe, R_OK); k++) PetscCall(PetscSleep(0.25));
-  if (sim->rank && access(probe, R_OK)) blind = sim->rank;
-  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &blind, 1, MPI_INT, MPI_MAX, sim->comm));
-  if (!sim->rank) remove(probe);
-  PetscCheck(!blind, sim->comm, PETSC_ERR_FILE_OPEN, "Rank %d cannot see the output directory %s that rank 0 created: on a cluster, -output_dir must be on a file system that every node shares (give an absolute path there)", blind, dir);
-  PetscFunctionReturn(PETSC_SUCCESS);
-}
-
-/* A failure on rank 0 alone (files it writes) becomes an error on every rank, not a hang. */
+/* A failure on rank 0 alone (files it writes) becomes an I/O fault of every rank (io_space.h), not a
+ * hang: the run ends with one line and SIM_EXIT_IO. */
 static PetscErrorCode RootCheck(Sim sim, int err, const char *what)
 {
   PetscFunctionBeginUser;
   PetscCallMPI(MPI_Bcast(&err, 1, MPI_INT, 0, sim->comm));
-  PetscCheck(!err, sim->comm, PETSC_ERR_FILE_WRITE, "Rank 0 could not write %s in %s (%s)", what, sim->outdir, strerror(err));
+  if (err) PetscCall(GuardIOFault(sim, "%s writing %s/%s", strerror(err), sim->outdir, what));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -91,7 +61,7 @@ PetscErrorCode IOWriteProbes(Sim sim)
 PetscErrorCode IOSetUp(Sim sim)
 {
   PetscFunctionBeginUser;
-  PetscCall(MakeDir(sim, sim->outdir));
+  if (sim->restart[0]) PetscCall(OutDirTidyRestart(sim)); /* the snapshots past the checkpoint */
   PetscCall(IOWriteProbes(sim)); /* the header, or the restarted run's rows */
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -169,6 +139,7 @@ static PetscErrorCode WriteXDMF(Sim sim, const char *xmf, PetscInt n, const char
   for (PetscInt s = 0; s < n; s++) {
     char           h5[PETSC_MAX_PATH_LEN];
     const PetscInt N = (PetscInt)tN[2 * s + 1];
+    if (N < 0) continue; /* a snapshot of a restarted run that is not in this directory (outdir.c) */
     if (one) PetscCall(PetscStrncpy(h5, one, sizeof(h5)));
     else PetscCall(PetscSNPrintf(h5, sizeof(h5), "particles_%05" PetscInt_FMT ".h5", s));
     fprintf(f, "   <Grid Name=\"step%05d\" GridType=\"Uniform\">\n    <Time Value=\"%.9g\"/>\n", (int)s, (double)tN[2 * s]);
@@ -195,6 +166,13 @@ static PetscErrorCode WriteXDMF(Sim sim, const char *xmf, PetscInt n, const char
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+PetscErrorCode IOWriteXDMF(Sim sim)
+{
+  PetscFunctionBeginUser;
+  PetscCall(WriteXDMF(sim, "particles.xmf", sim->snap, NULL, sim->snaps));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 PetscErrorCode IOWriteXDMFOne(Sim sim, const char *xmf, const char *h5, PetscReal t, PetscInt N)
 {
   const PetscReal tN[2] = {t, (PetscReal)N};
@@ -206,11 +184,19 @@ PetscErrorCode IOWriteXDMFOne(Sim sim, const char *xmf, const char *h5, PetscRea
 PetscErrorCode IOSnapshot(Sim sim)
 {
   char path[PETSC_MAX_PATH_LEN];
+  PetscReal bytes;
+  PetscBool ok;
   PetscFunctionBeginUser;
+  PetscCall(PetscSNPrintf(path, sizeof(path), "particles_%05" PetscInt_FMT ".h5", sim->snap));
+  PetscCall(IOSpaceSnapshot(sim, &bytes));
+  PetscCall(IOSpaceReserve(sim, path, bytes, &ok));
+  if (!ok) PetscFunctionReturn(PETSC_SUCCESS);
   PetscCall(PetscLogStagePush(sim->stage[STAGE_OUTPUT]));
   if (!sim->isph) PetscCall(WCSPHPressure(sim)); /* pressure of the stored density */
   PetscCall(PetscSNPrintf(path, sizeof(path), "%s/particles_%05" PetscInt_FMT ".h5", sim->outdir, sim->snap));
+  PetscCall(IOSpacePushWrite(path));
   PetscCall(IOWriteParticles(sim, path));
+  PetscCall(IOSpacePopWrite());
   if (sim->snap >= sim->snap_cap) {
     PetscReal *t;
     sim->snap_cap = 2 * sim->snap_cap + 16;
@@ -329,10 +315,12 @@ PetscErrorCode IOSummary(Sim sim)
   if (!sim->rank) {
     fprintf(f, "{\n  \"version\": \"%s\",\n  \"commit\": \"%s\",\n", SphfsiVersion(), SphfsiCommit());
     fprintf(f, "  \"case\": \"%s\",\n  \"dim\": %d,\n  \"fluid\": \"%s\",\n  \"ranks\": %d,\n", sim->scene->name, (int)sim->dim, sim->has_fluid ? FluidSchemes[sim->fluid] : "none", sim->size);
-    JsonString(f, "status", !sim->guard->state ? "completed" : sim->guard->state == GUARD_STOP ? "stopped" : "fault");
+    JsonString(f, "status", (const char *[]){"completed", "stopped", "fault", "io_error"}[sim->guard->state]);
     if (sim->guard->state) JsonString(f, "message", sim->guard->msg);
     if (sim->restart[0]) JsonString(f, "restarted_from", sim->restart);
     fprintf(f, "  \"checkpoints\": %d,\n", (int)sim->nckpt);
+    if (sim->ckpt_t >= 0) JsonReal(f, "checkpoint_t", sim->ckpt_t); /* what checkpoint.h5 holds now */
+    else fprintf(f, "  \"checkpoint_t\": null,\n");
     fprintf(f, "  \"particles\": %d,\n  \"steps\": %d,\n", (int)sim->nparticles, (int)sim->step);
     JsonReal(f, "t_end", sim->t);
     JsonReal(f, "dx", sim->dx);
@@ -354,7 +342,7 @@ PetscErrorCode IOSummary(Sim sim)
       if (sim->P->f[k].on) { fprintf(f, "%s\"%s\"", first ? "" : ", ", sim->P->f[k].name); first = 0; }
     fprintf(f, "],\n  \"errors\": {");
   }
-  if (sim->scene->errors) { /* collective; rank 0 writes through a memory stream, made valid JSON */
+  if (sim->scene->errors && sim->ready) { /* collective; rank 0 writes through a memory stream, made valid JSON */
     char  *buf = NULL;
     size_t len = 0;
     FILE  *mem = NULL;

@@ -1,11 +1,14 @@
 static const char help[] = "sphfsi: Smoothed Particle Hydrodynamics for fluid-structure interaction (ISPH/WCSPH fluid, hypo-elastic WCSPH solids).\n"
                            "Usage: mpiexec -n P bin/sphfsi -options_file cases/NAME.opts [-option value ...]   (bin/sphfsi -version: version and libraries)\n"
-                           "Exit status: 0 done; 2 bad input (one line on stderr says which option or file, and what is allowed); 3 stopped by a signal or -max_wall_time (checkpoint written: -restart it); 4 numerical fault (last good state written); other: internal error (PETSc's trace).\n\n";
+                           "Exit status: 0 done; 2 bad input (one line on stderr says which option or file, and what is allowed); 3 stopped by a signal or -max_wall_time (checkpoint written: -restart it); 4 numerical fault (last good state written); 5 output could not be written (disk full, quota; the last complete checkpoint is kept); other: internal error (PETSc's trace).\n\n";
 
 #include <sphfsi/sim.h>
 #include <sphfsi/guard.h>
 #include <sphfsi/version.h>
 #include <sphfsi/options_used.h>
+#include <sphfsi/outdir.h>
+#include <sphfsi/scene.h>
+#include <sphfsi/io.h>
 #include <stdio.h>
 #include <string.h>
 #include <stdlib.h>
@@ -141,7 +144,30 @@ static PetscErrorCode SetUp(Sim *sim)
   PetscCall(SimCreate(PETSC_COMM_WORLD, sim));
   PetscCall(SimSetFromOptions(*sim));
   PetscCall(SimSetUp(*sim));
-  PetscCall(CheckUnusedOptions(PETSC_COMM_WORLD, (*sim)->fluid));
+  if (!(*sim)->help && (*sim)->ready) PetscCall(CheckUnusedOptions(PETSC_COMM_WORLD, (*sim)->fluid));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* -help without a scene: PETSc printed the generic options; name the scenes, whose options -help
+ * lists once one is chosen. */
+static PetscBool HelpWithoutScene(void)
+{
+  PetscBool help = PETSC_FALSE, scene = PETSC_FALSE;
+  char      names[512];
+  if (PetscOptionsHasHelp(NULL, &help) || !help) return PETSC_FALSE;
+  if (PetscOptionsHasName(NULL, NULL, "-case", &scene) || scene) return PETSC_FALSE;
+  if (PetscOptionsHasName(NULL, NULL, "-restart", &scene) || scene) return PETSC_FALSE;
+  if (SceneListNames(names, sizeof(names))) return PETSC_FALSE;
+  (void)PetscPrintf(PETSC_COMM_WORLD, "\nsphfsi: -help with -case NAME (or -options_file cases/NAME.opts) lists every option of that case's modules with its value; NAME is one of: %s\n", names);
+  return PETSC_TRUE;
+}
+
+/* A stop requested while setting up: nothing was computed, nothing to checkpoint. */
+static PetscErrorCode StoppedInSetUp(Sim sim)
+{
+  PetscFunctionBeginUser;
+  PetscCall(PetscPrintf(sim->comm, "sphfsi: stopped: %s; nothing was computed, so no checkpoint was written: start the run again (exit status %d)\n", sim->guard->msg, SIM_EXIT_STOPPED));
+  PetscCall(IOSummary(sim));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -156,11 +182,29 @@ int main(int argc, char **argv)
       return 0;
     }
   if (CheckOptionsFiles(argc, argv)) return SIM_EXIT_BAD_INPUT;
+  for (int k = 1; k < argc; k++) /* --help as -help (PETSc knows the one dash) */
+    if (!strcmp(argv[k], "--help")) argv[k] = (char *)"-help";
   PetscCall(PetscInitialize(&argc, &argv, NULL, help));
   PetscCall(GuardInstallSignals());
+  if (HelpWithoutScene()) {
+    PetscCall(PetscFinalize());
+    return 0;
+  }
   PetscCall(PetscPushErrorHandler(SetUpErrorHandler, NULL));
   ierr = SetUp(&sim);
   PetscCall(PetscPopErrorHandler());
+  if (!ierr && sim->help) { /* listed while setting up: nothing to run */
+    PetscCall(SimDestroy(&sim));
+    PetscCall(PetscOptionsClear(NULL));
+    PetscCall(PetscFinalize());
+    return 0;
+  }
+  if (!ierr && !sim->ready) { /* a signal during set-up */
+    PetscCall(StoppedInSetUp(sim));
+    PetscCall(SimDestroy(&sim));
+    PetscCall(PetscFinalize());
+    return SIM_EXIT_STOPPED;
+  }
   if (!ierr) { /* OUTDIR/options_used: -options_file it to repeat the run */
     char header[256], chosen[512];
     PetscCall(PetscSNPrintf(header, sizeof(header), "sphfsi %s (commit %s): the options of this run, given, chosen and defaulted; -options_file this file repeats it (PETSc's own solver options not listed keep this PETSc version's defaults)", SphfsiVersion(), SphfsiCommit()));
@@ -173,6 +217,7 @@ int main(int argc, char **argv)
   }
   if (ierr && bad_input.quiet) { /* every rank has it: one line from rank 0, then a clean exit */
     PetscCall(PetscFPrintf(PETSC_COMM_WORLD, PETSC_STDERR, "sphfsi: error: %s\n", bad_input.message));
+    PetscCall(OutDirClose(sim)); /* the output directory's lock, if the run got that far */
     PetscCall(PetscOptionsClear(NULL)); /* no "options left" list at PetscFinalize */
     PetscCall(PetscFinalize());
     return SIM_EXIT_BAD_INPUT;

@@ -9,6 +9,7 @@
 #include <sphfsi/kernel.h>
 #include <sphfsi/checkpoint.h>
 #include <sphfsi/guard.h>
+#include <sphfsi/outdir.h>
 
 const char *const FluidSchemes[] = {"wcsph", "isph", "FluidScheme", "FLUID_", NULL};
 const char *const KernelTypes[]  = {"cubic", "wendland_c2", "wendland_c4", "KernelType", "KERNEL_", NULL};
@@ -30,6 +31,7 @@ PetscErrorCode SimCreate(MPI_Comm comm, Sim *sim)
   s->max_steps      = PETSC_MAX_INT;
   s->progress_every = 5;
   s->ckpt_step      = -1;
+  s->ckpt_t         = -1;
   s->fl.rho0        = 1000.0;
   s->fl.mu          = 1.0e-3;
   s->fl.eta         = 0.1; /* the paper's */
@@ -64,6 +66,7 @@ PetscErrorCode SimDestroy(Sim *sim)
   PetscFunctionBeginUser;
   if (!s) PetscFunctionReturn(PETSC_SUCCESS);
   if (s->scene && s->scene->destroy) PetscCall(s->scene->destroy(s));
+  PetscCall(OutDirClose(s));
   PetscCall(IOFinalize(s));
   PetscCall(ISPHDestroy(&s->isph));
   PetscCall(SolidDestroy(&s->solid));
@@ -86,6 +89,8 @@ PetscErrorCode SimSetFromOptions(Sim sim)
   PetscReal hfac;
 
   PetscFunctionBeginUser;
+  PetscCall(CheckpointInheritOptions(sim->comm)); /* -restart FILE alone: the scene and options of FILE */
+  PetscCall(PetscOptionsHasHelp(NULL, &sim->help));
   PetscCall(SceneListNames(names, sizeof(names)));
   PetscOptionsBegin(sim->comm, NULL, "sphfsi: SPH for fluid-structure interaction", "Sim");
   PetscCall(PetscOptionsString("-case", "Scene to run", "", name, name, sizeof(name), &set));
@@ -103,12 +108,13 @@ PetscErrorCode SimSetFromOptions(Sim sim)
   PetscCall(OptReal("-dt", "Fixed time step (s); 0 = adaptive", "", sim->dt_fixed, &sim->dt_fixed, NULL));
   PetscCall(OptReal("-cfl", "Courant number of the adaptive time step", "", sim->cfl, &sim->cfl, NULL));
   PetscCall(OptInt("-max_steps", "Stop after this many steps", "", sim->max_steps, &sim->max_steps, NULL));
-  PetscCall(PetscOptionsString("-output_dir", "Output directory (default out/CASE)", "", sim->outdir, sim->outdir, sizeof(sim->outdir), NULL));
+  PetscCall(PetscOptionsString("-output_dir", "Output directory (default out/CASE; with -restart, the checkpoint's directory)", "", sim->outdir, sim->outdir, sizeof(sim->outdir), NULL));
+  PetscCall(OptBool("-overwrite", "A new run into a directory that holds an earlier run's output removes that output (snapshots, probes, summary, checkpoints); without it the run refuses to start", "", sim->overwrite, &sim->overwrite, NULL));
   PetscCall(OptReal("-output_interval", "Snapshot interval in physical time (s); 0 = none", "", sim->out_interval, &sim->out_interval, NULL));
   PetscCall(OptReal("-probe_interval", "probes.csv row interval in physical time (s); 0 = every step", "", sim->probe_interval, &sim->probe_interval, NULL));
   PetscCall(OptInt("-progress_every", "Seconds of wall time between progress lines; 0 = none", "", sim->progress_every, &sim->progress_every, NULL));
   PetscCall(OptReal("-checkpoint_interval", "Checkpoint interval in physical time (s), OUTDIR/checkpoint.h5, also at the end; 0 = none (a stop by signal or -max_wall_time writes one anyway)", "", sim->ckpt_interval, &sim->ckpt_interval, NULL));
-  PetscCall(PetscOptionsString("-restart", "Continue the run of this checkpoint (OUTDIR/checkpoint.h5 or last_good.h5), with the options it was written with", "", sim->restart, sim->restart, sizeof(sim->restart), NULL));
+  PetscCall(PetscOptionsString("-restart", "Continue the run of this checkpoint (OUTDIR/checkpoint.h5 or last_good.h5): the scene and every option come from the checkpoint, options given now override them, output goes on in the checkpoint's directory", "", sim->restart, sim->restart, sizeof(sim->restart), NULL));
   PetscCall(PetscOptionsString("-refdata_dir", "Reference data for the errors in summary.json (default $SPHFSI_REFDATA, else PREFIX/share/sphfsi/refdata for an installed program, else ../shared/refdata)", "", sim->refdata_dir, sim->refdata_dir, sizeof(sim->refdata_dir), NULL));
   PetscOptionsEnd();
   sim->fluid = (FluidScheme)fluid;
@@ -124,8 +130,15 @@ PetscErrorCode SimSetFromOptions(Sim sim)
   PetscCheck(sim->out_interval >= 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-output_interval %g must be >= 0", (double)sim->out_interval);
   PetscCheck(sim->probe_interval >= 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-probe_interval %g must be >= 0", (double)sim->probe_interval);
   PetscCheck(sim->max_steps >= 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-max_steps must be >= 0");
+  PetscCheck(sim->progress_every >= 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-progress_every %" PetscInt_FMT " must be >= 0 (seconds of wall time between progress lines; 0 = none)", sim->progress_every);
   PetscCheck(sim->ckpt_interval >= 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-checkpoint_interval %g must be >= 0 (s of physical time; 0 = none)", (double)sim->ckpt_interval);
   PetscCall(GuardSetFromOptions(sim));
+  if (!sim->outdir[0] && sim->restart[0]) { /* the directory the checkpoint belongs to */
+    char *slash;
+    PetscCall(PetscStrncpy(sim->outdir, sim->restart, sizeof(sim->outdir)));
+    if ((slash = strrchr(sim->outdir, '/'))) *slash = 0;
+    else PetscCall(PetscStrncpy(sim->outdir, ".", sizeof(sim->outdir)));
+  }
   if (!sim->outdir[0]) PetscCall(PetscSNPrintf(sim->outdir, sizeof(sim->outdir), "out/%s", sim->scene->name));
   PetscCall(DecompSetFromOptions(sim->decomp));
   PetscFunctionReturn(PETSC_SUCCESS);
@@ -281,6 +294,34 @@ PetscErrorCode SimRebuildKeepPartition(Sim sim)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* -help: the options of the modules this run does not build as well (the other fluid scheme and
+ * its pressure solver, -ppe_*), and of the neighbour list, with their values.  The run stops after
+ * listing them (main.c), so what these set up is never used. */
+/* W is read in few places (wall state, ISPH's density and wall normals, XSPH), F in all: the list
+ * keeps F, and W is recomputed where read (the same bits; docs/performance.md item 15) */
+static PetscErrorCode NeighbourListOptions(Sim sim, PetscBool *store)
+{
+  PetscFunctionBeginUser;
+  *store = PETSC_FALSE;
+  PetscOptionsBegin(sim->comm, NULL, "Neighbour list", "Sim");
+  PetscCall(OptBool("-neighbour_store_w", "Keep each pair's kernel value W in the neighbour list (8 B a pair more) instead of recomputing it where it is read; the same results bit for bit", "", *store, store, NULL));
+  PetscOptionsEnd();
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+static PetscErrorCode HelpOtherModules(Sim sim)
+{
+  PetscBool store;
+  PetscFunctionBeginUser;
+  if (sim->has_fluid && sim->fluid == FLUID_ISPH) PetscCall(WCSPHSetUp(sim));
+  else if (sim->has_fluid) {
+    PetscCall(ISPHSetUp(sim));
+    PetscCall(ISPHDestroy(&sim->isph));
+  }
+  PetscCall(NeighbourListOptions(sim, &store));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 PetscErrorCode SimSetUp(Sim sim)
 {
   PetscFunctionBeginUser;
@@ -320,8 +361,15 @@ PetscErrorCode SimSetUp(Sim sim)
     if (sim->fluid == FLUID_ISPH) PetscCall(ISPHSetUp(sim));
     else PetscCall(WCSPHSetUp(sim));
   }
+  if (sim->help) PetscCall(HelpOtherModules(sim));
   PetscCall(ParticlesSetUp(sim->P));
+  if (sim->help) PetscFunctionReturn(PETSC_SUCCESS); /* listed: no particles, no output */
+  PetscCall(OutDirOpen(sim));
+  PetscCall(GuardCheckSetUp(sim, "before the particles were made"));
+  if (sim->guard->state) PetscFunctionReturn(PETSC_SUCCESS);
   PetscCall(sim->scene->populate(sim));
+  PetscCall(GuardCheckSetUp(sim, "after the particles were made"));
+  if (sim->guard->state) PetscFunctionReturn(PETSC_SUCCESS);
   PetscCall(ParticlesGlobalCount(sim->P, &sim->nparticles));
   if (sim->solid) { /* the solids' extent as built (a restart reads its state after this) */
     PetscReal dt_transit;
@@ -354,16 +402,15 @@ PetscErrorCode SimSetUp(Sim sim)
   PetscCall(DecompSetUp(sim->decomp, &sim->grid));
   PetscCall(CellsCreate(&sim->grid, &sim->kernel, &sim->cells));
   sim->cells->skin = sim->skin;
-  { /* W is read in few places (wall state, ISPH's density and wall normals, XSPH), F in all: the
-     * list keeps F, and W is recomputed where read (the same bits; docs/performance.md item 15) */
-    PetscBool store = PETSC_FALSE;
-    PetscOptionsBegin(sim->comm, NULL, "Neighbour list", "Sim");
-    PetscCall(OptBool("-neighbour_store_w", "Keep each pair's kernel value W in the neighbour list (8 B a pair more) instead of recomputing it where it is read; the same results bit for bit", "", store, &store, NULL));
-    PetscOptionsEnd();
+  {
+    PetscBool store;
+    PetscCall(NeighbourListOptions(sim, &store));
     sim->cells->drop_w = (PetscBool)!store;
   }
   sim->next_probe = sim->next_out = 0;
   sim->next_ckpt  = sim->ckpt_interval;
+  PetscCall(GuardCheckSetUp(sim, "before the neighbour lists were built"));
+  if (sim->guard->state) PetscFunctionReturn(PETSC_SUCCESS);
   if (sim->restart[0]) PetscCall(CheckpointRestart(sim)); /* the particles and state of the checkpoint */
   else {
     PetscCall(DecompPartition(sim->decomp, sim->P)); /* from the scene's round-robin spread, so no rank ever holds them all */
@@ -378,6 +425,7 @@ PetscErrorCode SimSetUp(Sim sim)
     }
   }
   PetscCall(IOSetUp(sim));
+  sim->ready = PETSC_TRUE;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -451,7 +499,9 @@ static PetscErrorCode Checkpoint(Sim sim)
   PetscFunctionBeginUser;
   if (sim->ckpt_step == sim->step) PetscFunctionReturn(PETSC_SUCCESS);
   PetscCall(CheckpointSave(sim));
+  if (sim->guard->state == GUARD_IO) PetscFunctionReturn(PETSC_SUCCESS);
   sim->ckpt_step = sim->step;
+  sim->ckpt_t    = sim->t;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -489,7 +539,16 @@ PetscErrorCode SimRun(Sim sim)
     shown = (PetscBool)(sim->progress_every && t1 - last >= sim->progress_every);
     PetscCall(GuardStepEnd(sim, &shown)); /* NaN/Inf, signals, wall time, progress: agreed */
     if (g->state == GUARD_FAULT) break;
+    if (g->state == GUARD_STOP) PetscCall(GuardAnnounceStop(sim));
     if (sim->t >= sim->next_probe - eps) PetscCall(IOProbes(sim));
+    if (g->state == GUARD_STOP) { /* what a launcher's kill may not leave time for: probes and summary first */
+      PetscCall(PetscTime(&t1));
+      sim->wall_loop = t1 - sim->wall_start;
+      PetscCall(IOWriteProbes(sim));
+      PetscCall(SimTotalMass(sim, &sim->mass));
+      PetscCall(IOSummary(sim));
+    }
+    PetscCall(OutDirBeat(sim));
     if (sim->out_interval > 0 && sim->t >= sim->next_out - eps) {
       PetscCall(IOSnapshot(sim));
       PetscCall(IOWriteProbes(sim));
@@ -498,7 +557,7 @@ PetscErrorCode SimRun(Sim sim)
       PetscCall(Checkpoint(sim));
       PetscCall(IOWriteProbes(sim));
     }
-    if (g->state == GUARD_STOP) break;
+    if (g->state == GUARD_STOP || g->state == GUARD_IO) break;
     if (shown) {
       last = t1;
       PetscCall(Progress(sim));
@@ -508,6 +567,7 @@ PetscErrorCode SimRun(Sim sim)
   PetscCall(PetscTime(&t1));
   sim->wall_loop = t1 - sim->wall_start;
   if (sim->progress_every) PetscCall(Progress(sim));
+  if (g->state == GUARD_STOP && getenv("SPHFSI_TEST_STOP_DELAY")) PetscCall(PetscSleep(atof(getenv("SPHFSI_TEST_STOP_DELAY")))); /* tests: a stop as slow as a large checkpoint's (tests/check_stop.sh) */
   if (g->state == GUARD_STOP || (!g->state && sim->ckpt_interval > 0)) PetscCall(Checkpoint(sim));
   PetscCall(GuardFinish(sim));
   if (sim->exit_status == SIM_EXIT_FAULT && sim->isph) PetscCall(PPEFaultHint(sim->isph->ppe));

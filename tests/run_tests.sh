@@ -12,7 +12,7 @@ if [ -z "${SPHFSI_REFDATA:-}" ] && [ ! -d ../shared/refdata ]; then
   origin=$(git config --get remote.origin.url 2>/dev/null || true)
   if [ -n "$origin" ] && [ -d "$origin/../shared/refdata" ]; then export SPHFSI_REFDATA=$(cd "$origin/../shared/refdata" && pwd); fi
 fi
-mkdir -p "$OUT"
+rm -rf "$OUT"; mkdir -p "$OUT" # a run refuses an output directory that holds an earlier run's output
 pass=0; fail=0; failed=()
 
 run() { # name, command...
@@ -110,6 +110,10 @@ if [ "${1:-}" != "--unit-only" ]; then
   L_BOUND=0.05 run water_on_plate_isph bash tests/check_water_on_plate.sh "$MPI" "$OUT/water_on_plate_isph" -fluid isph
   # Signals, -max_wall_time, faults, a rank failing at start (issue 8)
   run reliability bash tests/check_reliability.sh "$MPI" "$OUT/reliability"
+  # A batch job loses nothing (issue 45): stops at random moments through mpiexec, a stop slower than
+  # mpiexec's kill; a full disk, a damaged checkpoint, -restart alone, output directories, -help
+  run stop bash tests/check_stop.sh "$MPI" "$OUT/stop"
+  run batch_job bash tests/check_batch_job.sh "$MPI" "$OUT/batch_job"
   # Bad input: one line "sphfsi: error: ...", status 2, no crash
   run bad_input bash tests/check_bad_input.sh "$MPI" "$OUT/bad_input"
   # A user's path: quiet case files, options_used repeats a run, -version, the -ppe_ prefix

@@ -95,6 +95,7 @@ int main(int argc, char **argv)
   Sim      sim;
   PetscInt nsteps = 60, nrep;
   PetscCall(PetscInitialize(&argc, &argv, NULL, NULL));
+  PetscCall(PetscOptionsSetValue(NULL, "-overwrite", NULL)); /* a test reruns into its own output directories */
   PetscCall(PetscOptionsSetValue(NULL, "-case", "dam_break"));
   PetscCall(PetscOptionsSetValue(NULL, "-dx", "0.005"));
   PetscCall(PetscOptionsSetValue(NULL, "-rebalance_threshold", "1.0"));

@@ -14,6 +14,7 @@ int main(int argc, char **argv)
   const char *good = "out/test_fault/last_good.h5";
 
   PetscCall(PetscInitialize(&argc, &argv, NULL, NULL));
+  PetscCall(PetscOptionsSetValue(NULL, "-overwrite", NULL)); /* a test reruns into its own output directories */
   PetscCall(PetscOptionsSetValue(NULL, "-case", "dam_break"));
   PetscCall(PetscOptionsSetValue(NULL, "-dx", "0.004"));
   PetscCall(PetscOptionsSetValue(NULL, "-t_end", "0.05"));

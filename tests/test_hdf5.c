@@ -31,6 +31,7 @@ int main(int argc, char **argv)
   PetscInt    N, *seen, nfields = 0;
   const char *path = "out/test_hdf5/snap.h5";
   PetscCall(PetscInitialize(&argc, &argv, NULL, NULL));
+  PetscCall(PetscOptionsSetValue(NULL, "-overwrite", NULL)); /* a test reruns into its own output directories */
   PetscCall(PetscOptionsSetValue(NULL, "-case", "dam_break"));
   PetscCall(PetscOptionsSetValue(NULL, "-dx", "0.004"));
   PetscCall(PetscOptionsSetValue(NULL, "-output_dir", "out/test_hdf5"));

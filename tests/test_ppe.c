@@ -67,6 +67,7 @@ int main(int argc, char **argv)
   PetscScalar       *ff;
 
   PetscCall(PetscInitialize(&argc, &argv, NULL, NULL));
+  PetscCall(PetscOptionsSetValue(NULL, "-overwrite", NULL)); /* a test reruns into its own output directories */
   PetscCall(PetscOptionsSetValue(NULL, "-case", "hydrostatic"));
   PetscCall(PetscOptionsSetValue(NULL, "-fluid", "isph"));
   PetscCall(PetscOptionsSetValue(NULL, "-dx", "0.004"));

@@ -36,6 +36,7 @@ int main(int argc, char **argv)
   PetscInt    worst = -1, wcomp = 0; /* particle id and component (x, y, vx, vy, rho) of the largest difference */
   PetscBool   other;
   PetscCall(PetscInitialize(&argc, &argv, NULL, NULL));
+  PetscCall(PetscOptionsSetValue(NULL, "-overwrite", NULL)); /* a test reruns into its own output directories */
   PetscCall(PetscOptionsGetReal(NULL, NULL, "-tol", &tol, NULL));
   PetscCall(PetscOptionsGetReal(NULL, NULL, "-min_speed", &vmin, NULL)); /* the run must reach this speed (m/s) */
   PetscCallMPI(MPI_Comm_rank(PETSC_COMM_WORLD, &rank));

@@ -129,6 +129,7 @@ int main(int argc, char **argv)
   const char *ckw = "out/test_restart/world/checkpoint.h5", *cks = "out/test_restart/self/checkpoint.h5";
 
   PetscCall(PetscInitialize(&argc, &argv, NULL, NULL));
+  PetscCall(PetscOptionsSetValue(NULL, "-overwrite", NULL)); /* a test reruns into its own output directories */
   PetscCall(PetscOptionsGetReal(NULL, NULL, "-tol", &tol, NULL));
   PetscCall(PetscOptionsGetReal(NULL, NULL, "-tol_same", &tol_same, NULL));
   PetscCallMPI(MPI_Comm_rank(PETSC_COMM_WORLD, &rank));

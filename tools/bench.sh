@@ -47,7 +47,7 @@ run() {
   rm -rf $dir; mkdir -p $dir
   cut -d' ' -f1-3 /proc/loadavg > $dir/load_before
   local t0=$SECONDS
-  timeout $TMO $MPI -n $np $BIN/sphfsi "$@" -progress_every 0 -output_dir $dir -log_view :$dir/log_view.txt -memory_view > $OUT/$name.log 2>&1
+  timeout $TMO $MPI -n $np $BIN/sphfsi "$@" -overwrite -progress_every 0 -output_dir $dir -log_view :$dir/log_view.txt -memory_view > $OUT/$name.log 2>&1
   local rc=$?
   cut -d' ' -f1-3 /proc/loadavg > $dir/load_after
   echo "$name: $np rank(s), exit $rc, $((SECONDS - t0)) s, load $(cat $dir/load_before) -> $(cat $dir/load_after)" | tee -a $OUT/runs.txt >&2

@@ -29,7 +29,7 @@ run() { # NAME NP [sphfsi options...]
   local dir=$OUT/$name t0=$SECONDS
   rm -rf $dir; mkdir -p $dir
   cut -d' ' -f1-3 /proc/loadavg > $dir/load_before
-  timeout $TMO $MPI -n $np $BIN/sphfsi "$@" -progress_every 0 -output_dir $dir -log_view :$dir/log_view.txt > $OUT/$name.log 2>&1
+  timeout $TMO $MPI -n $np $BIN/sphfsi "$@" -overwrite -progress_every 0 -output_dir $dir -log_view :$dir/log_view.txt > $OUT/$name.log 2>&1
   local rc=$?
   cut -d' ' -f1-3 /proc/loadavg > $dir/load_after
   echo "$name: $np rank(s), exit $rc, $((SECONDS - t0)) s, load $(cat $dir/load_before) -> $(cat $dir/load_after)" | tee -a $OUT/runs3d.txt >&2

@@ -35,7 +35,7 @@ run() {
   local dir=$OUT/$name
   rm -rf $dir; mkdir -p $dir
   local t0=$SECONDS
-  timeout $TMO $MPI -n $NP bin/sphfsi -options_file cases/dam_break.opts -fluid isph -dx $dx \
+  timeout $TMO $MPI -n $NP bin/sphfsi -overwrite -options_file cases/dam_break.opts -fluid isph -dx $dx \
     -max_steps $STEPS -output_interval 0 -probe_interval 0 -progress_every 0 -output_dir $dir \
     -log_view :$dir/log_view.txt ${BENCH_ARGS:-} "$@" > $OUT/$name.log 2>&1
   local rc=$?

@@ -12,7 +12,7 @@ OUT=out/gate_bench/$NAME; rm -rf $OUT; mkdir -p $OUT
 MPI="${MPIEXEC:-mpiexec} ${MPIEXEC_FLAGS:-} -n ${NP:-2}"
 load() { cut -d' ' -f1 /proc/loadavg 2>/dev/null || echo "?"; }
 L0=$(load)
-$MPI bin/sphfsi -options_file "$CASE" -output_interval 0 -progress_every 30 -output_dir $OUT -log_view :$OUT/log_view.txt "$@" > $OUT/run.log 2>&1
+$MPI bin/sphfsi -overwrite -options_file "$CASE" -output_interval 0 -progress_every 30 -output_dir $OUT -log_view :$OUT/log_view.txt "$@" > $OUT/run.log 2>&1
 rc=$?
 L1=$(load)
 python3 - "$OUT" "$rc" "$L0" "$L1" "$CASE $*" <<'PY' | tee $OUT/report.md

@@ -17,7 +17,7 @@ NS=${*:-3 4 5 6}
         dx=$(python3 -c "print(f'{0.005/$n:.7f}')")
         d=$OUT/${fluid}_${form}_n$n
         case=cases/elastic_gate.opts; [ $fluid = wcsph ] && case=cases/elastic_gate_wcsph.opts
-        $MPI ${SPHFSI:-bin/sphfsi} -options_file $case -dx $dx -dx_coarse $dx -solid_formulation $form $([ $form = total ] && echo -solid_cfl 0.25) -output_interval 0 -progress_every 0 -output_dir $d > $d.log 2>&1 || { echo "| $fluid | $form | $n | failed: $d.log |"; continue; }
+        $MPI ${SPHFSI:-bin/sphfsi} -overwrite -options_file $case -dx $dx -dx_coarse $dx -solid_formulation $form $([ $form = total ] && echo -solid_cfl 0.25) -output_interval 0 -progress_every 0 -output_dir $d > $d.log 2>&1 || { echo "| $fluid | $form | $n | failed: $d.log |"; continue; }
         python3 -c "
 import json, csv; s = json.load(open('$d/summary.json')); e = s['errors']
 peak = max(float(r['tip_dx']) for r in csv.DictReader(open('$d/probes.csv')))

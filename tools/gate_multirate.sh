@@ -11,7 +11,7 @@ T=${1:-0.05}; DX=${2:-0.00125}
 OUT=out/gate_multirate; mkdir -p $OUT
 for f in isph wcsph; do
   for sc in 1 0; do
-    $MPI bin/sphfsi -options_file cases/elastic_gate.opts -fluid $f -dx $DX -dx_coarse $DX -t_end $T -probe_interval 0.001 \
+    $MPI bin/sphfsi -overwrite -options_file cases/elastic_gate.opts -fluid $f -dx $DX -dx_coarse $DX -t_end $T -probe_interval 0.001 \
       -output_interval 0 -progress_every 0 -solid_subcycle $sc -output_dir $OUT/${f}_sub$sc > $OUT/${f}_sub$sc.log 2>&1 \
       || { echo "run failed: $OUT/${f}_sub$sc.log" >&2; exit 1; }
   done

@@ -84,7 +84,7 @@ run() {
   rm -rf "$dir"; mkdir -p "$dir"
   local lb t0=$SECONDS rc
   lb=$(load)
-  timeout "$TMO" $MPI "$BIN/sphfsi" "$@" -progress_every 0 -output_dir "$dir" > "$dir/run.log" 2>&1
+  timeout "$TMO" $MPI "$BIN/sphfsi" "$@" -overwrite -progress_every 0 -output_dir "$dir" > "$dir/run.log" 2>&1
   rc=$?
   local la; la=$(load)
   printf '{"rc": %d, "wall_s": %d, "load_before": %s, "load_after": %s, "cmd": "%s"%s}\n' \

@@ -43,6 +43,10 @@ PetscErrorCode StateDestroy(SimState *s);
 PetscErrorCode CheckpointWrite(Sim sim, const SimState *s, const char *path);
 /* The run's regular checkpoint: OUTDIR/checkpoint.h5 from the live state. */
 PetscErrorCode CheckpointSave(Sim sim);
+/* Before the options are read (SimSetFromOptions): with -restart FILE, check that FILE is a whole
+ * checkpoint (one line naming what is wrong: missing, not HDF5, truncated, unreadable datasets) and
+ * add every option it was written with that the command line does not give (restart_file.c). */
+PetscErrorCode CheckpointInheritOptions(MPI_Comm comm);
 /* In SimSetUp, after the scene populated and the grid was set up: replace the particles and the
  * run's state by those of -restart FILE and rebuild as the run had.  Errors name what does not
  * match (scene, scheme, fields, dx, options). */

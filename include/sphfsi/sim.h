@@ -61,6 +61,11 @@ struct _p_Sim {
   PetscInt  step, max_steps;
   /* output */
   char      outdir[PETSC_MAX_PATH_LEN];
+  PetscBool overwrite;      /* -overwrite: a new run may replace an earlier run's output (outdir.h) */
+  PetscBool lock_held;      /* rank 0 holds OUTDIR/sphfsi.lock */
+  PetscLogDouble lock_beat; /* when the lock was last refreshed */
+  PetscBool help;           /* -help: list the options and stop before the particles are made */
+  PetscBool ready;          /* SimSetUp completed (a stop during set-up leaves it false) */
   PetscReal out_interval, next_out, probe_interval, next_probe;
   PetscInt  snap, progress_every;
   PetscReal *snaps;     /* (t, particles) of each snapshot: the outflow removes particles */
@@ -77,7 +82,8 @@ struct _p_Sim {
   char      restart[PETSC_MAX_PATH_LEN]; /* -restart FILE; empty: a fresh start */
   char      refdata_dir[PETSC_MAX_PATH_LEN];
   PetscReal ckpt_interval, next_ckpt;    /* physical time between checkpoints; 0 = none */
-  PetscInt  nckpt, ckpt_step;            /* checkpoints written by this run, step of the last */
+  PetscInt  nckpt, ckpt_step;            /* checkpoints written by this run, step of the last complete one */
+  PetscReal ckpt_t;                      /* time of the last complete checkpoint (-1: none) */
   Guard     guard;
   PetscInt  exit_status;                 /* 0, or SIM_EXIT_STOPPED / SIM_EXIT_FAULT (guard.h) */
   /* every probe row so far (t and the scene's columns; rank 0), rewritten to probes.csv */

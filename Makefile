@@ -70,12 +70,15 @@ $(BUILD)/%.o: %.c $(wildcard include/sphfsi/*.h)
 	@mkdir -p $(dir $@)
 	$(CC) $(CFLAGS) -c $< -o $@
 
-# The version (file VERSION) and the commit, for -version and summary.json: rewritten only when they change.
+# The version (file VERSION) and the commit, for -version and summary.json, and the absolute path of
+# the reference data of this source tree (REFDATA), so that the program finds them from any current
+# directory (the lookup order: src/refdata.c): rewritten only when they change.
+REFDATA ?= ../shared/refdata
 SPHFSI_VERSION := $(shell cat VERSION 2>/dev/null || echo unknown)
 SPHFSI_COMMIT  := $(shell git rev-parse --short HEAD 2>/dev/null || echo unknown)$(shell git rev-parse HEAD >/dev/null 2>&1 && ! git diff --quiet HEAD -- src include 2>/dev/null && echo +modified)
 $(BUILD)/sphfsi_build.h: FORCE
 	@mkdir -p $(BUILD)
-	@printf '#define SPHFSI_VERSION "%s"\n#define SPHFSI_COMMIT "%s"\n' '$(SPHFSI_VERSION)' '$(SPHFSI_COMMIT)' > $@.tmp
+	@printf '#define SPHFSI_VERSION "%s"\n#define SPHFSI_COMMIT "%s"\n#define SPHFSI_SOURCE_REFDATA "%s"\n' '$(SPHFSI_VERSION)' '$(SPHFSI_COMMIT)' '$(abspath $(REFDATA))' > $@.tmp
 	@if cmp -s $@.tmp $@; then rm -f $@.tmp; else mv $@.tmp $@; fi
 $(BUILD)/src/version.o: $(BUILD)/sphfsi_build.h
 $(BUILD)/src/version.o: CFLAGS += -I$(BUILD)
@@ -136,7 +139,6 @@ $(BINDIR)/partition_model: $(BUILD)/tools/partition_model.o $(BUILD)/libsphfsi.a
 # in PREFIX/share/sphfsi (cases/, tools/) and the reference data (REFDATA, ../shared/refdata) in
 # PREFIX/share/sphfsi/refdata, where the installed program finds it.
 PREFIX  ?= /usr/local
-REFDATA ?= ../shared/refdata
 SHARE   := $(DESTDIR)$(PREFIX)/share/sphfsi
 install: all
 	install -d $(DESTDIR)$(PREFIX)/bin $(SHARE)/cases/boxes $(SHARE)/tools $(SHARE)/refdata

@@ -357,8 +357,8 @@ PetscErrorCode IOSummary(Sim sim)
       free(buf);
     }
   }
-  if (!sim->rank) {
-    fprintf(f, "}\n}\n");
+  if (!sim->rank) { /* the reference files the errors above lacked (filled by the scene's errors) */
+    fprintf(f, "},\n  \"reference_missing\": [%s]\n}\n", sim->refdata_missing ? sim->refdata_missing : "");
     fclose(f);
     if (rename(tmp, path)) err = errno;
   }

@@ -1,5 +1,8 @@
 #include <sphfsi/refdata.h>
+#include <sphfsi/version.h>
 #include <unistd.h>
+
+#define REFDATA_MAX_DIRS 4
 
 PetscErrorCode SeriesAppend(Series *s, PetscReal t, PetscReal y)
 {
@@ -41,39 +44,99 @@ PetscReal SeriesAt(const Series *s, PetscReal t)
   return s->y[lo] + (s->y[hi] - s->y[lo]) * (t - s->t[lo]) / (s->t[hi] - s->t[lo]);
 }
 
-/* An installed program (make install) finds its data beside it: <prefix>/bin/sphfsi reads
- * <prefix>/share/sphfsi/refdata.  False when that folder does not exist (running from the source tree). */
-static PetscBool InstalledRefData(char *dir, size_t len)
+/* The folders a reference file is looked for in, so that a run finds it from any current directory
+ * (docs/options.md, -refdata_dir).  -refdata_dir DIR, else $SPHFSI_REFDATA, is the only one: the
+ * user chose it (*why names which).  Otherwise, in order (*why NULL):
+ *   PREFIX/share/sphfsi/refdata  an installed program (make install: <exe dir> is PREFIX/bin)
+ *   <exe dir>/refdata            a copy beside the program (bin/sphfsi and refdata/ copied elsewhere)
+ *   SphfsiSourceRefData()        the source tree's data ($(abspath $(REFDATA)) at build time)
+ *   ../shared/refdata            from the current directory (a checkout's root), the last resort
+ * <exe dir> comes from /proc/self/exe (absolute, no symbolic links, so its textual parent is
+ * PREFIX); a folder whose path would not fit is left out. */
+static PetscErrorCode RefDataDirs(Sim sim, char dirs[REFDATA_MAX_DIRS][PETSC_MAX_PATH_LEN], PetscInt *n, const char **why)
 {
-  char  exe[PETSC_MAX_PATH_LEN];
-  char *slash;
-  ssize_t n = readlink("/proc/self/exe", exe, sizeof(exe) - 1);
-  if (n <= 0) return PETSC_FALSE;
-  exe[n] = 0;
-  if (!(slash = strrchr(exe, '/'))) return PETSC_FALSE;
-  *slash = 0; /* <prefix>/bin */
-  if (snprintf(dir, len, "%s/../share/sphfsi/refdata", exe) >= (int)len) return PETSC_FALSE;
-  return (PetscBool)(access(dir, R_OK) == 0);
+  const char *env = getenv("SPHFSI_REFDATA");
+  char        exe[PETSC_MAX_PATH_LEN], *slash;
+  ssize_t     len;
+
+  PetscFunctionBeginUser;
+  *n   = 0;
+  *why = sim->refdata_dir[0] ? "-refdata_dir" : env && env[0] ? "$SPHFSI_REFDATA" : NULL;
+  if (*why) {
+    PetscCall(PetscStrncpy(dirs[(*n)++], sim->refdata_dir[0] ? sim->refdata_dir : env, PETSC_MAX_PATH_LEN));
+    PetscFunctionReturn(PETSC_SUCCESS);
+  }
+  len = readlink("/proc/self/exe", exe, sizeof(exe) - 1);
+  if (len > 0) {
+    char bin[PETSC_MAX_PATH_LEN];
+    exe[len] = 0;
+    if ((slash = strrchr(exe, '/'))) *slash = 0;
+    PetscCall(PetscStrncpy(bin, exe, sizeof(bin))); /* <exe dir> */
+    if ((slash = strrchr(exe, '/'))) *slash = 0;    /* PREFIX */
+    if (snprintf(dirs[*n], PETSC_MAX_PATH_LEN, "%s/share/sphfsi/refdata", exe) < PETSC_MAX_PATH_LEN) (*n)++;
+    if (snprintf(dirs[*n], PETSC_MAX_PATH_LEN, "%s/refdata", bin) < PETSC_MAX_PATH_LEN) (*n)++;
+  }
+  PetscCall(PetscStrncpy(dirs[(*n)++], SphfsiSourceRefData(), PETSC_MAX_PATH_LEN));
+  PetscCall(PetscStrncpy(dirs[(*n)++], "../shared/refdata", PETSC_MAX_PATH_LEN));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* Add FILE to sim->refdata_missing unless it is there; *added says whether it was new (a scene may
+ * read one file for several columns: one warning per file). */
+static PetscErrorCode NoteMissing(Sim sim, const char *file, PetscBool *added)
+{
+  char   item[PETSC_MAX_PATH_LEN], *list;
+  size_t old = sim->refdata_missing ? strlen(sim->refdata_missing) : 0, len;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscSNPrintf(item, sizeof(item), "\"%s\"", file));
+  *added = (PetscBool)!(old && strstr(sim->refdata_missing, item));
+  if (!*added) PetscFunctionReturn(PETSC_SUCCESS);
+  len = old + strlen(item) + 3;
+  PetscCall(PetscMalloc1(len, &list));
+  PetscCall(PetscSNPrintf(list, len, "%s%s%s", old ? sim->refdata_missing : "", old ? ", " : "", item));
+  PetscCall(PetscFree(sim->refdata_missing));
+  sim->refdata_missing = list;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode RefDataOpen(Sim sim, const char *file, FILE **f)
+{
+  char        dirs[REFDATA_MAX_DIRS][PETSC_MAX_PATH_LEN], path[PETSC_MAX_PATH_LEN];
+  const char *why;
+  PetscInt    n;
+  PetscBool   added = PETSC_FALSE;
+
+  PetscFunctionBeginUser;
+  *f = NULL;
+  if (sim->rank) PetscFunctionReturn(PETSC_SUCCESS);
+  PetscCall(RefDataDirs(sim, dirs, &n, &why));
+  for (PetscInt k = 0; k < n && !*f; k++)
+    if (snprintf(path, sizeof(path), "%s/%s", dirs[k], file) < (int)sizeof(path)) *f = fopen(path, "r");
+  if (*f) {
+    PetscCall(PetscInfo(NULL, "Reference %s\n", path));
+    PetscFunctionReturn(PETSC_SUCCESS);
+  }
+  PetscCall(NoteMissing(sim, file, &added));
+  if (!added) PetscFunctionReturn(PETSC_SUCCESS);
+  /* one line on stdout, from rank 0 alone (the others have returned): a batch log shows it */
+  PetscCall(PetscPrintf(PETSC_COMM_SELF, "sphfsi: warning: reference data %s not found in ", file));
+  for (PetscInt k = 0; k < n; k++) PetscCall(PetscPrintf(PETSC_COMM_SELF, "%s%s", k ? ", " : "", dirs[k]));
+  if (why) PetscCall(PetscPrintf(PETSC_COMM_SELF, " (%s): summary.json has no errors against it\n", why));
+  else PetscCall(PetscPrintf(PETSC_COMM_SELF, ": summary.json has no errors against it (-refdata_dir DIR or $SPHFSI_REFDATA names the folder)\n"));
+  PetscFunctionReturn(PETSC_SUCCESS);
 }
 
 PetscErrorCode RefDataLoad(Sim sim, const char *file, const char *xcol, const char *ycol, Series *ref, PetscBool *found)
 {
-  char        dir[PETSC_MAX_PATH_LEN] = "../shared/refdata", path[PETSC_MAX_PATH_LEN], line[4096];
-  const char *env = getenv("SPHFSI_REFDATA");
-  FILE       *f;
-  int         ix = -1, iy = -1;
+  char  line[4096];
+  FILE *f;
+  int   ix = -1, iy = -1;
 
   PetscFunctionBeginUser;
   *found = PETSC_FALSE;
-  if (sim->refdata_dir[0]) PetscCall(PetscStrncpy(dir, sim->refdata_dir, sizeof(dir))); /* -refdata_dir */
-  else if (env) PetscCall(PetscStrncpy(dir, env, sizeof(dir)));
-  else if (!InstalledRefData(dir, sizeof(dir))) PetscCall(PetscStrncpy(dir, "../shared/refdata", sizeof(dir)));
-  if (sim->rank) PetscFunctionReturn(PETSC_SUCCESS);
-  PetscCall(PetscSNPrintf(path, sizeof(path), "%s/%s", dir, file));
-  if (!(f = fopen(path, "r"))) {
-    PetscCall(PetscInfo(NULL, "Reference %s not found: no errors reported against it\n", path));
-    PetscFunctionReturn(PETSC_SUCCESS);
-  }
+  PetscCall(RefDataOpen(sim, file, &f));
+  if (!f) PetscFunctionReturn(PETSC_SUCCESS);
   while (fgets(line, sizeof(line), f)) {
     char *tok, *rest = line;
     int   col = 0;

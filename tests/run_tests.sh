@@ -118,6 +118,8 @@ if [ "${1:-}" != "--unit-only" ]; then
   run bad_input bash tests/check_bad_input.sh "$MPI" "$OUT/bad_input"
   # A user's path: quiet case files, options_used repeats a run, -version, the -ppe_ prefix
   run user_path bash tests/check_user_path.sh "$MPI" "$OUT/user_path"
+  # Reference data found from any current directory; a missing one warned about and listed in summary.json
+  run refdata bash tests/check_refdata.sh "$MPI" "$OUT/refdata"
   # A case without C: the built-in dam break and tank written as data (-case boxes) run bit for bit alike
   run boxes bash tests/check_boxes.sh "$MPI" "$OUT/boxes"
   # Three dimensions, the fluids: a 3D tank at rest, 1 and 2 ranks equal, restart equal, Taylor-Green in a cube

@@ -8,9 +8,11 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from refdata_csv import ref_path  # noqa: E402
+
 out = sys.argv[1] if len(sys.argv) > 1 else "out/dam_break"
 png = sys.argv[2] if len(sys.argv) > 2 else os.path.join(out, "dam_break.png")
-ref_dir = os.environ.get("SPHFSI_REFDATA", "../shared/refdata")
 a, g = 0.05715, 9.81
 
 snaps = sorted(glob.glob(os.path.join(out, "particles_*.h5")))
@@ -43,8 +45,8 @@ ax.plot(t * math.sqrt(2 * g / a), fx / a, label="sphfsi WCSPH")
 for name, lab, mk in [("martin_moyce1952_surge_n2eq2_a2.25in__pysph.csv", "Martin & Moyce 1952 (a = 2.25 in)", "o"),
                       ("martin_moyce1952_surge_n2eq2_a1.125in__pysph.csv", "Martin & Moyce 1952 (a = 1.125 in)", "s"),
                       ("koshizuka_oka1996_surge__pysph.csv", "Koshizuka & Oka 1996", "^")]:
-    path = os.path.join(ref_dir, name)
-    if os.path.exists(path):
+    path = ref_path(name, f"{lab} is not drawn")
+    if path:
         d = np.array([[float(v) for v in l.split(",")[:2]] for l in open(path) if l[:1].isdigit()])
         ax.plot(d[:, 0], d[:, 1], mk, ms=4, label=lab)
 ax.set_xlabel("T = t sqrt(2g/a)"); ax.set_ylabel("Z = front / a"); ax.set_xlim(0, max(3.5, t[-1] * math.sqrt(2 * g / a)))

@@ -1,19 +1,21 @@
 #!/usr/bin/env python3
 """Tip displacement of elastic-gate runs against the Antoci et al. (2007) experiment (both
 digitisations) and, for context, published numerical results (Antoci SPH, Yang SPH-FEM, Khayyer ISPH-SPH).
-   tools/plot_gate.py PNG OUTDIR [OUTDIR ...]     (reference data: $SPHFSI_REFDATA or ../shared/refdata)"""
+   tools/plot_gate.py PNG OUTDIR [OUTDIR ...]     (reference data: tools/refdata_csv.py)"""
 import csv, json, os, sys
 import matplotlib
 import numpy as np
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from refdata_csv import ref_path  # noqa: E402
+
 png, dirs = sys.argv[1], sys.argv[2:]
-ref = os.environ.get("SPHFSI_REFDATA", "../shared/refdata")
 
 def load(name, col):
-    path = os.path.join(ref, name)
-    if not os.path.exists(path):
+    path = ref_path(name, "its curve is not drawn")
+    if not path:
         return None
     rows = list(csv.DictReader(l for l in open(path) if not l.startswith("#")))
     return [float(r["t_s"]) for r in rows], [1000 * float(r[col]) for r in rows]

@@ -9,15 +9,17 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from refdata_csv import ref_path  # noqa: E402
+
 out = sys.argv[1] if len(sys.argv) > 1 else "out/sluice_gate"
 png = sys.argv[2] if len(sys.argv) > 2 else os.path.join(out, "sluice_gate.png")
-ref_dir = os.environ.get("SPHFSI_REFDATA", "../shared/refdata")
 g = 9.81
 
 # Cc of a sharp-edged vertical gate from the reference table (key-value CSV)
 Cc = 0.611
-path = os.path.join(ref_dir, "sluice_gate_reference_coefficients.csv")
-if os.path.exists(path):
+path = ref_path("sluice_gate_reference_coefficients.csv", f"Cc = {Cc} assumed")
+if path:
     for line in open(path):
         if line.startswith("Cc_sharp_edged_vertical_gate,"):
             Cc = float(line.split(",")[1])

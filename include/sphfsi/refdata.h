@@ -1,5 +1,5 @@
-/* Reference curves from ../shared/refdata (CSV with '#' comments) and time series of probes,
- * for the errors a scene reports in summary.json. */
+/* Reference curves from the reference data (CSV with '#' comments; where they are looked for:
+ * RefDataOpen) and time series of probes, for the errors a scene reports in summary.json. */
 #pragma once
 #include <sphfsi/sim.h>
 
@@ -18,8 +18,15 @@ PetscReal SeriesAt(const Series *s, PetscReal t);
 /* The largest value of a series for t in [t0, t1] and its time (-PETSC_MAX_REAL, 0 if none). */
 void SeriesPeak(const Series *s, PetscReal t0, PetscReal t1, PetscReal *v, PetscReal *t);
 
-/* Load columns xcol, ycol of FILE in the reference directory (-refdata_dir, $SPHFSI_REFDATA, or
- * ../shared/refdata). On rank 0 only; *found says whether the file was there. */
+/* Open FILE of the reference data for reading, on rank 0 (*f NULL on the others): from -refdata_dir,
+ * else $SPHFSI_REFDATA, else the first of PREFIX/share/sphfsi/refdata (installed), <exe dir>/refdata,
+ * the source tree's (REFDATA at build time) and ../shared/refdata from the current directory that
+ * holds it.  Not found: *f NULL, one warning line on stdout per file and the file in
+ * summary.json's reference_missing. */
+PetscErrorCode RefDataOpen(Sim sim, const char *file, FILE **f);
+
+/* Load columns xcol, ycol of FILE of the reference data (RefDataOpen). On rank 0 only; *found says
+ * whether the file was there with those columns. */
 PetscErrorCode RefDataLoad(Sim sim, const char *file, const char *xcol, const char *ycol, Series *ref, PetscBool *found);
 
 /* Relative errors |sim - ref| / |ref| at the reference points with ref.t in [t0, t1], where the

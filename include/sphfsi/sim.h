@@ -81,6 +81,7 @@ struct _p_Sim {
   /* checkpoint, restart, early stops and faults (checkpoint.h, guard.h) */
   char      restart[PETSC_MAX_PATH_LEN]; /* -restart FILE; empty: a fresh start */
   char      refdata_dir[PETSC_MAX_PATH_LEN];
+  char     *refdata_missing;             /* rank 0: reference files not found, "a.csv", "b.csv" (refdata.h) */
   PetscReal ckpt_interval, next_ckpt;    /* physical time between checkpoints; 0 = none */
   PetscInt  nckpt, ckpt_step;            /* checkpoints written by this run, step of the last complete one */
   PetscReal ckpt_t;                      /* time of the last complete checkpoint (-1: none) */

@@ -9,3 +9,7 @@ const char *SphfsiCommit(void);
 /* One line each: sphfsi's version and commit, then the libraries it runs on (PETSc, hypre, METIS,
  * HDF5, MPI).  Safe before MPI and PETSc are initialised (-version does not start them). */
 void SphfsiVersionPrint(FILE *f);
+
+/* The absolute path of the source tree's reference data at build time (Makefile: $(abspath
+ * $(REFDATA)), by default ../shared/refdata beside the checkout), one place src/refdata.c looks. */
+const char *SphfsiSourceRefData(void);

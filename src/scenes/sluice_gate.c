@@ -16,7 +16,7 @@
  *
  * Reference: free flow under a sharp-edged vertical gate (Henderson 1966; ISO 13550):
  *   q = Cd a sqrt(2 g h_up),  Cd = Cc / sqrt(1 + Cc a / h_up),  vena contracta depth Cc a,
- * with Cc read from ../shared/refdata/sluice_gate_reference_coefficients.csv.  The reservoir drains,
+ * with Cc read from the reference data's sluice_gate_reference_coefficients.csv.  The reservoir drains,
  * so the relation is applied quasi-steadily to q(t) and h_up(t) in a window after the start-up. */
 #include <sphfsi/scene.h>
 #include <sphfsi/options_used.h>
@@ -187,24 +187,20 @@ static PetscErrorCode Probe(Sim sim, PetscReal *vals)
  * everyone gets it; *found false leaves *Cc alone. */
 static PetscErrorCode LoadCc(Sim sim, PetscReal *Cc, PetscBool *found)
 {
-  char        dir[PETSC_MAX_PATH_LEN] = "../shared/refdata", path[PETSC_MAX_PATH_LEN], line[4096];
-  const char *env = getenv("SPHFSI_REFDATA"), *key = "Cc_sharp_edged_vertical_gate";
+  char        line[4096];
+  const char *file = "sluice_gate_reference_coefficients.csv", *key = "Cc_sharp_edged_vertical_gate";
   PetscReal   buf[2] = {0, 0};
   FILE       *f;
   PetscFunctionBeginUser;
-  if (env) PetscCall(PetscStrncpy(dir, env, sizeof(dir)));
-  PetscCall(PetscOptionsGetString(NULL, NULL, "-refdata_dir", dir, sizeof(dir), NULL));
-  if (!sim->rank) {
-    PetscCall(PetscSNPrintf(path, sizeof(path), "%s/sluice_gate_reference_coefficients.csv", dir));
-    if ((f = fopen(path, "r"))) {
-      while (fgets(line, sizeof(line), f)) {
-        size_t n = strlen(key);
-        if (!strncmp(line, key, n) && line[n] == ',') { buf[0] = atof(line + n + 1); buf[1] = 1; break; }
-      }
-      fclose(f);
+  PetscCall(RefDataOpen(sim, file, &f)); /* a missing file is reported there */
+  if (f) {
+    while (fgets(line, sizeof(line), f)) {
+      size_t n = strlen(key);
+      if (!strncmp(line, key, n) && line[n] == ',') { buf[0] = atof(line + n + 1); buf[1] = 1; break; }
     }
+    fclose(f);
     if (!(buf[1] > 0 && buf[0] > 0 && buf[0] < 1)) {
-      PetscCall(PetscInfo(NULL, "Reference %s (row %s) not found: the sluice-gate errors are not reported\n", path, key));
+      PetscCall(PetscInfo(NULL, "Reference %s has no valid row %s: the sluice-gate errors are not reported\n", file, key));
       buf[1] = 0;
     }
   }

@@ -105,10 +105,12 @@ static char *ReadOptions(const char *path)
   return s;
 }
 
-/* Options a restart never takes from its checkpoint: where it reads and writes, and one-off requests. */
+/* Options a restart never takes from its checkpoint: where it reads and writes, the limits of one job
+ * (-max_steps counts from the run's start, so the checkpoint's would end the restart at once), and
+ * one-off requests. */
 static PetscBool NotInherited(const char *name)
 {
-  const char *skip[] = {"-restart", "-output_dir", "-overwrite", "-help", "-version", "-options_file", "-options_file_yaml", "-max_memory"};
+  const char *skip[] = {"-restart", "-output_dir", "-overwrite", "-help", "-version", "-options_file", "-options_file_yaml", "-max_memory", "-max_steps", "-max_wall_time"};
   for (size_t k = 0; k < sizeof(skip) / sizeof(skip[0]); k++)
     if (!strcmp(name, skip[k])) return PETSC_TRUE;
   return PETSC_FALSE;

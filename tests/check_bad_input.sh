@@ -7,7 +7,7 @@ bad=0; n=0
 check() { # expected message fragment, arguments...: status 2 and the one line "sphfsi: error: ..."
   local want=$1; shift
   n=$((n + 1))
-  timeout 60 $MPI bin/sphfsi -output_dir "$OUT/run" -t_end 0.001 -progress_every 0 "$@" > "$OUT/case$n.log" 2>&1
+  timeout 60 $MPI bin/sphfsi -output_dir "$OUT/run" -overwrite -t_end 0.001 -progress_every 0 "$@" > "$OUT/case$n.log" 2>&1
   local rc=$?
   if [ $rc -ne 2 ] || [ "$(grep -c '^sphfsi: error: ' "$OUT/case$n.log")" -ne 1 ] || grep -q "PETSC ERROR\|MPI_ABORT\|Segmentation\|signal" "$OUT/case$n.log" || ! grep '^sphfsi: error: ' "$OUT/case$n.log" | grep -qi -- "$want"; then
     echo "bad input $n ($*): status $rc, expected status 2 and one line 'sphfsi: error: ...' with '$want'"; bad=$((bad + 1))
@@ -16,7 +16,7 @@ check() { # expected message fragment, arguments...: status 2 and the one line "
 fails() { # a run that fails (not bad input): non-zero status and the message, no crash
   local want=$1; shift
   n=$((n + 1))
-  timeout 60 $MPI bin/sphfsi -output_dir "$OUT/run" -t_end 0.001 -progress_every 0 "$@" > "$OUT/case$n.log" 2>&1
+  timeout 60 $MPI bin/sphfsi -output_dir "$OUT/run" -overwrite -t_end 0.001 -progress_every 0 "$@" > "$OUT/case$n.log" 2>&1
   local rc=$?
   if [ $rc -eq 0 ] || [ $rc -ge 124 ] || grep -q "Segmentation\|signal" "$OUT/case$n.log" || ! grep -qi -- "$want" "$OUT/case$n.log"; then
     echo "failing run $n ($*): status $rc, expected a message with '$want'"; bad=$((bad + 1))
@@ -61,7 +61,7 @@ check "-solid_order"          -case oscillating_plate -solid_order 3
 check "-solid_formulation"    -case oscillating_plate -solid_formulation eulerian
 # issue 8: restart, malformed values, conflicts, misspelt options
 timeout 60 $MPI bin/sphfsi -case hydrostatic -dx 0.01 -max_steps 2 -checkpoint_interval 1 -output_interval 1 -progress_every 0 -output_dir "$OUT/ckpt" > "$OUT/ckpt.log" 2>&1 || { echo "could not write the checkpoint the restart cases need"; exit 1; }
-check "Cannot open the restart file"   -case hydrostatic -dx 0.01 -restart "$OUT/no_such_checkpoint.h5"
+check "no_such_checkpoint.h5 cannot be opened (No such file"   -case hydrostatic -dx 0.01 -restart "$OUT/no_such_checkpoint.h5"
 check "is not an HDF5 file"            -case hydrostatic -dx 0.01 -restart "$OUT/ckpt.log"
 check "not an sphfsi checkpoint"       -case hydrostatic -dx 0.01 -restart "$OUT/ckpt/particles_00000.h5"
 check "checkpoint of scene hydrostatic, not of -case dam_break" -case dam_break -restart "$OUT/ckpt/checkpoint.h5"

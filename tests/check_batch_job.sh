@@ -10,6 +10,7 @@
 #  - output directories: a new run into an earlier run's refuses (status 2, one line) unless
 #    -overwrite, which leaves none of the earlier run's files; a second run into a directory in use
 #    stops (status 2); the lock of a killed run is taken over with a note;
+#  - a signal during set-up stops it (status 3, summary.json stopped) instead of waiting for step 1;
 #  - -help and --help list both fluids' and the pressure solver's options with their values and exit
 #    0 without running or writing; -progress_every -1 is bad input.
 #   tests/check_batch_job.sh "MPIEXEC -n P" OUTDIR
@@ -41,7 +42,7 @@ timeout 120 $MPI $BIN $RUN -output_dir "$OUT/ref" > "$OUT/ref.log" 2>&1 || fail 
 timeout 120 $MPI $BIN $RUN -max_steps 300 -checkpoint_interval 0.03 -output_dir "$OUT/cont" > "$OUT/cont.log" 2>&1 || fail "first half: status $?"
 xmf_exact "$OUT/cont" || fail "the first half's particles.xmf"
 mkdir -p "$OUT/elsewhere"
-(cd "$OUT/elsewhere" && timeout 120 $MPI $BIN -restart "$OUT/cont/checkpoint.h5" -max_steps 100000 > "$OUT/cont_restart.log" 2>&1) || fail "-restart alone: status $?: $(grep -m1 error "$OUT/cont_restart.log")"
+(cd "$OUT/elsewhere" && timeout 120 $MPI $BIN -restart "$OUT/cont/checkpoint.h5" > "$OUT/cont_restart.log" 2>&1) || fail "-restart alone: status $?: $(grep -m1 error "$OUT/cont_restart.log")"
 cmp -s "$OUT/ref/probes.csv" "$OUT/cont/probes.csv" || fail "-restart alone: probes.csv differs from the uninterrupted run's"
 xmf_exact "$OUT/cont" || fail "after -restart alone, particles.xmf"
 grep -q '"restarted_from"' "$OUT/cont/summary.json" || fail "-restart alone: no summary.json beside the checkpoint"
@@ -83,6 +84,17 @@ if [ "$(id -u)" = 0 ] && mkdir -p "$OUT/full" && mount -t tmpfs -o size=2m tmpfs
   full="status 5 at $(grep -o 'writing [^ ]*' "$OUT/full.log" | head -1 | sed 's|.*\/||'), checkpoint restartable"
 fi
 
+# 5. a signal during set-up (a 3D scene of ~0.9 M particles takes seconds to build): seen between its phases
+timeout 120 $MPI $BIN -options_file cases/spheric_test2.opts -dx 0.01 -progress_every 0 -output_dir "$OUT/setup" > "$OUT/setup.log" 2>&1 &
+job=$!
+for i in $(seq 1 600); do [ -e "$OUT/setup/sphfsi.lock" ] && break; sleep 0.05; done # the lock: set-up has begun, the handlers are in
+t0=$SECONDS
+kill -TERM "$(pgrep -P "$(pgrep -P $job | head -n 1)" | tail -n 1)"
+wait $job; rc=$?; setup_s=$((SECONDS - t0))
+[ $rc -eq 3 ] || fail "SIGTERM during set-up: status $rc, expected 3: $(tail -2 "$OUT/setup.log")"
+grep -q "^sphfsi: stopped: received SIGTERM during set-up" "$OUT/setup.log" || fail "SIGTERM during set-up: not seen in set-up: $(grep -m1 stopped "$OUT/setup.log")"
+grep -q '"status": "stopped"' "$OUT/setup/summary.json" || fail "SIGTERM during set-up: summary.json does not say stopped"
+
 # 6. -help
 timeout 60 $MPI $BIN -options_file cases/dam_break.opts -help -output_dir "$OUT/help" > "$OUT/help.log" 2>&1 || fail "-help: status $?"
 for o in -wcsph_shift -isph_shift -ppe_ksp_rtol -ppe_pc_type -alpha -column_width -overwrite; do grep -q "^  $o " "$OUT/help.log" || grep -q "^  $o:" "$OUT/help.log" || fail "-help does not list $o"; done
@@ -95,4 +107,4 @@ grep -q "NAME is one of: .*dam_break" "$OUT/help3.log" || fail "-help without a 
 timeout 60 $MPI $BIN $RUN -progress_every -1 -output_dir "$OUT/neg" > "$OUT/neg.log" 2>&1; rc=$?
 one_error "$OUT/neg.log" $rc 2 "-progress_every -1 must be >= 0"
 
-echo "batch_job: -restart alone from elsewhere continues beside its checkpoint (probes equal, xmf exact); reuse refused, -overwrite clean, a busy directory refused, a killed run's lock taken over; a truncated checkpoint and a snapshot refused in one line; full disk: $full; -help/--help list both fluids and -ppe_ and run nothing"
+echo "batch_job: -restart alone from elsewhere continues beside its checkpoint (probes equal, xmf exact); reuse refused, -overwrite clean, a busy directory refused, a killed run's lock taken over; a truncated checkpoint and a snapshot refused in one line; full disk: $full; SIGTERM in set-up stops it after ${setup_s} s; -help/--help list both fluids and -ppe_ and run nothing"

@@ -151,6 +151,23 @@ PetscErrorCode IOWriteParticles(Sim sim, const char *path)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* A grid's Polyvertex topology with its connectivity, the points' indices: ParaView's default
+ * reader (Xdmf3) makes no cell without one, and then draws nothing (the legacy reader numbers the
+ * points itself).  The ids are 0..next_id-1 (the scene hands them out in turn), so while no
+ * particle has left (N == next_id) the file's own `id` lists every point once, in some order; once
+ * the outflow has removed some, the indices 0..N-1 are written here as text (~6 bytes a particle). */
+static void WriteVertices(Sim sim, FILE *f, PetscInt N, const char *h5)
+{
+  fprintf(f, "    <Topology TopologyType=\"Polyvertex\" NumberOfElements=\"%d\" NodesPerElement=\"1\">\n", (int)N);
+  if (N == sim->next_id) fprintf(f, "     <DataItem Dimensions=\"%d\" NumberType=\"Int\" Precision=\"%d\" Format=\"HDF\">%s:/id</DataItem>\n", (int)N, (int)sizeof(PetscInt), h5);
+  else {
+    fprintf(f, "     <DataItem Dimensions=\"%d\" NumberType=\"Int\" Format=\"XML\">", (int)N);
+    for (PetscInt i = 0; i < N; i++) fprintf(f, i % 20 ? " %d" : "\n      %d", (int)i);
+    fprintf(f, "\n     </DataItem>\n");
+  }
+  fprintf(f, "    </Topology>\n");
+}
+
 /* OUTDIR/xmf: a temporal collection over n HDF5 files in OUTDIR (rewritten each time): the
  * snapshots particles_NNNNN.h5 (one = NULL), or the one file `one`; tN: (t, particles) per file. */
 static PetscErrorCode WriteXDMF(Sim sim, const char *xmf, PetscInt n, const char *one, const PetscReal *tN)
@@ -172,7 +189,7 @@ static PetscErrorCode WriteXDMF(Sim sim, const char *xmf, PetscInt n, const char
     if (one) PetscCall(PetscStrncpy(h5, one, sizeof(h5)));
     else PetscCall(PetscSNPrintf(h5, sizeof(h5), "particles_%05" PetscInt_FMT ".h5", s));
     fprintf(f, "   <Grid Name=\"step%05d\" GridType=\"Uniform\">\n    <Time Value=\"%.9g\"/>\n", (int)s, (double)tN[2 * s]);
-    fprintf(f, "    <Topology TopologyType=\"Polyvertex\" NumberOfElements=\"%d\"/>\n", (int)N);
+    WriteVertices(sim, f, N, h5);
     fprintf(f, "    <Geometry GeometryType=\"%s\">\n     <DataItem Dimensions=\"%d %d\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s:/x</DataItem>\n    </Geometry>\n", D == 3 ? "XYZ" : "XY", (int)N, (int)D, h5);
     fprintf(f, "    <Attribute Name=\"id\" Center=\"Node\"><DataItem Dimensions=\"%d\" NumberType=\"Int\" Precision=\"%d\" Format=\"HDF\">%s:/id</DataItem></Attribute>\n", (int)N, (int)sizeof(PetscInt), h5);
     fprintf(f, "    <Attribute Name=\"kind\" Center=\"Node\"><DataItem Dimensions=\"%d\" NumberType=\"Int\" Precision=\"%d\" Format=\"HDF\">%s:/kind</DataItem></Attribute>\n", (int)N, (int)sizeof(PetscInt), h5);

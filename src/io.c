@@ -109,6 +109,15 @@ PetscErrorCode IOWriteParticles(Sim sim, const char *path)
   PetscCall(PetscViewerHDF5Open(sim->comm, tmp, FILE_MODE_WRITE, &v));
   PetscCall(WriteInts(v, sim, "id", P->id));
   PetscCall(WriteInts(v, sim, "kind", P->kind));
+  if (sim->nparticles != sim->next_id) { /* ids no longer 0..N-1 (outflow): the points' indices for the XDMF's topology */
+    PetscInt *vertex, first = 0, n = P->n;
+    PetscCallMPI(MPI_Exscan(&n, &first, 1, MPIU_INT, MPI_SUM, sim->comm));
+    if (!sim->rank) first = 0;
+    PetscCall(PetscMalloc1(n, &vertex));
+    for (PetscInt i = 0; i < n; i++) vertex[i] = first + i;
+    PetscCall(WriteInts(v, sim, "vertex", vertex));
+    PetscCall(PetscFree(vertex));
+  }
   {
     const FieldId out[] = {FIELD_X, FIELD_V, FIELD_P, FIELD_RHO, FIELD_M, FIELD_H, FIELD_S, FIELD_FS};
     for (size_t k = 0; k < sizeof(out) / sizeof(out[0]); k++)
@@ -119,6 +128,24 @@ PetscErrorCode IOWriteParticles(Sim sim, const char *path)
   PetscCall(PetscViewerDestroy(&v));
   PetscCall(IORenameOnRoot(sim, tmp, path));
   PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* A grid's Polyvertex topology with its connectivity, the points' indices: ParaView's default
+ * reader (Xdmf3) makes no cell without one, and then draws nothing (the legacy reader numbers the
+ * points itself).  The ids are 0..next_id-1 (the scene hands them out in turn), so while no
+ * particle has left (N == next_id) the file's own `id` lists every point once, in some order; once
+ * the outflow has removed some, a snapshot carries the indices 0..N-1 as `vertex` (IOWriteParticles),
+ * and a single file (last_good.h5, a checkpoint) has them here as text (~6 bytes a particle, once). */
+static void WriteVertices(Sim sim, FILE *f, PetscInt N, const char *h5, PetscBool snapshot)
+{
+  fprintf(f, "    <Topology TopologyType=\"Polyvertex\" NumberOfElements=\"%d\" NodesPerElement=\"1\">\n", (int)N);
+  if (N == sim->next_id || snapshot) fprintf(f, "     <DataItem Dimensions=\"%d\" NumberType=\"Int\" Precision=\"%d\" Format=\"HDF\">%s:/%s</DataItem>\n", (int)N, (int)sizeof(PetscInt), h5, N == sim->next_id ? "id" : "vertex");
+  else {
+    fprintf(f, "     <DataItem Dimensions=\"%d\" NumberType=\"Int\" Format=\"XML\">", (int)N);
+    for (PetscInt i = 0; i < N; i++) fprintf(f, i % 20 ? " %d" : "\n      %d", (int)i);
+    fprintf(f, "\n     </DataItem>\n");
+  }
+  fprintf(f, "    </Topology>\n");
 }
 
 /* OUTDIR/xmf: a temporal collection over n HDF5 files in OUTDIR (rewritten each time): the
@@ -143,7 +170,7 @@ static PetscErrorCode WriteXDMF(Sim sim, const char *xmf, PetscInt n, const char
     if (one) PetscCall(PetscStrncpy(h5, one, sizeof(h5)));
     else PetscCall(PetscSNPrintf(h5, sizeof(h5), "particles_%05" PetscInt_FMT ".h5", s));
     fprintf(f, "   <Grid Name=\"step%05d\" GridType=\"Uniform\">\n    <Time Value=\"%.9g\"/>\n", (int)s, (double)tN[2 * s]);
-    fprintf(f, "    <Topology TopologyType=\"Polyvertex\" NumberOfElements=\"%d\"/>\n", (int)N);
+    WriteVertices(sim, f, N, h5, (PetscBool)!one);
     fprintf(f, "    <Geometry GeometryType=\"%s\">\n     <DataItem Dimensions=\"%d %d\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s:/x</DataItem>\n    </Geometry>\n", D == 3 ? "XYZ" : "XY", (int)N, (int)D, h5);
     fprintf(f, "    <Attribute Name=\"id\" Center=\"Node\"><DataItem Dimensions=\"%d\" NumberType=\"Int\" Precision=\"%d\" Format=\"HDF\">%s:/id</DataItem></Attribute>\n", (int)N, (int)sizeof(PetscInt), h5);
     fprintf(f, "    <Attribute Name=\"kind\" Center=\"Node\"><DataItem Dimensions=\"%d\" NumberType=\"Int\" Precision=\"%d\" Format=\"HDF\">%s:/kind</DataItem></Attribute>\n", (int)N, (int)sizeof(PetscInt), h5);

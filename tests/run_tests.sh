@@ -128,6 +128,8 @@ if [ "${1:-}" != "--unit-only" ]; then
   run three_d_solid bash tests/check_3d_solid.sh "$MPI" "$OUT/three_d_solid"
   # make install for users who do not run from the source tree
   run install bash tests/check_install.sh "$MPI" "$OUT/install"
+  # ParaView (optional: skipped without pvbatch) draws particles.xmf with its default reader and the legacy one
+  run paraview bash tests/check_paraview.sh "$MPI" "$OUT/paraview"
 fi
 
 [ ${#failed[@]} -gt 0 ] && echo "failed: ${failed[*]}"

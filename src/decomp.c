@@ -163,13 +163,18 @@ void DecompCellWork(const Grid *g, Particles P, PetscInt *wcount, PetscInt *scou
 
 PetscInt DecompKindCost(PetscInt kind) { return KindCost[kind]; }
 
-PetscErrorCode DecompPartition(Decomp d, Particles P)
+/* A new partition from the current particles.  METIS needs an occupied cell per rank: at set-up
+ * (setup) fewer are an input error on every rank, naming the most ranks that can run; later (a
+ * rebalance) the current partition is kept (*done false), since particles that gather in fewer cells
+ * than ranks are no reason to stop a run. */
+static PetscErrorCode Partition(Decomp d, Particles P, PetscBool setup, PetscBool *done)
 {
   const Grid *g  = d->grid;
   PetscInt    nc = GridNumCells(g), *gcount = NULL, *gscount = NULL, nsolid = 0;
-  PetscErrorCode ierr = PETSC_SUCCESS;
+  PetscInt    res[2] = {PETSC_SUCCESS, 0}; /* rank 0's METIS status, occupied cells */
 
   PetscFunctionBeginUser;
+  *done = PETSC_TRUE;
   PetscCall(PetscArrayzero(d->wcount, nc));
   PetscCall(PetscArrayzero(d->scount, nc));
   DecompCellWork(g, P, d->wcount, d->split_solids ? d->scount : NULL);
@@ -185,12 +190,27 @@ PetscErrorCode DecompPartition(Decomp d, Particles P)
   PetscCallMPI(MPI_Reduce(d->wcount, gcount, (PetscMPIInt)nc, MPIU_INT, MPI_SUM, 0, d->comm));
   if (nsolid) PetscCallMPI(MPI_Reduce(d->scount, gscount, (PetscMPIInt)nc, MPIU_INT, MPI_SUM, 0, d->comm));
   if (!d->rank) {
-    ierr = DecompPartitionCells(g, gcount, nsolid ? gscount : NULL, d->size, d->owner);
+    for (PetscInt c = 0; c < nc; c++) res[1] += gcount[c] > 0;
+    if (res[1] >= d->size) res[0] = DecompPartitionCells(g, gcount, nsolid ? gscount : NULL, d->size, d->owner);
     PetscCall(PetscFree2(gcount, gscount));
   }
-  PetscCallMPI(MPI_Bcast(&ierr, 1, MPI_INT, 0, d->comm));
-  PetscCheck(!ierr, d->comm, PETSC_ERR_LIB, "Partitioning the cell graph failed (see the message from rank 0)");
+  PetscCallMPI(MPI_Bcast(res, 2, MPIU_INT, 0, d->comm));
+  if (res[1] < d->size) {
+    PetscCheck(!setup, d->comm, PETSC_ERR_ARG_OUTOFRANGE, "%d ranks for %" PetscInt_FMT " cells that hold particles (of %" PetscInt_FMT " cells of %g m; each rank needs one): run on at most %" PetscInt_FMT " ranks, or with a smaller -dx", d->size, res[1], nc, (double)g->cs, res[1]);
+    PetscCall(PetscInfo(NULL, "%" PetscInt_FMT " occupied cells for %d ranks: the partition is kept\n", res[1], d->size));
+    *done = PETSC_FALSE;
+    PetscFunctionReturn(PETSC_SUCCESS);
+  }
+  PetscCheck(!res[0], d->comm, PETSC_ERR_LIB, "Partitioning the cell graph failed (see the message from rank 0)");
   PetscCallMPI(MPI_Bcast(d->owner, (PetscMPIInt)nc, MPI_INT, 0, d->comm));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode DecompPartition(Decomp d, Particles P)
+{
+  PetscBool done;
+  PetscFunctionBeginUser;
+  PetscCall(Partition(d, P, PETSC_TRUE, &done));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -362,10 +382,10 @@ PetscErrorCode DecompBalance(Decomp d, Particles P, PetscInt step, PetscBool *re
   d->imbalance_solid = wsum[1] ? (PetscReal)wmax[1] * d->size / wsum[1] : 1.0;
   if (d->imbalance <= d->threshold && d->imbalance_solid <= d->threshold) PetscFunctionReturn(PETSC_SUCCESS);
   PetscCall(PetscInfo(NULL, "Step %" PetscInt_FMT ": imbalance %.3f (solids %.3f) > %.3f, repartitioning\n", step, (double)d->imbalance, (double)d->imbalance_solid, (double)d->threshold));
-  PetscCall(DecompPartition(d, P));
+  PetscCall(Partition(d, P, PETSC_FALSE, repartitioned));
+  if (!*repartitioned) PetscFunctionReturn(PETSC_SUCCESS);
   PetscCall(DecompMigrate(d, P));
   d->nrepartition++;
-  *repartitioned = PETSC_TRUE;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

@@ -98,7 +98,7 @@ PetscErrorCode PPENumber(PPE ppe, Sim sim)
 {
   Particles     P = sim->P;
   PetscReal    *row = PField(P, FIELD_ROW), *fs = PField(P, FIELD_FS);
-  PetscInt      n = 0, cnt[2], nd = 0;
+  PetscInt      n = 0, cnt[3], nd = 0;
   const FieldId refresh[] = {FIELD_ROW};
 
   PetscFunctionBeginUser;
@@ -117,9 +117,9 @@ PetscErrorCode PPENumber(PPE ppe, Sim sim)
   ppe->nrow = n;
   PetscCallMPI(MPI_Scan(&n, &ppe->rstart, 1, MPIU_INT, MPI_SUM, ppe->comm));
   ppe->rstart -= n;
-  cnt[0] = n; cnt[1] = nd;
-  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, cnt, 2, MPIU_INT, MPI_SUM, ppe->comm));
-  ppe->nrow_global = cnt[0]; ppe->ndirichlet_global = cnt[1];
+  cnt[0] = n; cnt[1] = nd; cnt[2] = n == 0;
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, cnt, 3, MPIU_INT, MPI_SUM, ppe->comm));
+  ppe->nrow_global = cnt[0]; ppe->ndirichlet_global = cnt[1]; ppe->nempty = cnt[2];
   for (PetscInt r = 0; r < n; r++) row[ppe->rowpart[r]] = (PetscReal)(ppe->rstart + r);
   PetscCall(PetscLogStagePush(sim->stage[STAGE_HALO]));
   PetscCall(HaloRefresh(sim->halo, P, 1, refresh));
@@ -159,11 +159,15 @@ static inline PetscBool InPC(PPE ppe, Particles P, Cells C, const PetscReal *h, 
   return (PetscBool)((PetscAbsReal(C->f[k]) >= PetscAbsReal(fa)) | !KindIsFluid(P->kind[a]) | !KindIsFluid(P->kind[b]));
 }
 
-/* pc: the matrix the preconditioner is built from; with hypre's, in hypre's format (-ppe_mat_hypre) */
+/* pc: the matrix the preconditioner is built from; with hypre's, in hypre's format (-ppe_mat_hypre).
+ * Not while a rank owns no row: PETSc 3.18's MatCreateFromParCSR gives such a rank one local row
+ * (unless it is the last), which the solve then refuses ("Preconditioner number of local rows 1 does
+ * not equal input vector size 0"); hypre then copies the AIJ matrix: the same run bit for bit
+ * (csr_hypre.c, DiagonalFirst). */
 static PetscErrorCode CreateMatrix(PPE ppe, SplitCSR *S, PetscBool pc, Mat *A)
 {
   PetscFunctionBeginUser;
-  if (pc && ppe->mat_hypre) PetscCall(SplitCSRCreateHypreMat(S, ppe->comm, ppe->nrow_global, A));
+  if (pc && ppe->mat_hypre && !ppe->nempty) PetscCall(SplitCSRCreateHypreMat(S, ppe->comm, ppe->nrow_global, A));
   else PetscCall(SplitCSRCreateMat(S, ppe->comm, ppe->nrow_global, A));
   PetscCall(MatSetOption(*A, MAT_SYMMETRIC, ppe->symmetric));
   PetscCall(MatSetOption(*A, MAT_SYMMETRY_ETERNAL, PETSC_FALSE));
@@ -367,8 +371,8 @@ SPH_INLINE PetscErrorCode AssembleRowsD(PPE ppe, Sim sim, const PetscReal *src, 
     ppe->colsp[0] = ga;
     ppe->hyd[r]  = wall && diag != 0 ? hyd / diag : 0; /* P_a = mean_c(P_f) + hyd[r] */
     if (diag == 0) ppe->vals[0] = va / (rho0 * h[a] * h[a]); /* isolated free-surface particle */
-    if (dir) { nc = ncp = 1; bb[r] = 0; }
-    else bb[r] = -va * (wall ? hyd : src[a]);
+    if (dir) nc = ncp = 1;
+    bb[r] = IsDirichlet(fs, a) ? 0 : -va * (wall ? hyd : src[a]); /* the pinned row's own: PPEAssemble */
     /* Ap's diagonal: without the pairs left out; a row whose pairs were all far keeps A's */
     ppe->valsp[0] = dir || PetscAbsReal(diag - lumped) <= 1e-9 * PetscAbsReal(diag) ? ppe->vals[0] : -va * (diag - lumped);
     PetscCall(SplitCSRAppendRow(&ppe->csr, nc, ppe->cols, ppe->vals));
@@ -392,9 +396,19 @@ PetscErrorCode PPEAssemble(PPE ppe, Sim sim, const PetscReal *src)
   PetscCall(CreateMatrix(ppe, &ppe->csr, (PetscBool)!sparse, &ppe->A));
   if (sparse) PetscCall(CreateMatrix(ppe, &ppe->csrp, PETSC_TRUE, &ppe->Ap));
   if (ppe->pin >= 0) { /* no free surface: P is defined up to a constant; a right-hand side with a
-                        * zero sum makes the pinned row's dropped equation hold as well */
+                        * zero sum makes the pinned row's dropped equation hold as well.  The sum
+                        * takes that row's own right-hand side, set to 0 (P = 0) only after it: zeroed
+                        * before, the other rows missed its share and the pinned row kept minus the
+                        * mean (P != 0 there, though the other rows take it as 0); the answer then
+                        * depended on which particle is global row 0, and 1 and 2 ranks differed by
+                        * 9e-4 (Taylor-Green, dx 0.01) */
     if (!ppe->nullsp) PetscCall(MatNullSpaceCreate(ppe->comm, PETSC_TRUE, 0, NULL, &ppe->nullsp));
     PetscCall(MatNullSpaceRemove(ppe->nullsp, ppe->b));
+    if (ppe->pin >= ppe->rstart && ppe->pin < ppe->rstart + ppe->nrow) {
+      PetscCall(VecGetArray(ppe->b, &bb));
+      bb[ppe->pin - ppe->rstart] = 0;
+      PetscCall(VecRestoreArray(ppe->b, &bb));
+    }
   }
   PetscCall(PetscLogStagePop());
   PetscFunctionReturn(PETSC_SUCCESS);

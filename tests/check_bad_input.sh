@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Each bad input ends the run before the first step with status 2 and one line
 # "sphfsi: error: ..." naming the problem (no PETSc banner, no MPI_ABORT, no crash).
-MPI=$1; OUT=$2
+MPI=$1; OUT=$2; MPI8=${3:-} # MPI8: the launcher for 8 ranks (run_tests.sh)
 mkdir -p "$OUT"
 bad=0; n=0
 check() { # expected message fragment, arguments...: status 2 and the one line "sphfsi: error: ..."
@@ -44,6 +44,8 @@ check "-kernel"               -case dam_break -kernel gauss
 check "-isph_beta"            -case dam_break -fluid isph -isph_beta 1.5
 check "-isph_source"          -case dam_break -fluid isph -isph_source magic
 check "-isph_gradient_cond"   -case dam_break -fluid isph -isph_gradient_cond 1.5
+# more ranks than cells that hold particles (6 here): the largest rank count that can run
+[ -n "$MPI8" ] && MPI=$MPI8 check "at most 6 ranks" -case hydrostatic -dx 0.05
 fails "DIVERGED_ITS"          -case hydrostatic -fluid isph -dx 0.01 -ppe_ksp_max_it 1 -ppe_ksp_error_if_not_converged
 fails "DIVERGED_ITS"          -case hydrostatic -fluid isph -dx 0.01 -ppe_ksp_max_it 1
 check "-solid_K"              -case oscillating_plate -solid_K -1

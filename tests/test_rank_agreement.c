@@ -3,7 +3,8 @@
  * agreement is expected to be exact; the test allows round-off (-tol, default 1e-12 relative).
  * With -fluid isph the pressure comes from an iterative solve whose parallel preconditioner differs
  * between 1 and 2 ranks, so the runs agree to the solver tolerance: run with -ppe_ksp_rtol 1e-10 and
- * -tol 1e-6.  Another scene with -case NAME and its options.  Run on 2 ranks. */
+ * -tol 1e-6.  Another scene with -case NAME and its options.  Run on 2 ranks or more (tests/run_tests.sh:
+ * 2 and 8), where some ranks may own no fluid or no particle at all. */
 #include <sphfsi/sim.h>
 #include <sphfsi/scene.h>
 #include <sphfsi/guard.h>

@@ -36,7 +36,8 @@ PetscErrorCode DecompPartitionCells(const Grid *g, const PetscInt *count, const 
  * their solid and clamp particles to scount[cell]; the weight of one kind. */
 void     DecompCellWork(const Grid *g, Particles P, PetscInt *wcount, PetscInt *scount);
 PetscInt DecompKindCost(PetscInt kind);
-/* New cell ownership from the current particle distribution (collective). */
+/* New cell ownership from the current particle distribution (collective); at set-up: fewer occupied
+ * cells than ranks are an input error (PETSC_ERR_ARG_OUTOFRANGE) naming the most ranks that can run. */
 PetscErrorCode DecompPartition(Decomp d, Particles P);
 /* Send every owned particle to the owner of its cell; positions are wrapped in periodic directions.
  * A particle outside the domain is an error naming it. Drops ghosts. */
@@ -45,6 +46,6 @@ PetscErrorCode DecompMigrate(Decomp d, Particles P);
 PetscErrorCode DecompSortOwned(Decomp d, Particles P);
 /* Every check_every steps: measure the imbalance of work (particles weighted by kind, fluid and
  * solid 4, walls 1) and, with split_solids, of the solid particles; repartition + migrate when
- * either is past the threshold. */
+ * either is past the threshold (unless fewer cells than ranks are occupied: then the partition stays). */
 PetscErrorCode DecompBalance(Decomp d, Particles P, PetscInt step, PetscBool *repartitioned);
 PetscErrorCode DecompView(Decomp d, PetscViewer v);

@@ -35,6 +35,7 @@ struct _p_PPE {
   Vec          x, b;
   MatNullSpace nullsp;
   PetscInt     nrow, rstart, nrow_global, ndirichlet_global;
+  PetscInt     nempty;                          /* ranks that own no row this step (CreateMatrix) */
   PetscInt     pin;                             /* global row pinned to P = 0 when there is no Dirichlet row (no free surface); -1: none */
   PetscInt    *rowpart, cap_rows;               /* per local row: owned particle */
   PetscReal    pc_qmax;                         /* Ap leaves out pairs with r / h_ab > pc_qmax (0: Ap = A) */

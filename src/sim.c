@@ -9,6 +9,7 @@
 #include <sphfsi/kernel.h>
 #include <sphfsi/checkpoint.h>
 #include <sphfsi/guard.h>
+#include <sphfsi/size_guard.h>
 
 const char *const FluidSchemes[] = {"wcsph", "isph", "FluidScheme", "FLUID_", NULL};
 const char *const KernelTypes[]  = {"cubic", "wendland_c2", "wendland_c4", "KernelType", "KERNEL_", NULL};
@@ -73,6 +74,7 @@ PetscErrorCode SimDestroy(Sim *sim)
   PetscCall(ParticlesDestroy(&s->P));
   PetscCall(PetscFree(s->snaps));
   PetscCall(GuardDestroy(&s->guard));
+  PetscCall(SizeGuardDestroy(&s->size_guard));
   PetscCall(PetscFree(*sim));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -321,6 +323,7 @@ PetscErrorCode SimSetUp(Sim sim)
     else PetscCall(WCSPHSetUp(sim));
   }
   PetscCall(ParticlesSetUp(sim->P));
+  PetscCall(SizeGuardCheck(sim)); /* before the particles: a run too large for the memory stops here */
   PetscCall(sim->scene->populate(sim));
   PetscCall(ParticlesGlobalCount(sim->P, &sim->nparticles));
   if (sim->solid) { /* the solids' extent as built (a restart reads its state after this) */

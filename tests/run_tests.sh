@@ -112,6 +112,7 @@ if [ "${1:-}" != "--unit-only" ]; then
   run reliability bash tests/check_reliability.sh "$MPI" "$OUT/reliability"
   # Bad input: one line "sphfsi: error: ...", status 2, no crash
   run bad_input bash tests/check_bad_input.sh "$MPI" "$OUT/bad_input"
+  run size_guard bash tests/check_size_guard.sh "$MPI" "$OUT/size_guard"
   # A user's path: quiet case files, options_used repeats a run, -version, the -ppe_ prefix
   run user_path bash tests/check_user_path.sh "$MPI" "$OUT/user_path"
   # A case without C: the built-in dam break and tank written as data (-case boxes) run bit for bit alike

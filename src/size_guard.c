@@ -13,15 +13,15 @@
  * share of the pressure matrix and BoomerAMG) + its solid particles x the solid's own list and fits.
  * Pairs per particle: the lattice points in the kernel's ball (2 h, + the skin where the list keeps
  * candidates).  Calibrated on the peak resident memory of 5-step runs on 2 ranks, 5e4-1e6
- * particles (docs/cluster.md, "Size guard"): 3 to 31 % above it for the dam break (2D) and the 3D
- * hydrostatic tank, WCSPH and ISPH, the oscillating plate, the 3D cantilever and the elastic gate;
- * up to 90 % above for SPHERIC Test 2, whose walls (40 % of its particles) have fewer pairs and
- * rows than the model gives every particle. */
+ * particles (tools/size_guard_calibration.sh; docs/cluster.md, "Size guard"): 4 to 27 % above it
+ * for the dam break (2D) and the 3D hydrostatic tank, WCSPH and ISPH (19 and 30 % on 1 rank), 11 to
+ * 27 % for the solids and the WCSPH elastic gate, 39 % for the ISPH gate, 53 and 76 % for SPHERIC
+ * Test 2, whose walls (40 % of its particles) have fewer pairs and rows than every particle here. */
 #define BYTES_ARRAYS     4.0   /* per byte of fields: capacity grown by half while the scene adds, the partition's and the migration's copies (2.5-3.3 measured) */
 #define BYTES_LIST_PAIR  12.0  /* the main list per pair: b and F (W recomputed unless -neighbour_store_w: 8 B more) */
 #define BYTES_CANDIDATE  4.0   /* with a skin, the candidates' copy; the list's arrays hold all candidates */
 #define BYTES_ISPH_ROW   300.0 /* ISPH per particle: the PPE's vectors, row maps and coarse rows */
-#define BYTES_ISPH_PAIR  28.0  /* ISPH per pair: PETSc's matrix and hypre's (12 B each), BoomerAMG's levels (21-30 B measured in all) */
+#define BYTES_ISPH_PAIR  30.0  /* ISPH per pair: PETSc's matrix and hypre's (12 B each), BoomerAMG's levels (21-30 B measured in all: 30 B with classical coarsening at 2h = 4 dx in 3D) */
 #define BYTES_SOLID_PAIR 28.0  /* the solid's own list per pair (b, W, F: 20 B) and the reference kernel gradient (8 B) */
 #define FIXED_MARGIN     (8.0 * 1048576)   /* resident per rank besides what it holds before the scene: hypre's and HDF5's first allocations */
 #define VM_MARGIN        (128.0 * 1048576) /* address space mapped later per process besides the particles': MPI's buffers, threads' heaps */

@@ -1,5 +1,6 @@
 #include <sphfsi/scene.h>
 #include <sphfsi/kernel.h>
+#include <sphfsi/size_guard.h>
 
 extern const SceneOps SceneHydrostatic, SceneDamBreak, SceneDamBreakLobovsky, SceneSluiceGate, SceneTaylorGreen, ScenePoiseuille, SceneOscillatingPlate, SceneSolidBlock, SceneElasticGate, SceneWaterOnPlate, SceneSphericTest2;
 extern SceneOps       SceneBoxes; /* its probes come from the options */
@@ -51,6 +52,8 @@ static PetscErrorCode AddPointSpaced(Sim sim, ParticleKind kind, const PetscReal
 {
   PetscReal m = rho0 * s[0] * s[1];
   PetscFunctionBeginUser;
+  PetscCall(SizeGuardAdd(sim, kind, sim->extrude.n > 0 ? sim->extrude.n : 1)); /* counted, or checked against the memory */
+  if (SizeGuardCounting(sim)) PetscFunctionReturn(PETSC_SUCCESS);
   if (sim->extrude.n > 0) { /* p is a point of the 2D layout */
     m *= sim->extrude.dz;
     for (PetscInt k = 0; k < sim->extrude.n; k++) {
@@ -128,6 +131,11 @@ static PetscErrorCode AddBlockSpaced(Sim sim, ParticleKind kind, const PetscReal
   const PetscReal jit = kind == KIND_FLUID ? sim->start_jitter * dx : 0;
   const PetscInt  D = SceneLayoutDim(sim), nz = D == 3 ? n[2] : 1;
   PetscFunctionBeginUser;
+  if (SizeGuardCounting(sim)) { /* the size guard's dry count: the whole block at once */
+    const PetscInt64 pts = (PetscInt64)PetscMax(n[0], 0) * PetscMax(n[1], 0) * PetscMax(nz, 0);
+    PetscCall(SizeGuardAdd(sim, kind, pts * (sim->extrude.n > 0 ? sim->extrude.n : 1)));
+    PetscFunctionReturn(PETSC_SUCCESS);
+  }
   for (PetscInt k = 0; k < nz; k++)
     for (PetscInt j = 0; j < n[1]; j++)
       for (PetscInt i = 0; i < n[0]; i++) {

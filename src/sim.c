@@ -10,6 +10,7 @@
 #include <sphfsi/checkpoint.h>
 #include <sphfsi/guard.h>
 #include <sphfsi/outdir.h>
+#include <sphfsi/size_guard.h>
 
 const char *const FluidSchemes[] = {"wcsph", "isph", "FluidScheme", "FLUID_", NULL};
 const char *const KernelTypes[]  = {"cubic", "wendland_c2", "wendland_c4", "KernelType", "KERNEL_", NULL};
@@ -77,6 +78,7 @@ PetscErrorCode SimDestroy(Sim *sim)
   PetscCall(PetscFree(s->snaps));
   PetscCall(PetscFree(s->refdata_missing));
   PetscCall(GuardDestroy(&s->guard));
+  PetscCall(SizeGuardDestroy(&s->size_guard));
   PetscCall(PetscFree(*sim));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -365,6 +367,7 @@ PetscErrorCode SimSetUp(Sim sim)
   if (sim->help) PetscCall(HelpOtherModules(sim));
   PetscCall(ParticlesSetUp(sim->P));
   if (sim->help) PetscFunctionReturn(PETSC_SUCCESS); /* listed: no particles, no output */
+  PetscCall(SizeGuardCheck(sim)); /* before the particles: a run too large for the memory stops here */
   PetscCall(OutDirOpen(sim));
   PetscCall(GuardCheckSetUp(sim, "before the particles were made"));
   if (sim->guard->state) PetscFunctionReturn(PETSC_SUCCESS);

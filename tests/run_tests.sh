@@ -130,6 +130,7 @@ if [ "${1:-}" != "--unit-only" ]; then
   run batch_job bash tests/check_batch_job.sh "$MPI" "$OUT/batch_job"
   # Bad input: one line "sphfsi: error: ...", status 2, no crash
   run bad_input bash tests/check_bad_input.sh "$MPI" "$OUT/bad_input" "$MPI8"
+  run size_guard bash tests/check_size_guard.sh "$MPI" "$OUT/size_guard"
   # A user's path: quiet case files, options_used repeats a run, -version, the -ppe_ prefix
   run user_path bash tests/check_user_path.sh "$MPI" "$OUT/user_path"
   # Reference data found from any current directory; a missing one warned about and listed in summary.json

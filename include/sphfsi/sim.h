@@ -22,6 +22,7 @@ typedef struct _p_ISPH *ISPH;
 typedef struct _p_Solid *Solid;
 typedef struct _p_Guard *Guard;     /* guard.h */
 typedef struct _n_Series Series;    /* refdata.h */
+typedef struct _n_SizeGuard *SizeGuard; /* size_guard.h */
 #define SIM_MAX_KEEP 16             /* scene histories and scalars a checkpoint carries (SceneKeep*) */
 
 struct _p_Sim {
@@ -86,6 +87,7 @@ struct _p_Sim {
   PetscInt  nckpt, ckpt_step;            /* checkpoints written by this run, step of the last complete one */
   PetscReal ckpt_t;                      /* time of the last complete checkpoint (-1: none) */
   Guard     guard;
+  SizeGuard size_guard;                  /* the memory estimate against the node's (size_guard.h) */
   PetscInt  exit_status;                 /* 0, or SIM_EXIT_STOPPED / SIM_EXIT_FAULT (guard.h) */
   /* every probe row so far (t and the scene's columns; rank 0), rewritten to probes.csv */
   PetscReal *probe_rows;

@@ -8,7 +8,7 @@ MPI="${MPIEXEC:-mpiexec} ${MPIEXEC_FLAGS:-} -n $NP"
 # it in MPIEXEC_FLAGS; added here when this script runs alone), and then yields when idle by itself
 # (mpi_yield_when_idle "will default to 1 when oversubscribing nodes", ompi_info)
 MPI8="${MPIEXEC:-mpiexec} ${MPIEXEC_FLAGS:-}"
-if [[ " ${MPIEXEC_FLAGS:-} " != *" --oversubscribe "* ]] && ${MPIEXEC:-mpiexec} --version 2>/dev/null | grep -q "Open MPI"; then MPI8+=" --oversubscribe"; fi
+if [[ " ${MPIEXEC_FLAGS:-} " != *" --oversubscribe "* ]] && ${MPIEXEC:-mpiexec} --version 2>/dev/null | grep -Eqi "open ?-?mpi|openrte"; then MPI8+=" --oversubscribe"; fi
 MPI8+=" -n 8"
 PY=${PYTHON:-python3}
 OUT=out/tests

@@ -12,7 +12,7 @@ A=$1; B=$2; OUT=$3
 [ -x "$A" ] && [ -x "$B" ] && [ -n "$OUT" ] || { echo "usage: $0 BIN_A BIN_B OUTDIR" >&2; exit 2; }
 cd "$(dirname "$0")/.." || exit 2
 CASES=${CASES:-$(ls cases/*.opts cases/boxes/*.opts)}
-FLAGS=${MPIEXEC_FLAGS-$(${MPIEXEC:-mpiexec} --version 2>/dev/null | grep -q "Open MPI" && echo --oversubscribe)}
+FLAGS=${MPIEXEC_FLAGS-$(${MPIEXEC:-mpiexec} --version 2>/dev/null | grep -Eqi "open ?-?mpi|openrte" && echo --oversubscribe)}
 same=0; diff=0
 for c in $CASES; do
   name=$(echo "${c#cases/}" | sed 's|/|_|g; s|\.opts$||')

@@ -18,9 +18,9 @@
  * for the dam break (2D) and the 3D hydrostatic tank, WCSPH and ISPH (19 and 32 % on 1 rank), 11 to
  * 27 % for the solids and the WCSPH elastic gate, 3 % for the 3D Taylor-Green (ISPH, 2h = 4 dx), 41 %
  * for the ISPH gate, 53 and 82 % for SPHERIC Test 2, whose walls (40 % of its particles) have fewer
- * pairs and rows than every particle here.  A whole run peaks higher than its first steps (lists of
- * walls the water reaches, longer rank interfaces, rebalancing): the dam break at 4.8e4 particles
- * by 26 % (6 % above the estimate). */
+ * pairs and rows than every particle here.  A whole run peaks higher than its first steps (particles
+ * and lists moved by rebalancing, walls the water reaches): the WCSPH dam break at 4.8e4 particles to
+ * t = 0.3 s by 20 % (144 MB on 2 ranks, the estimate's 144 MB), 27 % with a checkpoint (152 MB). */
 #define BYTES_ARRAYS     4.0   /* per byte of fields: capacity grown by half while the scene adds, the partition's and the migration's copies (2.5-3.3 measured) */
 #define BYTES_LIST_PAIR  12.0  /* the main list per pair: b and F (W recomputed unless -neighbour_store_w: 8 B more) */
 #define BYTES_CANDIDATE  4.0   /* with a skin, the candidates' copy; the list's arrays hold all candidates */

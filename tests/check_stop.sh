@@ -15,9 +15,12 @@
 MPI=$1; OUT=$2
 rm -rf "$OUT"; mkdir -p "$OUT"
 fail() { echo "FAIL: $*"; exit 1; }
-RUN="bin/sphfsi -case dam_break -dx 0.008 -probe_interval 0.002 -output_interval 0.05 -checkpoint_interval 0.02 -progress_every 0 -t_end 0.5"
+# t_end 1.5: the run lasts about 3.5 s on an idle machine, so the slow stop's SIGINT, sent right after the
+# first checkpoint, reaches the ranks (1 s later, through mpiexec) well before the run would end
+RUN="bin/sphfsi -case dam_break -dx 0.008 -probe_interval 0.002 -output_interval 0.05 -checkpoint_interval 0.02 -progress_every 0 -t_end 1.5"
 ranks() { pgrep -P "$(pgrep -P "$1" | head -n 1)"; } # the ranks under the mpiexec started by job $1
 wait_loop() { for i in $(seq 1 600); do grep -q "^sphfsi: case" "$1" 2>/dev/null && return; sleep 0.05; done; }
+wait_file() { for i in $(seq 1 1200); do [ -f "$1" ] && return; sleep 0.02; done; }
 intact() { # DIR: checkpoint.h5 (if any) whole, probes.csv rows whole, snapshots readable; prints the checkpoint's step
   python3 - "$1" <<'PY'
 import glob, os, sys, h5py
@@ -42,7 +45,7 @@ timeout 120 $MPI $RUN -output_dir "$OUT/ref" > "$OUT/ref.log" 2>&1 || fail "refe
 # a slow stop: the launcher's kill comes in the middle of the stop's checkpoint
 SPHFSI_TEST_STOP_DELAY=3 timeout 120 $MPI $RUN -output_dir "$OUT/slow" > "$OUT/slow.log" 2>&1 &
 job=$!
-wait_loop "$OUT/slow.log"; sleep 1.5
+wait_file "$OUT/slow/checkpoint.h5" # the first checkpoint (t = 0.02 of 1.5): the stop must keep it
 kill -INT "$(pgrep -P $job | head -n 1)"
 wait $job; rc=$?
 grep -q "^sphfsi: stopped at step .*received SIGTERM" "$OUT/slow.log" || fail "slow stop: no stop message (status $rc): $(tail -3 "$OUT/slow.log")"
@@ -56,9 +59,9 @@ cmp -s "$OUT/ref/probes.csv" "$OUT/slow/probes.csv" || fail "slow stop: after th
 # 10 tries at random moments
 RANDOM=$$; last=-1; killed=0; handled=0
 for try in $(seq 1 10); do
-  grep -q '"status": "completed"' "$OUT/chain/summary.json" 2>/dev/null && rm -f "$OUT/chain/checkpoint.h5" # done: a new chain
+  if grep -q '"status": "completed"' "$OUT/chain/summary.json" 2>/dev/null; then rm -f "$OUT/chain/checkpoint.h5"; last=-1; fi # done: a new chain
   sigs=(INT TERM USR1); sig=${sigs[$((RANDOM % 3))]}; target=$((RANDOM % 2)); kill9=$((RANDOM % 3 == 0))
-  delay=$(python3 -c "import random; print(round(random.uniform(0.2, 0.8), 2))")
+  delay=$(python3 -c "import random; print(round(random.uniform(0.2, 1.5), 2))")
   if [ -f "$OUT/chain/checkpoint.h5" ]; then args="-restart $OUT/chain/checkpoint.h5"; else args="${RUN#bin/sphfsi } -output_dir $OUT/chain -overwrite"; fi
   timeout 120 $MPI bin/sphfsi $args > "$OUT/try$try.log" 2>&1 &
   job=$!

@@ -2,24 +2,28 @@
 # Each bad input ends the run before the first step with status 2 and one line
 # "sphfsi: error: ..." naming the problem (no PETSc banner, no MPI_ABORT, no crash).
 MPI=$1; OUT=$2; MPI8=${3:-} # MPI8: the launcher for 8 ranks (run_tests.sh)
-mkdir -p "$OUT"
-bad=0; n=0
-check() { # expected message fragment, arguments...: status 2 and the one line "sphfsi: error: ..."
-  local want=$1; shift
-  n=$((n + 1))
-  timeout 60 $MPI bin/sphfsi -output_dir "$OUT/run" -overwrite -t_end 0.001 -progress_every 0 "$@" > "$OUT/case$n.log" 2>&1
+rm -f "$OUT"/verdict.*; mkdir -p "$OUT"
+n=0
+# The cases run three at a time (each mostly launcher and PETSc start-up), each in a directory of its
+# own; a case's verdict goes to $OUT/verdict.N and they are counted at the end.
+JOBS=3
+spawn() { while [ "$(jobs -rp | wc -l)" -ge $JOBS ]; do wait -n; done; "$@" & }
+check() { n=$((n + 1)); spawn check_one $n "$MPI" "$@"; }
+fails() { n=$((n + 1)); spawn fails_one $n "$MPI" "$@"; }
+check_one() { # N, launcher, expected message fragment, arguments...: status 2 and the one line "sphfsi: error: ..."
+  local k=$1 mpi=$2 want=$3; shift 3
+  timeout 60 $mpi bin/sphfsi -output_dir "$OUT/run$k" -overwrite -t_end 0.001 -progress_every 0 "$@" > "$OUT/case$k.log" 2>&1
   local rc=$?
-  if [ $rc -ne 2 ] || [ "$(grep -c '^sphfsi: error: ' "$OUT/case$n.log")" -ne 1 ] || grep -q "PETSC ERROR\|MPI_ABORT\|Segmentation\|signal" "$OUT/case$n.log" || ! grep '^sphfsi: error: ' "$OUT/case$n.log" | grep -qi -- "$want"; then
-    echo "bad input $n ($*): status $rc, expected status 2 and one line 'sphfsi: error: ...' with '$want'"; bad=$((bad + 1))
+  if [ $rc -ne 2 ] || [ "$(grep -c '^sphfsi: error: ' "$OUT/case$k.log")" -ne 1 ] || grep -q "PETSC ERROR\|MPI_ABORT\|Segmentation\|signal" "$OUT/case$k.log" || ! grep '^sphfsi: error: ' "$OUT/case$k.log" | grep -qi -- "$want"; then
+    echo "bad input $k ($*): status $rc, expected status 2 and one line 'sphfsi: error: ...' with '$want'" > "$OUT/verdict.$k"
   fi
 }
-fails() { # a run that fails (not bad input): non-zero status and the message, no crash
-  local want=$1; shift
-  n=$((n + 1))
-  timeout 60 $MPI bin/sphfsi -output_dir "$OUT/run" -overwrite -t_end 0.001 -progress_every 0 "$@" > "$OUT/case$n.log" 2>&1
+fails_one() { # N, launcher, message fragment, arguments...: a run that fails (not bad input): non-zero status and the message, no crash
+  local k=$1 mpi=$2 want=$3; shift 3
+  timeout 60 $mpi bin/sphfsi -output_dir "$OUT/run$k" -overwrite -t_end 0.001 -progress_every 0 "$@" > "$OUT/case$k.log" 2>&1
   local rc=$?
-  if [ $rc -eq 0 ] || [ $rc -ge 124 ] || grep -q "Segmentation\|signal" "$OUT/case$n.log" || ! grep -qi -- "$want" "$OUT/case$n.log"; then
-    echo "failing run $n ($*): status $rc, expected a message with '$want'"; bad=$((bad + 1))
+  if [ $rc -eq 0 ] || [ $rc -ge 124 ] || grep -q "Segmentation\|signal" "$OUT/case$k.log" || ! grep -qi -- "$want" "$OUT/case$k.log"; then
+    echo "failing run $k ($*): status $rc, expected a message with '$want'" > "$OUT/verdict.$k"
   fi
 }
 check "No scene given"        -dx 0.01
@@ -98,5 +102,8 @@ check "has no water"                   -case boxes -dim 3 -dx 0.01 -tank_1 0,1,0
 check "-fluid_box_1 takes 6 or 7 numbers" -case boxes -dim 3 -dx 0.01 -tank_1 0,1,0,1,0,1 -fluid_box_1 0,0,0.5,0.5
 check "a 3D tank has walls on all four sides" -case boxes -dim 3 -dx 0.01 -tank_1 0,1,0,1,0,1 -tank_1_sides left -fluid_box_1 0,0,0,0.5,0.5,0.5
 check "-solid_box_1 touches no -clamp_box" -case boxes -dx 0.01 -tank_1 0,1,0,1 -fluid_box_1 0,0,0.5,0.5 -solid_box_1 0.6,0,0.7,0.3
+wait
+cat "$OUT"/verdict.* 2>/dev/null
+bad=$(ls "$OUT"/verdict.* 2>/dev/null | wc -l)
 echo "bad_input: $((n - bad)) of $n bad inputs rejected with a clear message"
 [ $bad -eq 0 ]

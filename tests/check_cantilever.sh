@@ -13,6 +13,9 @@
 #   tests/check_cantilever.sh "MPIEXEC -n P" OUTDIR
 set -e
 MPI=$1; OUT=$2; shift 2
+# One rank: a static test of the solid's accuracy with ~400 to 1600 particles, where two ranks add only
+# their exchange to every one of ~60k steps (rank agreement of this solid: test_rank_agreement_solid)
+MPI=$(echo "$MPI" | sed 's/-n [0-9]*/-n 1/')
 run() { local name=$1; shift
   $MPI bin/sphfsi -options_file cases/oscillating_plate.opts -solid_formulation total -plate_length 0.079 -plate_thickness 0.005 \
     -solid_rho 1100 -solid_K 2e7 -solid_G 4.27e6 -plate_vf 0 -gravity 0,-18 -solid_damping 185 -t_end 0.15 \

@@ -46,7 +46,9 @@ assert e["amplitude_last_over_first"] > 0.9, "the oscillation decays or grows"
 assert s["modules"] == ["solid"] and not s["pressure_matrix"] and s["fluid"] == "none", f"modules {s['modules']}"
 assert not {"vstar", "row", "free_surface", "vwall"} & set(s["fields"]), f"fluid fields in a solid scene: {s['fields']}"
 PY
-# without artificial viscosity: a clean failure, not a hang or a crash
+# without artificial viscosity: a clean failure, not a hang or a crash (the paper's updated scheme
+# whichever solid the first part ran, so only in the run without extra options)
+[ $# -eq 0 ] || { echo "oscillating plate ($*): the run without artificial viscosity is checked by the default call"; exit 0; }
 if $MPI bin/sphfsi -options_file cases/oscillating_plate.opts -plate_ny 6 -solid_formulation updated -solid_alpha 0 -solid_art_stress 0.3 -output_interval 0 -output_dir "$OUT/no_av" -progress_every 0 > "$OUT/no_av.log" 2>&1; then
   echo "the plate without artificial viscosity ran to the end: expected the zero-energy mode to blow it up"; exit 1
 fi

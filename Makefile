@@ -63,7 +63,7 @@ MPIEXEC ?= mpiexec
 MPIEXEC_FLAGS ?= $(shell $(MPIEXEC) --version 2>/dev/null | grep -q "Open MPI" && echo --oversubscribe)
 export MPIEXEC MPIEXEC_FLAGS
 
-.PHONY: all deps run check check-unit bench hard study clean tests install FORCE
+.PHONY: all deps run check check-unit bench hard study clean tests install layers FORCE
 all: $(BIN) $(TEST_BIN)
 
 $(BUILD)/%.o: %.c $(wildcard include/sphfsi/*.h)
@@ -129,6 +129,10 @@ hard: deps
 study: deps
 	@$(MAKE) --no-print-directory all
 	@BINDIR=$(BINDIR) $(if $(filter command line environment,$(origin NP)),NP=$(NP)) bash tools/study.sh
+
+# The layers of the code and the calls that cross them upward (tools/layers.py; --list for each one)
+layers:
+	@python3 tools/layers.py --list
 
 # Partition statistics of a scene's cell graph for many ranks (tools/partition_model.c)
 $(BINDIR)/partition_model: $(BUILD)/tools/partition_model.o $(BUILD)/libsphfsi.a

@@ -22,9 +22,9 @@ static void Slots(Sim sim, PetscReal *r[STATE_NREAL], PetscInt *i[STATE_NINT], P
   PPE   ppe = sim->isph ? sim->isph->ppe : NULL;
   Solid s   = sim->solid;
   r[0] = &sim->t; r[1] = &sim->dt; r[2] = &sim->next_out; r[3] = &sim->next_probe; r[4] = &sim->next_ckpt;
-  r[5] = &sim->mass0; r[6] = &sim->mass_out; r[7] = &sim->particle_steps; r[8] = &sim->wall_used;
+  r[5] = &sim->mass0; r[6] = &sim->nbhd.mass_out; r[7] = &sim->particle_steps; r[8] = &sim->wall_used;
   r[9] = &sim->guard->dt_first[0]; r[10] = &sim->guard->dt_first[1]; r[11] = ppe ? &ppe->its_sum : rd;
-  i[0] = &sim->step; i[1] = &sim->nparticles; i[2] = &sim->next_id; i[3] = &sim->decomp->nrepartition;
+  i[0] = &sim->step; i[1] = &sim->nbhd.nparticles; i[2] = &sim->next_id; i[3] = &sim->decomp->nrepartition;
   i[4] = s ? &s->nsub_last : id; i[5] = s ? &s->nsub_max : id; i[6] = s ? &s->nrebuild : id;
   i[7] = ppe ? &ppe->nsolve : id; i[8] = ppe ? &ppe->its_max : id; i[9] = ppe ? &ppe->its_last : id;
   i[10] = sim->isph ? &sim->isph->nfree : id; i[11] = &sim->snap;
@@ -257,7 +257,7 @@ PetscErrorCode CheckpointSave(Sim sim)
   PetscCall(IOSpacePushWrite(path));
   PetscCall(CheckpointWrite(sim, &s, path));
   PetscCall(IOSpacePopWrite());
-  if (sim->guard->state == GUARD_IO) PetscFunctionReturn(PETSC_SUCCESS); /* not renamed into place */
+  if (sim->io_fault.set) PetscFunctionReturn(PETSC_SUCCESS); /* not renamed into place */
   sim->nckpt++;
   if (sim->ckpt_interval > 0)
     while (sim->next_ckpt <= sim->t + 1e-12 * sim->t_end) sim->next_ckpt += sim->ckpt_interval;
@@ -432,12 +432,12 @@ static PetscErrorCode ReadRunState(Sim sim, PetscViewer v)
 static PetscErrorCode ReadParticles(Sim sim, PetscViewer v, PetscInt ranks)
 {
   Particles P = sim->P;
-  PetscInt  n = PETSC_DECIDE, N = sim->nparticles, nsum;
+  PetscInt  n = PETSC_DECIDE, N = sim->nbhd.nparticles, nsum;
   PetscFunctionBeginUser;
   if (ranks == sim->size) PetscCall(ReadInts(v, sim->comm, "rank_counts", 1, &n));
   else PetscCall(PetscSplitOwnership(sim->comm, &n, &N));
   PetscCall(MPIU_Allreduce(&n, &nsum, 1, MPIU_INT, MPI_SUM, sim->comm));
-  PetscCheck(nsum == sim->nparticles, sim->comm, PETSC_ERR_FILE_UNEXPECTED, "-restart %s: the ranks' blocks hold %d particles, the header says %d", sim->restart, (int)nsum, (int)sim->nparticles);
+  PetscCheck(nsum == sim->nbhd.nparticles, sim->comm, PETSC_ERR_FILE_UNEXPECTED, "-restart %s: the ranks' blocks hold %d particles, the header says %d", sim->restart, (int)nsum, (int)sim->nbhd.nparticles);
   P->n = P->ng = 0;
   PetscCall(ParticlesReserve(P, n));
   P->n = n;
@@ -494,7 +494,7 @@ PetscErrorCode CheckpointRestart(Sim sim)
     PetscCallMPI(MPI_Bcast(sim->decomp->owner, (PetscMPIInt)ncell, MPI_INT, 0, sim->comm));
   } else PetscCall(DecompPartition(sim->decomp, sim->P));
   PetscCall(PetscViewerDestroy(&v));
-  PetscCall(SimRebuildKeepPartition(sim));
+  PetscCall(NeighbourhoodRebuildKeepPartition(&sim->nbhd));
   if (sim->solid && !sim->P->f[FIELD_XLIST].on) PetscCall(SolidPrepare(sim)); /* as after every rebuild: the solids' list, xref */
   SwapPositions(sim->P, FIELD_XREB);
   /* ghosts take every field's current value */
@@ -506,7 +506,7 @@ PetscErrorCode CheckpointRestart(Sim sim)
     PetscCall(CellsRefreshPairs(sim->cells, sim->P));
     PetscCall(SolidPrepare(sim));
     SwapPositions(sim->P, FIELD_XLIST);
-  } else if (sim->skin > 0) PetscCall(CellsRefreshPairs(sim->cells, sim->P)); /* the main list's pairs now (-wcsph_skin) */
+  } else if (sim->nbhd.skin > 0) PetscCall(CellsRefreshPairs(sim->cells, sim->P)); /* the main list's pairs now (-wcsph_skin) */
   if (sim->solid) PetscCall(CellsUpdatePairs(sim->solid->nl, sim->P)); /* solid pairs: their current kernel values */
   sim->ckpt_t = sim->t; /* the state the last checkpoint holds (summary.json) */
   PetscCall(PetscPrintf(sim->comm, "sphfsi: restarted from %s (written on %d rank(s)) at step %" PetscInt_FMT ", t = %g\n", sim->restart, (int)ranks, sim->step, (double)sim->t));

@@ -293,16 +293,12 @@ PetscErrorCode GuardStepEnd(Sim sim, PetscBool *progress)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode GuardIOFault(Sim sim, const char *fmt, ...)
+PetscErrorCode GuardCheckIO(Sim sim)
 {
-  Guard   g = sim->guard;
-  va_list ap;
-  size_t  len;
+  Guard g = sim->guard;
   PetscFunctionBeginUser;
-  if (g->state == GUARD_IO) PetscFunctionReturn(PETSC_SUCCESS);
-  va_start(ap, fmt);
-  PetscCall(PetscVSNPrintf(g->msg, sizeof(g->msg), fmt, &len, ap));
-  va_end(ap);
+  if (!sim->io_fault.set || g->state == GUARD_IO) PetscFunctionReturn(PETSC_SUCCESS);
+  PetscCall(PetscStrncpy(g->msg, sim->io_fault.msg, sizeof(g->msg)));
   g->state = GUARD_IO;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -332,6 +328,7 @@ PetscErrorCode GuardFinish(Sim sim)
   Guard g = sim->guard;
   char  path[PETSC_MAX_PATH_LEN];
   PetscFunctionBeginUser;
+  PetscCall(GuardCheckIO(sim));
   if (g->state == GUARD_IO) {
     PetscCall(PetscFPrintf(sim->comm, PETSC_STDERR, "sphfsi: error: %s (exit status %d)\n", g->msg, SIM_EXIT_IO));
     sim->exit_status = SIM_EXIT_IO;

@@ -1,11 +1,9 @@
 #include <sphfsi/version.h>
 #include <sphfsi/io.h>
 #include <sphfsi/scene.h>
-#include <sphfsi/wcsph.h>
 #include <sphfsi/isph.h>
 #include <sphfsi/solid.h>
 #include <sphfsi/guard.h>
-#include <sphfsi/outdir.h>
 #include <sphfsi/io_space.h>
 #include <unistd.h>
 #include <petscviewerhdf5.h>
@@ -19,7 +17,7 @@ static PetscErrorCode RootCheck(Sim sim, int err, const char *what)
 {
   PetscFunctionBeginUser;
   PetscCallMPI(MPI_Bcast(&err, 1, MPI_INT, 0, sim->comm));
-  if (err) PetscCall(GuardIOFault(sim, "%s writing %s/%s", strerror(err), sim->outdir, what));
+  if (err) PetscCall(IOFault(sim, "%s writing %s/%s", strerror(err), sim->outdir, what));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -61,7 +59,6 @@ PetscErrorCode IOWriteProbes(Sim sim)
 PetscErrorCode IOSetUp(Sim sim)
 {
   PetscFunctionBeginUser;
-  if (sim->restart[0]) PetscCall(OutDirTidyRestart(sim)); /* the snapshots past the checkpoint */
   PetscCall(IOWriteProbes(sim)); /* the header, or the restarted run's rows */
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -109,7 +106,7 @@ PetscErrorCode IOWriteParticles(Sim sim, const char *path)
   PetscCall(PetscViewerHDF5Open(sim->comm, tmp, FILE_MODE_WRITE, &v));
   PetscCall(WriteInts(v, sim, "id", P->id));
   PetscCall(WriteInts(v, sim, "kind", P->kind));
-  if (sim->nparticles != sim->next_id) { /* ids no longer 0..N-1 (outflow): the points' indices for the XDMF's topology */
+  if (sim->nbhd.nparticles != sim->next_id) { /* ids no longer 0..N-1 (outflow): the points' indices for the XDMF's topology */
     PetscInt *vertex, first = 0, n = P->n;
     PetscCallMPI(MPI_Exscan(&n, &first, 1, MPIU_INT, MPI_SUM, sim->comm));
     if (!sim->rank) first = 0;
@@ -219,7 +216,12 @@ PetscErrorCode IOSnapshot(Sim sim)
   PetscCall(IOSpaceReserve(sim, path, bytes, &ok));
   if (!ok) PetscFunctionReturn(PETSC_SUCCESS);
   PetscCall(PetscLogStagePush(sim->stage[STAGE_OUTPUT]));
-  if (!sim->isph) PetscCall(WCSPHPressure(sim)); /* pressure of the stored density */
+  if (!sim->isph) { /* WCSPH: the pressure of the stored density, by the equation of state (Eq. 20) */
+    const PetscReal *rho = PField(sim->P, FIELD_RHO);
+    PetscReal       *p   = PField(sim->P, FIELD_P);
+    for (PetscInt a = 0; a < sim->P->n + sim->P->ng; a++)
+      if (KindIsFluid(sim->P->kind[a])) p[a] = EOSPressure(&sim->fl, rho[a]);
+  }
   PetscCall(PetscSNPrintf(path, sizeof(path), "%s/particles_%05" PetscInt_FMT ".h5", sim->outdir, sim->snap));
   PetscCall(IOSpacePushWrite(path));
   PetscCall(IOWriteParticles(sim, path));
@@ -233,7 +235,7 @@ PetscErrorCode IOSnapshot(Sim sim)
     sim->snaps = t;
   }
   sim->snaps[2 * sim->snap]     = sim->t;
-  sim->snaps[2 * sim->snap + 1] = (PetscReal)sim->nparticles;
+  sim->snaps[2 * sim->snap + 1] = (PetscReal)sim->nbhd.nparticles;
   sim->snap++;
   PetscCall(WriteXDMF(sim, "particles.xmf", sim->snap, NULL, sim->snaps));
   while (sim->next_out <= sim->t + 1e-12 * sim->t_end) sim->next_out += sim->out_interval;
@@ -342,13 +344,14 @@ PetscErrorCode IOSummary(Sim sim)
   if (!sim->rank) {
     fprintf(f, "{\n  \"version\": \"%s\",\n  \"commit\": \"%s\",\n", SphfsiVersion(), SphfsiCommit());
     fprintf(f, "  \"case\": \"%s\",\n  \"dim\": %d,\n  \"fluid\": \"%s\",\n  \"ranks\": %d,\n", sim->scene->name, (int)sim->dim, sim->has_fluid ? FluidSchemes[sim->fluid] : "none", sim->size);
-    JsonString(f, "status", (const char *[]){"completed", "stopped", "fault", "io_error"}[sim->guard->state]);
-    if (sim->guard->state) JsonString(f, "message", sim->guard->msg);
+    JsonString(f, "status", sim->io_fault.set ? "io_error" : (const char *[]){"completed", "stopped", "fault", "io_error"}[sim->guard->state]);
+    if (sim->io_fault.set) JsonString(f, "message", sim->io_fault.msg);
+    else if (sim->guard->state) JsonString(f, "message", sim->guard->msg);
     if (sim->restart[0]) JsonString(f, "restarted_from", sim->restart);
     fprintf(f, "  \"checkpoints\": %d,\n", (int)sim->nckpt);
     if (sim->ckpt_t >= 0) JsonReal(f, "checkpoint_t", sim->ckpt_t); /* what checkpoint.h5 holds now */
     else fprintf(f, "  \"checkpoint_t\": null,\n");
-    fprintf(f, "  \"particles\": %d,\n  \"steps\": %d,\n", (int)sim->nparticles, (int)sim->step);
+    fprintf(f, "  \"particles\": %d,\n  \"steps\": %d,\n", (int)sim->nbhd.nparticles, (int)sim->step);
     JsonReal(f, "t_end", sim->t);
     JsonReal(f, "dx", sim->dx);
     JsonReal(f, "wall_s", sim->wall_used + sim->wall_loop);
@@ -357,13 +360,13 @@ PetscErrorCode IOSummary(Sim sim)
     else fprintf(f, "  \"ksp_its_mean\": null,\n  \"ksp_its_max\": null,\n");
     JsonReal(f, "mass_rel_drift", sim->mass0 > 0 ? (sim->mass - sim->mass0) / sim->mass0 : 0);
     if (sim->solid) fprintf(f, "  \"c0_solid\": %.6g,\n  \"solid_substeps_max\": %d,\n  \"solid_formulation\": \"%s\",\n", (double)sim->sl.c0, (int)sim->solid->nsub_max, SolidFormulations[sim->solid->formulation]);
-    if (sim->skin > 0) fprintf(f, "  \"neighbour_skin_dx\": %.6g,\n  \"neighbour_rebuilds\": %d,\n", (double)(sim->skin / sim->dx), (int)sim->nrebuild); /* this run's (-wcsph_skin) */
+    if (sim->nbhd.skin > 0) fprintf(f, "  \"neighbour_skin_dx\": %.6g,\n  \"neighbour_rebuilds\": %d,\n", (double)(sim->nbhd.skin / sim->dx), (int)sim->nbhd.nrebuild); /* this run's (-wcsph_skin) */
     if (sim->has_fluid) fprintf(f, "  \"c0\": %.6g,\n", (double)sim->fl.c0);
     else fprintf(f, "  \"c0\": null,\n");
     JsonModules(f, sim);
     fprintf(f, "  \"bytes_per_particle\": %d,\n  \"repartitions\": %d,\n", (int)ParticlesBytesPerParticle(sim->P), (int)sim->decomp->nrepartition);
     JsonReal(f, "peak_resident_bytes", rss_sum); /* all ranks, MPI/PETSc/hypre included */
-    JsonReal(f, "peak_resident_bytes_per_particle", sim->nparticles > 0 ? rss_sum / sim->nparticles : 0);
+    JsonReal(f, "peak_resident_bytes_per_particle", sim->nbhd.nparticles > 0 ? rss_sum / sim->nbhd.nparticles : 0);
     fprintf(f, "  \"fields\": [");
     for (PetscInt k = 0, first = 1; k < FIELD_COUNT; k++)
       if (sim->P->f[k].on) { fprintf(f, "%s\"%s\"", first ? "" : ", ", sim->P->f[k].name); first = 0; }

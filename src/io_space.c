@@ -1,5 +1,4 @@
 #include <sphfsi/io_space.h>
-#include <sphfsi/guard.h>
 #include <sphfsi/scene.h>
 #include <sphfsi/refdata.h>
 #include <errno.h>
@@ -8,6 +7,19 @@
 
 #define IO_SPACE_MARGIN 1.1     /* HDF5's headers and chunk rounding over the raw data */
 #define IO_SPACE_SLACK  65536.0 /* bytes: attributes, the XDMF, probes.csv and summary.json beside it */
+
+PetscErrorCode IOFault(Sim sim, const char *fmt, ...)
+{
+  va_list ap;
+  size_t  len;
+  PetscFunctionBeginUser;
+  if (sim->io_fault.set) PetscFunctionReturn(PETSC_SUCCESS);
+  va_start(ap, fmt);
+  PetscCall(PetscVSNPrintf(sim->io_fault.msg, sizeof(sim->io_fault.msg), fmt, &len, ap));
+  va_end(ap);
+  sim->io_fault.set = PETSC_TRUE;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
 
 PetscErrorCode IOSpaceReserve(Sim sim, const char *file, PetscReal bytes, PetscBool *ok)
 {
@@ -19,7 +31,7 @@ PetscErrorCode IOSpaceReserve(Sim sim, const char *file, PetscReal bytes, PetscB
   }
   PetscCallMPI(MPI_Bcast(&free_bytes, 1, MPI_DOUBLE, 0, sim->comm));
   *ok = (PetscBool)(free_bytes < 0 || free_bytes >= need); /* unknown: try, and let a failed write say it */
-  if (!*ok) PetscCall(GuardIOFault(sim, "no space left on device writing %s/%s (it needs about %.3g MB, %.3g MB are free): free space or give another -output_dir, then continue from the last checkpoint", sim->outdir, file, need / 1e6, free_bytes / 1e6));
+  if (!*ok) PetscCall(IOFault(sim, "no space left on device writing %s/%s (it needs about %.3g MB, %.3g MB are free): free space or give another -output_dir, then continue from the last checkpoint", sim->outdir, file, need / 1e6, free_bytes / 1e6));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -37,14 +49,14 @@ static PetscReal FieldBytes(Particles P, PetscBool snapshot)
 PetscErrorCode IOSpaceSnapshot(Sim sim, PetscReal *bytes)
 {
   PetscFunctionBeginUser;
-  *bytes = (PetscReal)sim->nparticles * FieldBytes(sim->P, PETSC_TRUE);
+  *bytes = (PetscReal)sim->nbhd.nparticles * FieldBytes(sim->P, PETSC_TRUE);
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
 PetscErrorCode IOSpaceCheckpoint(Sim sim, PetscReal *bytes)
 {
   PetscFunctionBeginUser;
-  *bytes = (PetscReal)sim->nparticles * FieldBytes(sim->P, PETSC_FALSE) + (PetscReal)sim->nprobe_rows * (1 + sim->scene->nprobes) * sizeof(PetscReal) + (PetscReal)GridNumCells(&sim->grid) * sizeof(PetscInt) + 2.0 * sim->snap * sizeof(PetscReal);
+  *bytes = (PetscReal)sim->nbhd.nparticles * FieldBytes(sim->P, PETSC_FALSE) + (PetscReal)sim->nprobe_rows * (1 + sim->scene->nprobes) * sizeof(PetscReal) + (PetscReal)GridNumCells(&sim->grid) * sizeof(PetscInt) + 2.0 * sim->snap * sizeof(PetscReal);
   for (PetscInt k = 0; k < sim->nkeep_series; k++) *bytes += 2.0 * sim->keep_series[k]->n * sizeof(PetscReal);
   PetscFunctionReturn(PETSC_SUCCESS);
 }

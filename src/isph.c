@@ -416,7 +416,7 @@ PetscErrorCode ISPHStep(Sim sim)
   PetscCall(PetscLogStagePush(sim->stage[STAGE_PHYSICS]));
   PetscCall(Predictor(sim));
   PetscCall(PetscLogStagePop());
-  PetscCall(SimRebuild(sim)); /* neighbours at r* */
+  PetscCall(NeighbourhoodRebuild(&sim->nbhd, sim->step)); /* neighbours at r* */
   PetscCall(ISPHPressureEquation(sim));
   PetscCall(PPESolve(s->ppe, sim));
   PetscCall(PetscLogStagePush(sim->stage[STAGE_PHYSICS]));
@@ -424,7 +424,7 @@ PetscErrorCode ISPHStep(Sim sim)
   if (PField(sim->P, FIELD_XSPH)) PetscCall(Drift(sim));
   PetscCall(MoveToEnd(sim));
   PetscCall(PetscLogStagePop());
-  PetscCall(SimRebuild(sim));
+  PetscCall(NeighbourhoodRebuild(&sim->nbhd, sim->step));
   PetscCall(BoundaryWallVelocity(sim));
   PetscFunctionReturn(PETSC_SUCCESS);
 }

@@ -184,116 +184,7 @@ PetscErrorCode SimTotalMass(Sim sim, PetscReal *M)
   for (PetscInt a = 0; a < sim->P->n; a++)
     if (KindIsFluid(sim->P->kind[a]) || sim->P->kind[a] == KIND_SOLID) s += m[a];
   PetscCall(MPIU_Allreduce(&s, M, 1, MPIU_REAL, MPI_SUM, sim->comm));
-  *M += sim->mass_out;
-  PetscFunctionReturn(PETSC_SUCCESS);
-}
-
-/* Open boundary: owned fluid particles outside the domain box leave the simulation. */
-static PetscErrorCode Outflow(Sim sim)
-{
-  Particles        P = sim->P;
-  const PetscReal *x = PField(P, FIELD_X), *m = PField(P, FIELD_M);
-  PetscBool       *drop = NULL;
-  PetscReal        buf[2] = {0, 0}; /* mass and count that left */
-  PetscFunctionBeginUser;
-  for (PetscInt a = 0; a < P->n; a++) {
-    PetscBool out = PETSC_FALSE;
-    if (!KindIsFluid(P->kind[a])) continue;
-    for (PetscInt d = 0; d < sim->dim; d++)
-      if (!sim->periodic[d] && (x[sim->dim * a + d] < sim->grid.lo[d] || x[sim->dim * a + d] >= sim->grid.hi[d])) out = PETSC_TRUE;
-    if (!out) continue;
-    if (!drop) PetscCall(PetscCalloc1(P->n, &drop)); /* only in a step where fluid leaves */
-    drop[a] = PETSC_TRUE;
-    buf[0] += m[a]; buf[1] += 1;
-  }
-  if (drop) PetscCall(ParticlesRemove(P, drop));
-  PetscCall(PetscFree(drop));
-  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, buf, 2, MPIU_REAL, MPI_SUM, sim->comm));
-  sim->mass_out += buf[0];
-  sim->nparticles -= (PetscInt)buf[1];
-  PetscFunctionReturn(PETSC_SUCCESS);
-}
-
-/* full: outflow and rebalancing first (every rebuild of a run; a restart repeats one without). */
-static PetscErrorCode Rebuild(Sim sim, PetscBool full)
-{
-  PetscBool rep;
-  Particles P = sim->P;
-  PetscFunctionBeginUser;
-  PetscCall(PetscLogStagePush(sim->stage[STAGE_HALO]));
-  if (full && sim->outflow) PetscCall(Outflow(sim));
-  PetscCall(DecompMigrate(sim->decomp, P));
-  if (full) PetscCall(DecompBalance(sim->decomp, P, sim->step, &rep));
-  PetscCall(PetscLogStagePop());
-  PetscCall(PetscLogStagePush(sim->stage[STAGE_NEIGHBOUR]));
-  PetscCall(DecompSortOwned(sim->decomp, P));
-  PetscCall(PetscLogStagePop());
-  PetscCall(PetscLogStagePush(sim->stage[STAGE_HALO]));
-  PetscCall(HaloBuild(sim->halo, sim->decomp, P));
-  PetscCall(PetscLogStagePop());
-  PetscCall(PetscLogStagePush(sim->stage[STAGE_NEIGHBOUR]));
-  PetscCall(CellsBuild(sim->cells, P));
-  if (full && P->f[FIELD_XREB].on) PetscCall(PetscArraycpy(PField(P, FIELD_XREB), PField(P, FIELD_X), P->dim * P->n)); /* a restart has them */
-  if (full && P->f[FIELD_XLIST].on) PetscCall(PetscArraycpy(PField(P, FIELD_XLIST), PField(P, FIELD_X), P->dim * P->n));
-  PetscCall(PetscLogStagePop());
-  PetscFunctionReturn(PETSC_SUCCESS);
-}
-
-PetscErrorCode SimRebuild(Sim sim)
-{
-  PetscFunctionBeginUser;
-  PetscCall(Rebuild(sim, PETSC_TRUE));
-  PetscFunctionReturn(PETSC_SUCCESS);
-}
-
-PetscErrorCode SimUpdateNeighbours(Sim sim)
-{
-  Particles        P = sim->P;
-  const PetscReal *x, *xr;
-  const PetscInt   D = P->dim;
-  PetscReal        d2 = 0, lim = 0.5 * sim->skin;
-  FieldId          all[FIELD_COUNT];
-  PetscInt         nf = 0;
-  PetscFunctionBeginUser;
-  if (sim->skin <= 0) {
-    PetscCall(SimRebuild(sim));
-    PetscFunctionReturn(PETSC_SUCCESS);
-  }
-  x  = PField(P, FIELD_X);
-  xr = PField(P, FIELD_XREB);
-  for (PetscInt a = 0; a < P->n; a++) {
-    PetscReal d[3] = {0, 0, 0};
-    VSub(x + D * a, xr + D * a, d, D);
-    d2 = PetscMax(d2, VDot(d, d, D));
-  }
-  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &d2, 1, MPIU_REAL, MPIU_MAX, sim->comm));
-  /* the steps that may rebalance rebuild on every number of ranks: the lists, and with them the
-   * order of every sum, stay the same on 1 and on 2 ranks */
-  if (d2 >= lim * lim || sim->step % sim->decomp->check_every == 0) {
-    PetscCall(SimRebuild(sim));
-    sim->nrebuild++;
-    PetscFunctionReturn(PETSC_SUCCESS);
-  }
-  /* the ghosts as a rebuild leaves them: the halo fields their owners', the others zero */
-  for (PetscInt f = 0; f < FIELD_COUNT; f++) {
-    if (!P->f[f].on) continue;
-    if (P->f[f].halo) all[nf++] = (FieldId)f;
-    else PetscCall(PetscArrayzero(P->f[f].a + P->n * P->f[f].width, P->ng * P->f[f].width));
-  }
-  PetscCall(PetscLogStagePush(sim->stage[STAGE_HALO]));
-  PetscCall(HaloRefresh(sim->halo, P, nf, all));
-  PetscCall(PetscLogStagePop());
-  PetscCall(PetscLogStagePush(sim->stage[STAGE_NEIGHBOUR]));
-  PetscCall(CellsRefreshPairs(sim->cells, P));
-  if (P->f[FIELD_XLIST].on) PetscCall(PetscArraycpy(PField(P, FIELD_XLIST), x, D * P->n));
-  PetscCall(PetscLogStagePop());
-  PetscFunctionReturn(PETSC_SUCCESS);
-}
-
-PetscErrorCode SimRebuildKeepPartition(Sim sim)
-{
-  PetscFunctionBeginUser;
-  PetscCall(Rebuild(sim, PETSC_FALSE));
+  *M += sim->nbhd.mass_out;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -374,7 +265,7 @@ PetscErrorCode SimSetUp(Sim sim)
   PetscCall(sim->scene->populate(sim));
   PetscCall(GuardCheckSetUp(sim, "after the particles were made"));
   if (sim->guard->state) PetscFunctionReturn(PETSC_SUCCESS);
-  PetscCall(ParticlesGlobalCount(sim->P, &sim->nparticles));
+  PetscCall(ParticlesGlobalCount(sim->P, &sim->nbhd.nparticles));
   if (sim->solid) { /* the solids' extent as built (a restart reads its state after this) */
     PetscReal dt_transit;
     PetscCall(SolidTransitLimit(sim, &dt_transit));
@@ -398,14 +289,15 @@ PetscErrorCode SimSetUp(Sim sim)
    * skin old (SolidPrepare after every fluid step) */
   {
     const PetscReal reach = 2.0 * sim->h_max + (sim->solid ? sim->solid->skin * sim->dx : 0); /* the cell without the fluid's skin */
-    for (PetscInt d = 0; d < sim->dim && sim->skin > 0; d++)
-      if (sim->periodic[d]) sim->skin = PetscMin(sim->skin, PetscMax(0, (1 - 1e-9) * (sim->dom_hi[d] - sim->dom_lo[d]) / 3 - reach));
-    PetscCall(GridSetUp(&sim->grid, sim->dim, sim->dom_lo, sim->dom_hi, reach + sim->skin, sim->periodic));
+    for (PetscInt d = 0; d < sim->dim && sim->nbhd.skin > 0; d++)
+      if (sim->periodic[d]) sim->nbhd.skin = PetscMin(sim->nbhd.skin, PetscMax(0, (1 - 1e-9) * (sim->dom_hi[d] - sim->dom_lo[d]) / 3 - reach));
+    PetscCall(GridSetUp(&sim->grid, sim->dim, sim->dom_lo, sim->dom_hi, reach + sim->nbhd.skin, sim->periodic));
   }
   sim->decomp->split_solids = (PetscBool)(sim->decomp->split_solids && sim->has_fluid && sim->has_solid);
   PetscCall(DecompSetUp(sim->decomp, &sim->grid));
   PetscCall(CellsCreate(&sim->grid, &sim->kernel, &sim->cells));
-  sim->cells->skin = sim->skin;
+  sim->cells->skin = sim->nbhd.skin;
+  PetscCall(NeighbourhoodWire(&sim->nbhd, sim->comm, sim->P, &sim->grid, sim->decomp, sim->halo, sim->cells, sim->periodic, sim->outflow, sim->stage[STAGE_HALO], sim->stage[STAGE_NEIGHBOUR]));
   {
     PetscBool store;
     PetscCall(NeighbourListOptions(sim, &store));
@@ -419,7 +311,7 @@ PetscErrorCode SimSetUp(Sim sim)
   else {
     PetscCall(DecompPartition(sim->decomp, sim->P)); /* from the scene's round-robin spread, so no rank ever holds them all */
     PetscCall(DecompMigrate(sim->decomp, sim->P));   /* wraps and checks every particle is inside */
-    PetscCall(SimRebuild(sim));
+    PetscCall(NeighbourhoodRebuild(&sim->nbhd, sim->step));
     PetscCall(SimTotalMass(sim, &sim->mass0));
     if (sim->has_fluid && sim->fluid == FLUID_ISPH) PetscCall(ISPHInitialize(sim));
     else if (sim->has_fluid) PetscCall(WCSPHRates(sim));
@@ -428,6 +320,7 @@ PetscErrorCode SimSetUp(Sim sim)
       PetscCall(SolidRates(sim));
     }
   }
+  if (sim->restart[0]) PetscCall(OutDirTidyRestart(sim)); /* the snapshots past the checkpoint */
   PetscCall(IOSetUp(sim));
   sim->ready = PETSC_TRUE;
   PetscFunctionReturn(PETSC_SUCCESS);
@@ -443,7 +336,7 @@ static PetscErrorCode Progress(Sim sim)
     char its[64] = "";
     if (sim->isph) PetscCall(PetscSNPrintf(its, sizeof(its), "  PPE its %" PetscInt_FMT " (free surface %" PetscInt_FMT ")", sim->isph->ppe->its_last, sim->isph->nfree));
     if (sim->has_fluid && sim->solid) PetscCall(PetscSNPrintf(its + strlen(its), sizeof(its) - strlen(its), "  solid sub-steps %" PetscInt_FMT, sim->solid->nsub_last));
-    PetscCall(PetscPrintf(sim->comm, "step %7" PetscInt_FMT "  t %.5e / %.4g s  dt %.3e  particles %" PetscInt_FMT "%s  wall %.1f s  left ~%.0f s\n", sim->step, (double)sim->t, (double)sim->t_end, (double)sim->dt, sim->nparticles, its, (double)el, (double)left));
+    PetscCall(PetscPrintf(sim->comm, "step %7" PetscInt_FMT "  t %.5e / %.4g s  dt %.3e  particles %" PetscInt_FMT "%s  wall %.1f s  left ~%.0f s\n", sim->step, (double)sim->t, (double)sim->t_end, (double)sim->dt, sim->nbhd.nparticles, its, (double)el, (double)left));
   }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -503,6 +396,7 @@ static PetscErrorCode Checkpoint(Sim sim)
   PetscFunctionBeginUser;
   if (sim->ckpt_step == sim->step) PetscFunctionReturn(PETSC_SUCCESS);
   PetscCall(CheckpointSave(sim));
+  PetscCall(GuardCheckIO(sim));
   if (sim->guard->state == GUARD_IO) PetscFunctionReturn(PETSC_SUCCESS);
   sim->ckpt_step = sim->step;
   sim->ckpt_t    = sim->t;
@@ -532,13 +426,14 @@ PetscErrorCode SimRun(Sim sim)
     if (sim->out_interval > 0) PetscCall(IOSnapshot(sim));
   }
   PetscCall(GuardCheckInitial(sim));
+  PetscCall(GuardCheckIO(sim));
   while (!g->state && sim->t < sim->t_end - eps && sim->step < sim->max_steps) {
     PetscCall(GuardStepBegin(sim));
     PetscCall(GuardStep(sim, Step));
     if (g->state) break; /* a fault inside the step: time does not advance */
     sim->t += sim->dt;
     sim->step++;
-    sim->particle_steps += (PetscReal)sim->nparticles;
+    sim->particle_steps += (PetscReal)sim->nbhd.nparticles;
     PetscCall(PetscTime(&t1));
     shown = (PetscBool)(sim->progress_every && t1 - last >= sim->progress_every);
     PetscCall(GuardStepEnd(sim, &shown)); /* NaN/Inf, signals, wall time, progress: agreed */
@@ -561,11 +456,13 @@ PetscErrorCode SimRun(Sim sim)
       PetscCall(Checkpoint(sim));
       PetscCall(IOWriteProbes(sim));
     }
+    PetscCall(GuardCheckIO(sim)); /* output that could not be written ends the run */
     if (g->state == GUARD_STOP || g->state == GUARD_IO) break;
     if (shown) {
       last = t1;
       PetscCall(Progress(sim));
       PetscCall(IOWriteProbes(sim)); /* probes.csv is at most a progress interval old */
+      PetscCall(GuardCheckIO(sim));
     }
   }
   PetscCall(PetscTime(&t1));

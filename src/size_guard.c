@@ -256,7 +256,7 @@ static PetscErrorCode Limits(Sim sim, SizeGuard g, PetscBool given, PetscReal ma
 static PetscErrorCode Model(Sim sim, SizeGuard g)
 {
   const PetscInt  D = sim->dim;
-  const PetscReal hf = sim->kernel.h_factor, skin = sim->skin / sim->dx;
+  const PetscReal hf = sim->kernel.h_factor, skin = sim->nbhd.skin / sim->dx;
   PetscBool       store_w = PETSC_FALSE;
   PetscFunctionBeginUser;
   PetscCall(PetscOptionsGetBool(NULL, NULL, "-neighbour_store_w", &store_w, NULL)); /* SimSetUp reads it after the scene */

@@ -211,7 +211,7 @@ static PetscErrorCode SolidRefresh(Sim sim)
     }
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &d2, 1, MPIU_REAL, MPIU_MAX, sim->comm));
   if (d2 >= lim * lim) {
-    PetscCall(SimRebuild(sim));
+    PetscCall(NeighbourhoodRebuild(&sim->nbhd, sim->step));
     PetscCall(SolidPrepare(sim));
     s->nrebuild++;
   } else {
@@ -276,7 +276,7 @@ PetscErrorCode SolidTimeStep(Sim sim, PetscReal *dt)
 
   PetscFunctionBeginUser;
   for (PetscInt a = 0; a < P->n; a++)
-    if (P->kind[a] == KIND_SOLID) lim = PetscMin(lim, SimAcousticStepLimit(sim->solid->cfl, hlen * h[a], sim->sl.c0, v + P->dim * a, acc + P->dim * a, P->dim));
+    if (P->kind[a] == KIND_SOLID) lim = PetscMin(lim, AcousticStepLimit(sim->solid->cfl, hlen * h[a], sim->sl.c0, v + P->dim * a, acc + P->dim * a, P->dim));
   PetscCall(MPIU_Allreduce(&lim, dt, 1, MPIU_REAL, MPIU_MIN, sim->comm));
   PetscFunctionReturn(PETSC_SUCCESS);
 }

@@ -19,11 +19,11 @@ PetscErrorCode WCSPHSetUp(Sim sim)
   PetscOptionsEnd();
   PetscCheck(fl->shift >= 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-wcsph_shift %g must be >= 0", (double)fl->shift);
   PetscCheck(skin >= 0 && skin <= 2, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-wcsph_skin %g must be in [0, 2] particle spacings", (double)skin);
-  sim->skin = skin * sim->dx;
-  if (sim->skin > 0) PetscCall(ParticlesEnableField(sim->P, FIELD_XREB, PETSC_FALSE)); /* the positions at the last rebuild */
+  sim->nbhd.skin = skin * sim->dx;
+  if (sim->nbhd.skin > 0) PetscCall(ParticlesEnableField(sim->P, FIELD_XREB, PETSC_FALSE)); /* the positions at the last rebuild */
   /* the solids' sub-steps move them after the list's pairs are computed, and their own list is made
    * then (SolidPrepare): a restart needs those positions too */
-  if (sim->skin > 0 && sim->has_solid) PetscCall(ParticlesEnableField(sim->P, FIELD_XLIST, PETSC_FALSE));
+  if (sim->nbhd.skin > 0 && sim->has_solid) PetscCall(ParticlesEnableField(sim->P, FIELD_XLIST, PETSC_FALSE));
   fl->lat_divr = KernelLatticeSum(&sim->kernel, LATTICE_DIVR, 0);
   PetscCall(ParticlesEnableField(sim->P, FIELD_ACC, PETSC_FALSE));
   PetscCall(ParticlesEnableField(sim->P, FIELD_DRHO, PETSC_FALSE));
@@ -37,7 +37,7 @@ PetscErrorCode WCSPHView(Sim sim, PetscViewer v)
 {
   const FluidMaterial *fl = &sim->fl;
   PetscFunctionBeginUser;
-  PetscCall(PetscViewerASCIIPrintf(v, "WCSPH: c0 %g m/s, AV alpha %g, delta-SPH %g, XSPH %g, shifting A = %g, wall pressure %s, neighbour skin %g dx\n", (double)fl->c0, (double)fl->alpha, (double)fl->delta, (double)fl->xsph, (double)fl->shift, fl->wall_clip ? "clipped at 0" : "as extrapolated (may be < 0)", (double)(sim->skin / sim->dx)));
+  PetscCall(PetscViewerASCIIPrintf(v, "WCSPH: c0 %g m/s, AV alpha %g, delta-SPH %g, XSPH %g, shifting A = %g, wall pressure %s, neighbour skin %g dx\n", (double)fl->c0, (double)fl->alpha, (double)fl->delta, (double)fl->xsph, (double)fl->shift, fl->wall_clip ? "clipped at 0" : "as extrapolated (may be < 0)", (double)(sim->nbhd.skin / sim->dx)));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -196,7 +196,7 @@ PetscErrorCode WCSPHTimeStep(Sim sim, PetscReal *dt)
   PetscFunctionBeginUser;
   for (PetscInt a = 0; a < P->n; a++) {
     if (!KindIsFluid(P->kind[a])) continue;
-    lim = PetscMin(lim, SimAcousticStepLimit(sim->cfl, h[a], sim->fl.c0, v + P->dim * a, acc + P->dim * a, P->dim)); /* CFL, force */
+    lim = PetscMin(lim, AcousticStepLimit(sim->cfl, h[a], sim->fl.c0, v + P->dim * a, acc + P->dim * a, P->dim)); /* CFL, force */
     if (sim->fl.mu > 0) lim = PetscMin(lim, 0.125 * h[a] * h[a] * rho[a] / sim->fl.mu); /* viscous */
   }
   PetscCall(MPIU_Allreduce(&lim, dt, 1, MPIU_REAL, MPIU_MIN, sim->comm));
@@ -242,7 +242,7 @@ PetscErrorCode WCSPHStep(Sim sim)
     }
   }
   PetscCall(PetscLogStagePop());
-  PetscCall(SimUpdateNeighbours(sim));
+  PetscCall(NeighbourhoodUpdate(&sim->nbhd, sim->step));
   PetscCall(WCSPHRates(sim));
   PetscCall(PetscLogStagePush(sim->stage[STAGE_PHYSICS]));
   KickVelocity(sim, 0.5 * dt);

@@ -40,7 +40,7 @@ static PetscErrorCode GatherById(Sim sim, PetscInt N, PetscReal *all, PetscInt *
 static PetscErrorCode Check(Sim sim, PetscInt step)
 {
   Particles  P = sim->P;
-  PetscInt   N = sim->nparticles, *count, bad = 0, nghost;
+  PetscInt   N = sim->nbhd.nparticles, *count, bad = 0, nghost;
   PetscReal *all;
   PetscFunctionBeginUser;
   PetscCall(PetscMalloc2(7 * N, &all, N, &count));
@@ -117,7 +117,7 @@ int main(int argc, char **argv)
     PetscCall(Check(sim, s));
   }
   nrep = sim->decomp->nrepartition;
-  PetscCall(PetscPrintf(PETSC_COMM_WORLD, "decomp: %" PetscInt_FMT " particles, %d ranks, %" PetscInt_FMT " steps, %" PetscInt_FMT " repartitions: ids unique, ghosts equal owners\n", sim->nparticles, sim->size, nsteps, nrep));
+  PetscCall(PetscPrintf(PETSC_COMM_WORLD, "decomp: %" PetscInt_FMT " particles, %d ranks, %" PetscInt_FMT " steps, %" PetscInt_FMT " repartitions: ids unique, ghosts equal owners\n", sim->nbhd.nparticles, sim->size, nsteps, nrep));
   PetscCheck(sim->size == 1 || nrep > 0, PETSC_COMM_WORLD, PETSC_ERR_PLIB, "Forced rebalancing never repartitioned");
   PetscCall(SimDestroy(&sim));
   PetscCall(PetscFinalize());

@@ -54,7 +54,7 @@ int main(int argc, char **argv)
     PetscInt        n, nglob;
     PetscCall(ISGetLocalSize(is, &n));
     PetscCall(ISGetSize(is, &nglob));
-    N = sim->nparticles;
+    N = sim->nbhd.nparticles;
     PetscCheck(nglob == N, sim->comm, PETSC_ERR_PLIB, "Snapshot holds %" PetscInt_FMT " ids, expected %" PetscInt_FMT, nglob, N);
     PetscCall(PetscCalloc1(N, &seen));
     PetscCall(ISGetIndices(is, &ids));

@@ -54,7 +54,7 @@ int main(int argc, char **argv)
   PetscCall(PetscOptionsSetValue(NULL, "-progress_every", "0"));
   PetscCall(RunCase(PETSC_COMM_WORLD, "out/test_rank_agreement/world", &world));
   if (!rank) PetscCall(RunCase(PETSC_COMM_SELF, "out/test_rank_agreement/self", &self));
-  N = world->nparticles;
+  N = world->nbhd.nparticles;
   /* agreement of two blown-up runs proves nothing: both must complete */
   PetscCheck(world->guard->state != GUARD_FAULT, PETSC_COMM_SELF, PETSC_ERR_PLIB, "The %d-rank run faulted: %s", size, world->guard->msg);
   PetscCheck(rank || self->guard->state != GUARD_FAULT, PETSC_COMM_SELF, PETSC_ERR_PLIB, "The 1-rank run faulted: %s", self->guard->msg);

@@ -115,7 +115,7 @@ static PetscErrorCode PartitionStats(Sim sim, const CellCounts *cc, PetscInt np,
   MaxMean(nbrs, np, &mx[4], &mean[4]);
   MaxMean(solid, np, &mx[5], &mean[5]);
   for (PetscInt r = 0; r < np; r++) { cmax = PetscMax(cmax, cost[r]); csum += cost[r]; }
-  PetscCall(PetscPrintf(PETSC_COMM_SELF, "%s,%d,%d,%d,", sim->scene->name, (int)sim->nparticles, (int)cc->nc, (int)np));
+  PetscCall(PetscPrintf(PETSC_COMM_SELF, "%s,%d,%d,%d,", sim->scene->name, (int)sim->nbhd.nparticles, (int)cc->nc, (int)np));
   PetscCall(PetscPrintf(PETSC_COMM_SELF, "%d,%.1f,%d,%.1f,%.4f,", (int)mx[0], (double)mean[0], (int)mx[1], (double)mean[1], (double)(mx[1] / mean[1])));
   PetscCall(PetscPrintf(PETSC_COMM_SELF, "%d,%.1f,%.4f,%d,%.1f,%d,", (int)mx[2], (double)mean[2], (double)(mx[2] / mean[2]), (int)mx[3], (double)mean[3], (int)cut));
   PetscCall(PetscPrintf(PETSC_COMM_SELF, "%d,%.2f,%d,%.2f,%.1f,%.1f,%.2f\n", (int)mx[4], (double)mean[4], (int)mx[5], (double)mean[5], (double)cmax, (double)(csum / np), metis_s));
@@ -147,7 +147,7 @@ int main(int argc, char **argv)
   PetscCall(SimCreate(PETSC_COMM_WORLD, &sim));
   PetscCall(SimSetFromOptions(sim));
   PetscCall(BuildScene(sim));
-  sim->nparticles = sim->P->n;
+  sim->nbhd.nparticles = sim->P->n;
   PetscCall(CountCells(sim, solid_weight, solid_cost, &cc));
   PetscCall(PetscMalloc1(cc.nc, &owner));
   if (header) PetscCall(PetscPrintf(PETSC_COMM_SELF, "case,particles,cells,ranks,owned_max,owned_mean,work_max,work_mean,work_imbalance,ppe_rows_max,ppe_rows_mean,ppe_imbalance,halo_max,halo_mean,cut_edges,nbr_ranks_max,nbr_ranks_mean,solid_max,solid_mean,cost_max,cost_mean,metis_s\n"));

@@ -8,3 +8,9 @@
 
 /* nearest integer */
 static inline PetscInt RoundToInt(PetscReal x) { return (PetscInt)PetscFloorReal(x + 0.5); }
+
+/* The program's exit statuses besides 0 (docs/cluster.md, "Exit statuses") */
+#define SIM_EXIT_BAD_INPUT 2 /* bad input found while setting up: one line on stderr (main.c) */
+#define SIM_EXIT_STOPPED 3 /* stopped by a signal or -max_wall_time; checkpoint written */
+#define SIM_EXIT_FAULT   4 /* numerical fault; last good state written */
+#define SIM_EXIT_IO      5 /* output could not be written (disk full, quota): one line; the last complete checkpoint is kept */

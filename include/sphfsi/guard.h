@@ -9,10 +9,6 @@
 #pragma once
 #include <sphfsi/checkpoint.h>
 
-#define SIM_EXIT_BAD_INPUT 2 /* bad input found while setting up: one line on stderr (main.c) */
-#define SIM_EXIT_STOPPED 3 /* stopped by a signal or -max_wall_time; checkpoint written */
-#define SIM_EXIT_FAULT   4 /* numerical fault; last good state written */
-#define SIM_EXIT_IO      5 /* output could not be written (disk full, quota): one line; the last complete checkpoint is kept */
 #define GUARD_KEEP_EVERY 10 /* steps between copies of the last good state (a copy of every field: a fraction of a step) */
 
 typedef enum { GUARD_RUNNING = 0, GUARD_STOP, GUARD_FAULT, GUARD_IO } GuardState;
@@ -48,9 +44,9 @@ PetscErrorCode GuardStepEnd(Sim sim, PetscBool *progress);
 /* Record a fault (collective; every rank passes the same message).  state_ok: the current state is
  * still good (nothing changed yet), so it becomes the last good state. */
 PetscErrorCode GuardFault(Sim sim, PetscBool state_ok, const char *fmt, ...) PETSC_ATTRIBUTE_FORMAT(3, 4);
-/* Output that cannot be written (collective; every rank passes the same message): the run ends with
- * SIM_EXIT_IO and writes nothing more but summary.json, if that fits.  The first such fault is kept. */
-PetscErrorCode GuardIOFault(Sim sim, const char *fmt, ...) PETSC_ATTRIBUTE_FORMAT(2, 3);
+/* An I/O fault the output recorded (sim->io_fault, io_space.h) becomes the guard's state GUARD_IO:
+ * the run ends with SIM_EXIT_IO (the driver asks after each output; GuardFinish asks too). */
+PetscErrorCode GuardCheckIO(Sim sim);
 /* During set-up, between its phases: a stop request (a signal on any rank) ends the set-up with
  * GUARD_STOP; `when` says where (collective). */
 PetscErrorCode GuardCheckSetUp(Sim sim, const char *when);

@@ -11,8 +11,11 @@
 #pragma once
 #include <sphfsi/sim.h>
 
-/* Whether `bytes` fit in the output directory (collective); if not, the guard records an I/O fault
- * naming `file`. */
+/* Output that cannot be written (collective; every rank passes the same message): recorded in
+ * sim->io_fault, the first one kept.  The driver hands it to the guard (GuardCheckIO): the run ends
+ * with SIM_EXIT_IO and writes nothing more but summary.json, if that fits. */
+PetscErrorCode IOFault(Sim sim, const char *fmt, ...) PETSC_ATTRIBUTE_FORMAT(2, 3);
+/* Whether `bytes` fit in the output directory (collective); if not, an I/O fault naming `file`. */
 PetscErrorCode IOSpaceReserve(Sim sim, const char *file, PetscReal bytes, PetscBool *ok);
 /* Bytes of a snapshot and of a checkpoint of the current state (collective). */
 PetscErrorCode IOSpaceSnapshot(Sim sim, PetscReal *bytes);

@@ -1,6 +1,7 @@
 /* Material constants of each medium. */
 #pragma once
 #include <sphfsi/base.h>
+#include <sphfsi/dim.h>
 
 typedef struct {
   PetscReal rho0;     /* reference density */
@@ -30,3 +31,12 @@ typedef struct {
 static inline PetscReal EOSPressure(const FluidMaterial *m, PetscReal rho) { return m->c0 * m->c0 * (rho - m->rho0); }
 static inline PetscReal EOSDensity(const FluidMaterial *m, PetscReal p) { return m->rho0 + p / (m->c0 * m->c0); }
 static inline PetscReal SolidEOSPressure(const SolidMaterial *m, PetscReal rho) { return m->c0 * m->c0 * (rho - m->rho0); }
+
+/* Step limit of one particle of an explicit (weakly compressible) medium of sound speed c:
+ * CFL  cfl h / (c + |v|)  and the force limit  0.25 sqrt(h / |a|). */
+static inline PetscReal AcousticStepLimit(PetscReal cfl, PetscReal h, PetscReal c, const PetscReal v[], const PetscReal acc[], PetscInt dim)
+{
+  PetscReal vn = PetscSqrtReal(VDot(v, v, dim)), an = PetscSqrtReal(VDot(acc, acc, dim));
+  PetscReal lim = cfl * h / (c + vn);
+  return an > 0 ? PetscMin(lim, 0.25 * PetscSqrtReal(h / an)) : lim;
+}

@@ -6,6 +6,7 @@
 #include <sphfsi/cells.h>
 #include <sphfsi/decomp.h>
 #include <sphfsi/halo.h>
+#include <sphfsi/neighbourhood.h>
 #include <sphfsi/material.h>
 #include <sphfsi/kernel.h>
 #include <sphfsi/dim.h>
@@ -38,6 +39,7 @@ struct _p_Sim {
   Cells     cells;
   Decomp    decomp;
   Halo      halo;
+  Neighbourhood nbhd; /* brings the machinery up to date after particles move; counts the particles */
   /* physics: the scene says which media it has */
   PetscInt      dim;       /* 2 or 3: set by the scene's create (default 2) */
   PetscBool     has_fluid, has_solid;
@@ -49,8 +51,6 @@ struct _p_Sim {
   PetscReal     v_ref;      /* expected maximum speed: c0 = 10 v_ref when -c0 is not given */
   SPHKernel     kernel;     /* -kernel, -h_factor: the smoothing kernel of every pair */
   PetscReal     dx, h_max;  /* finest spacing, largest smoothing length */
-  PetscReal     skin;       /* Verlet skin of the main neighbour list (m; -wcsph_skin): 0 rebuilds at every step */
-  PetscInt      nrebuild;   /* rebuilds of the main list by SimUpdateNeighbours */
   PetscReal     dom_lo[3], dom_hi[3];
   PetscBool     periodic[3];
   PetscBool     outflow;    /* fluid leaving the domain box is removed (open boundary) */
@@ -74,8 +74,7 @@ struct _p_Sim {
   /* statistics */
   PetscLogDouble wall_start, wall_loop;
   PetscReal      t_start; /* simulated time when this run's loop began (after a restart, not 0) */
-  PetscReal      particle_steps, mass0, mass, mass_out; /* mass_out: fluid removed by the outflow */
-  PetscInt       nparticles;
+  PetscReal      particle_steps, mass0, mass;
   PetscLogStage  stage[STAGE_COUNT];
   PetscInt       next_id; /* global ids handed out by the scene */
   PetscReal      wall_used; /* time-loop wall time of the runs before a restart */
@@ -87,6 +86,7 @@ struct _p_Sim {
   PetscInt  nckpt, ckpt_step;            /* checkpoints written by this run, step of the last complete one */
   PetscReal ckpt_t;                      /* time of the last complete checkpoint (-1: none) */
   Guard     guard;
+  struct { PetscBool set; char msg[2 * PETSC_MAX_PATH_LEN]; } io_fault; /* output that could not be written (io_space.h: IOFault) */
   SizeGuard size_guard;                  /* the memory estimate against the node's (size_guard.h) */
   PetscInt  exit_status;                 /* 0, or SIM_EXIT_STOPPED / SIM_EXIT_FAULT (guard.h) */
   /* every probe row so far (t and the scene's columns; rank 0), rewritten to probes.csv */
@@ -103,22 +103,5 @@ PetscErrorCode SimSetFromOptions(Sim sim);
 PetscErrorCode SimSetUp(Sim sim);
 PetscErrorCode SimRun(Sim sim);
 PetscErrorCode SimDestroy(Sim *sim);
-/* Migrate, rebalance, sort, build ghosts, cells and neighbour lists: after particles moved. */
-PetscErrorCode SimRebuild(Sim sim);
-/* After the particles moved: SimRebuild, or with a skin, while no particle has moved skin / 2 since
- * the last rebuild (and the step is not one that may rebalance), the ghosts take their owners' new
- * state and the list its pairs at the new positions (CellsRefreshPairs). */
-PetscErrorCode SimUpdateNeighbours(Sim sim);
-/* The rebuild without outflow or rebalancing (a restart repeats the last rebuild of the run). */
-PetscErrorCode SimRebuildKeepPartition(Sim sim);
-/* Step limit of one particle of an explicit (weakly compressible) medium of sound speed c:
- * CFL  cfl h / (c + |v|)  and the force limit  0.25 sqrt(h / |a|). */
-static inline PetscReal SimAcousticStepLimit(PetscReal cfl, PetscReal h, PetscReal c, const PetscReal v[], const PetscReal acc[], PetscInt dim)
-{
-  PetscReal vn = PetscSqrtReal(VDot(v, v, dim)), an = PetscSqrtReal(VDot(acc, acc, dim));
-  PetscReal lim = cfl * h / (c + vn);
-  return an > 0 ? PetscMin(lim, 0.25 * PetscSqrtReal(h / an)) : lim;
-}
-
 /* Total mass of owned fluid and solid particles, plus the fluid that left (collective). */
 PetscErrorCode SimTotalMass(Sim sim, PetscReal *M);

@@ -172,7 +172,7 @@ static PetscErrorCode Errors(Sim sim, FILE *f)
   PetscCall(Compare(sim, f, &c->dy_tip, "antoci2007_exp_tipdy__chrono.csv", "dy_m", "tip_dy"));
   PetscCall(Compare(sim, f, &c->dx_tip, "antoci2007_exp_tipdx__fsi_etvf.csv", "dx_m", "tip_dx_digitisation2"));
   PetscCall(Compare(sim, f, &c->dy_tip, "antoci2007_exp_tipdy__fsi_etvf.csv", "dy_m", "tip_dy_digitisation2"));
-  if (f) fprintf(f, "\"tip_dx_final\": %.6g, \"tip_dy_final\": %.6g, \"fluid_mass_out\": %.6g, \"reference\": \"Antoci, Gallati & Sibilla 2007 experiment (errors in m)\"", (double)(c->dx_tip.n ? c->dx_tip.y[c->dx_tip.n - 1] : 0), (double)(c->dy_tip.n ? c->dy_tip.y[c->dy_tip.n - 1] : 0), (double)sim->mass_out);
+  if (f) fprintf(f, "\"tip_dx_final\": %.6g, \"tip_dy_final\": %.6g, \"fluid_mass_out\": %.6g, \"reference\": \"Antoci, Gallati & Sibilla 2007 experiment (errors in m)\"", (double)(c->dx_tip.n ? c->dx_tip.y[c->dx_tip.n - 1] : 0), (double)(c->dy_tip.n ? c->dy_tip.y[c->dy_tip.n - 1] : 0), (double)sim->nbhd.mass_out);
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

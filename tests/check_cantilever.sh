@@ -2,7 +2,9 @@
 # Static cantilever with the total-Lagrangian solid (issue: a solid that converges in bending): the
 # elastic gate's plate (L = 79 mm, H = 5 mm, rubber K 2e7, G 4.27e6 Pa) clamped at x < 0 and bent by
 # a uniform load of 99 N/m (gravity 18 m/s^2 on rho H), brought to rest by -solid_damping (dynamic
-# relaxation, about critical for its first mode).  Reference: Euler-Bernoulli with the plane-strain
+# relaxation, about critical for its first mode) until t = 0.12 s: the end is then within 0.03 % of its
+# rest (5 across: 3.2600 mm at 0.12 s, 3.2608 mm at 0.15 s; the approach shrinks 2.2x every 0.01 s), a
+# tenth of the error measured at 5 across and a quarter of that at 10.  Reference: Euler-Bernoulli with the plane-strain
 # modulus, 3.249 mm; a 2D finite-element solution of the same rigidly clamped plate
 # (tools/fem_plate.py) is 0.08 % below it, so beam theory is the reference to that accuracy.
 # Bounds, the issue's targets: the sag within 3 % of it at 5 particles across and 1 % at 10
@@ -13,12 +15,9 @@
 #   tests/check_cantilever.sh "MPIEXEC -n P" OUTDIR
 set -e
 MPI=$1; OUT=$2; shift 2
-# One rank: a static test of the solid's accuracy with ~400 to 1600 particles, where two ranks add only
-# their exchange to every one of ~60k steps (rank agreement of this solid: test_rank_agreement_solid)
-MPI=$(echo "$MPI" | sed 's/-n [0-9]*/-n 1/')
 run() { local name=$1; shift
   $MPI bin/sphfsi -options_file cases/oscillating_plate.opts -solid_formulation total -plate_length 0.079 -plate_thickness 0.005 \
-    -solid_rho 1100 -solid_K 2e7 -solid_G 4.27e6 -plate_vf 0 -gravity 0,-18 -solid_damping 185 -t_end 0.15 \
+    -solid_rho 1100 -solid_K 2e7 -solid_G 4.27e6 -plate_vf 0 -gravity 0,-18 -solid_damping 185 -t_end 0.12 \
     -output_interval 0 -progress_every 0 -output_dir "$OUT/$name" "$@" > "$OUT.$name.log" 2>&1 || { tail -20 "$OUT.$name.log"; exit 1; }; }
 mkdir -p "$OUT"
 run ny5 -plate_ny 5

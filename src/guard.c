@@ -11,7 +11,7 @@
  * the process at once: the last complete checkpoint stays, as a checkpoint is renamed into place only
  * when whole, and summary.json already says the run was stopped (sim.c writes it first).  A SIGTERM
  * or SIGUSR1 that comes again is ignored: SLURM sends SIGTERM twice at a job's time limit (srun
- * forwards the one it gets, then slurmd signals the step: 50 ms apart, tools/slurm_check.sh), and
+ * forwards the one it gets, then slurmd signals the step: 10-50 ms apart, tools/slurm_check.sh), and
  * a launcher that will not wait sends SIGKILL. */
 static volatile sig_atomic_t caught_signal = 0;
 

@@ -32,7 +32,11 @@ else
   METIS_LIBS   := -lmetis
 endif
 
-OPT     ?= -O3 -march=native -fno-math-errno
+# MARCH: the instruction set.  -march=native builds for the CPU of the machine that compiles; for
+# compute nodes that differ from it, build on one of them or give a portable target, e.g.
+# `make clean; make MARCH=-march=x86-64-v3` (AVX2 and FMA, 2013 on) or `MARCH=` (any x86-64).
+MARCH   ?= -march=native
+OPT     ?= -O3 $(MARCH) -fno-math-errno
 SAN     ?=
 ifeq ($(SAN),1)
   SANFLAGS := -fsanitize=address,undefined
@@ -63,7 +67,7 @@ MPIEXEC ?= mpiexec
 MPIEXEC_FLAGS ?= $(shell $(MPIEXEC) --version 2>/dev/null | grep -q "Open MPI" && echo --oversubscribe)
 export MPIEXEC MPIEXEC_FLAGS
 
-.PHONY: all deps run check check-unit bench hard study clean tests install layers FORCE
+.PHONY: all deps run check check-unit bench hard study slurm clean tests install layers FORCE
 all: $(BIN) $(TEST_BIN)
 
 $(BUILD)/%.o: %.c $(wildcard include/sphfsi/*.h)
@@ -122,6 +126,15 @@ bench: deps
 hard: deps
 	@$(MAKE) --no-print-directory all
 	@BINDIR=$(BINDIR) NP=$(if $(filter command line environment,$(origin NP)),$(NP),2) bash tools/hard.sh
+
+# The batch recipe of docs/cluster.md under a real SLURM on this machine (issue 46): as root, installs
+# Debian's slurm-wlm and munge if missing, starts a one-node cluster (tools/slurm_local.sh), runs
+# tools/slurm_check.sh (sbatch, scancel, a 1 min time limit, --signal, resubmission)
+# into out/slurm and stops the cluster it started.  Skipped with one line when not root or SLURM
+# cannot be installed.  Not part of `make check`, not in CI.
+slurm: deps
+	@$(MAKE) --no-print-directory all
+	@bash tools/slurm_check.sh --setup $(CURDIR)/out/slurm
 
 # Speed against error: every validated scene, each scheme at 3 resolutions on NP ranks (tools/study.sh;
 # out/study/study.md + one PNG per scene, ~30 min on 2 cores).  STUDY_SCENES (subset), STUDY_REUSE=1

@@ -2,6 +2,7 @@
 #include <sphfsi/options_used.h>
 #include <sphfsi/exchange.h>
 #include <metis.h>
+#include <signal.h>
 
 /* Relative work of a particle by kind: fluid and solid particles run every neighbour pass, wall
  * and dummy particles only the light wall-state pass. Used to weight cells and measure balance. */
@@ -137,7 +138,21 @@ PetscErrorCode DecompPartitionCells(const Grid *g, const PetscInt *count, const 
   METIS_SetDefaultOptions(opts);
   opts[METIS_OPTION_SEED]      = 1;
   opts[METIS_OPTION_NUMBERING] = 0;
-  status = METIS_PartGraphKway(&nv, &ncon, xadj, adj, vw, NULL, ew, &nparts, NULL, NULL, opts, &objval, part);
+  { /* METIS (its GKlib) sets its own SIGTERM and SIGABRT handlers for the call and puts the old ones
+     back with System V signal(): one-shot.  After a partition rank 0's stop handler then reset itself
+     at the first SIGTERM, and the second SIGTERM that SLURM sends at a time limit killed the stop
+     (tools/slurm_check.sh).  The dispositions are restored whole, and SIGTERM waits in this thread
+     until they are (METIS's handler would end the call with METIS_ERROR). */
+    struct sigaction term, abrt;
+    sigset_t         block, old;
+    sigemptyset(&block);
+    sigaddset(&block, SIGTERM);
+    PetscCheck(!pthread_sigmask(SIG_BLOCK, &block, &old), PETSC_COMM_SELF, PETSC_ERR_SYS, "pthread_sigmask failed");
+    PetscCheck(!sigaction(SIGTERM, NULL, &term) && !sigaction(SIGABRT, NULL, &abrt), PETSC_COMM_SELF, PETSC_ERR_SYS, "sigaction failed");
+    status = METIS_PartGraphKway(&nv, &ncon, xadj, adj, vw, NULL, ew, &nparts, NULL, NULL, opts, &objval, part);
+    PetscCheck(!sigaction(SIGTERM, &term, NULL) && !sigaction(SIGABRT, &abrt, NULL), PETSC_COMM_SELF, PETSC_ERR_SYS, "sigaction failed");
+    PetscCheck(!pthread_sigmask(SIG_SETMASK, &old, NULL), PETSC_COMM_SELF, PETSC_ERR_SYS, "pthread_sigmask failed");
+  }
   for (PetscInt c = 0; c < nc; c++)
     if (vert[c] >= 0) owner[c] = (PetscMPIInt)part[vert[c]]; /* the empty ones: OwnEmptyCells */
   PetscCall(PetscFree5(xadj, adj, vw, ew, part));

@@ -7,14 +7,18 @@
 
 /* The program's one global: the signal a handler saw (0: none).  A handler may do no more than set
  * a flag of this type; the time loop reads it at the end of each step and the ranks agree on it in
- * the step's reduction.  A second signal ends the process at once (a user who insists, or a launcher
- * that will not wait): the last complete checkpoint stays, as a checkpoint is renamed into place only
- * when whole, and summary.json already says the run was stopped (sim.c writes it first). */
+ * the step's reduction.  A SIGINT once a stop is under way (Ctrl-C again: a user who insists) ends
+ * the process at once: the last complete checkpoint stays, as a checkpoint is renamed into place only
+ * when whole, and summary.json already says the run was stopped (sim.c writes it first).  A SIGTERM
+ * or SIGUSR1 that comes again is ignored: SLURM sends SIGTERM twice at a job's time limit (srun
+ * forwards the one it gets, then slurmd signals the step: 10-50 ms apart, tools/slurm_check.sh), and
+ * a launcher that will not wait sends SIGKILL. */
 static volatile sig_atomic_t caught_signal = 0;
 
 static void OnSignal(int sig)
 {
   if (caught_signal) {
+    if (sig != SIGINT) return;
     signal(sig, SIG_DFL);
     raise(sig);
     return;

@@ -60,7 +60,10 @@ BIN      := $(BINDIR)/sphfsi
 
 NP      ?= $(shell nproc 2>/dev/null || echo 2)
 MPIEXEC ?= mpiexec
-MPIEXEC_FLAGS ?= $(shell $(MPIEXEC) --version 2>/dev/null | grep -q "Open MPI" && echo --oversubscribe)
+# Open MPI refuses more ranks than cores without --oversubscribe (and then yields when idle by itself).
+# Open MPI 4 prints "mpiexec (OpenRTE) 4.1.4", 5 "(Open MPI)".  At 2 ranks on 2 cores the flag changes
+# nothing: the ranks are still bound to a core each and mpi_yield_when_idle stays 0 (read through MPI_T).
+MPIEXEC_FLAGS ?= $(shell $(MPIEXEC) --version 2>/dev/null | grep -Eqi "open ?-?mpi|openrte" && echo --oversubscribe)
 export MPIEXEC MPIEXEC_FLAGS
 
 .PHONY: all deps run check check-unit bench hard ranks study clean tests install FORCE

@@ -384,15 +384,22 @@ PetscErrorCode DecompSortOwned(Decomp d, Particles P)
 
 PetscErrorCode DecompBalance(Decomp d, Particles P, PetscInt step, PetscBool *repartitioned)
 {
-  PetscInt w[2], wmax[2], wsum[2];
+  PetscInt w[4], wmax[4], wsum[4], nfluid = 0;
 
   PetscFunctionBeginUser;
   *repartitioned = PETSC_FALSE;
   if (d->size == 1 || step % d->check_every) PetscFunctionReturn(PETSC_SUCCESS);
+  for (PetscInt a = 0; a < P->n; a++) nfluid += KindIsFluid(P->kind[a]);
   w[0] = Work(P);
   w[1] = d->split_solids ? SolidCount(P) : 0;
-  PetscCall(MPIU_Allreduce(w, wmax, 2, MPIU_INT, MPI_MAX, d->comm));
-  PetscCall(MPIU_Allreduce(w, wsum, 2, MPIU_INT, MPI_SUM, d->comm));
+  /* ranks left without particles or without fluid (counted in the same reduction, no extra message):
+   * summary.json reports the most at one check, so a test can tell that such ranks did occur */
+  w[2] = P->n == 0;
+  w[3] = nfluid == 0;
+  PetscCall(MPIU_Allreduce(w, wmax, 4, MPIU_INT, MPI_MAX, d->comm));
+  PetscCall(MPIU_Allreduce(w, wsum, 4, MPIU_INT, MPI_SUM, d->comm));
+  d->empty_max   = PetscMax(d->empty_max, wsum[2]);
+  d->nofluid_max = PetscMax(d->nofluid_max, wsum[3]);
   d->imbalance       = wsum[0] ? (PetscReal)wmax[0] * d->size / wsum[0] : 1.0;
   d->imbalance_solid = wsum[1] ? (PetscReal)wmax[1] * d->size / wsum[1] : 1.0;
   if (d->imbalance <= d->threshold && d->imbalance_solid <= d->threshold) PetscFunctionReturn(PETSC_SUCCESS);

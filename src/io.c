@@ -365,6 +365,7 @@ PetscErrorCode IOSummary(Sim sim)
     else fprintf(f, "  \"c0\": null,\n");
     JsonModules(f, sim);
     fprintf(f, "  \"bytes_per_particle\": %d,\n  \"repartitions\": %d,\n", (int)ParticlesBytesPerParticle(sim->P), (int)sim->decomp->nrepartition);
+    fprintf(f, "  \"ranks_empty_max\": %d,\n  \"ranks_without_fluid_max\": %d,\n", (int)sim->decomp->empty_max, (int)sim->decomp->nofluid_max); /* at the imbalance checks of this run */
     JsonReal(f, "peak_resident_bytes", rss_sum); /* all ranks, MPI/PETSc/hypre included */
     JsonReal(f, "peak_resident_bytes_per_particle", sim->nbhd.nparticles > 0 ? rss_sum / sim->nbhd.nparticles : 0);
     fprintf(f, "  \"fields\": [");

@@ -131,6 +131,10 @@ if [ "${1:-}" != "--unit-only" ]; then
   # mpiexec's kill; a full disk, a damaged checkpoint, -restart alone, output directories, -help
   run stop bash tests/check_stop.sh "$MPI" "$OUT/stop"
   run batch_job bash tests/check_batch_job.sh "$MPI" "$OUT/batch_job"
+  # 16 ranks (issue "Past two ranks"): ranks without a particle from the start, the sparse exchange
+  # (the default from 9 ranks) through the collapse, snapshots and checkpoint equal to 1 rank's by id
+  # (more of these: make ranks)
+  run ranks16 bash tests/check_ranks16.sh "${MPI8% -n 8} -n 16" "$OUT/ranks16"
   # Bad input: one line "sphfsi: error: ...", status 2, no crash
   run bad_input bash tests/check_bad_input.sh "$MPI" "$OUT/bad_input" "$MPI8"
   run size_guard bash tests/check_size_guard.sh "$MPI" "$OUT/size_guard"

@@ -21,6 +21,8 @@ struct _p_Decomp {
   PetscInt    *scount;      /* per-cell solid + clamp particles, with split_solids */
   PetscReal   imbalance_solid;
   PetscBool   sparse;       /* exchange particles with the ranks concerned only (exchange.h) */
+  PetscInt    empty_max;    /* most ranks that owned no particle at one imbalance check (this run) */
+  PetscInt    nofluid_max;  /* most ranks that owned no fluid particle at one imbalance check */
 };
 
 PetscErrorCode DecompCreate(MPI_Comm comm, Decomp *d);

@@ -231,6 +231,7 @@ static PetscErrorCode Rebuild(Sim sim, PetscBool full)
   PetscCall(PetscLogStagePush(sim->stage[STAGE_HALO]));
   PetscCall(HaloBuild(sim->halo, sim->decomp, P));
   PetscCall(PetscLogStagePop());
+  if (sim->decomp->log_stats) PetscCall(DecompLogRebuild(sim->decomp, P, sim->halo->nbr_send, sim->step));
   PetscCall(PetscLogStagePush(sim->stage[STAGE_NEIGHBOUR]));
   PetscCall(CellsBuild(sim->cells, P));
   if (full && P->f[FIELD_XREB].on) PetscCall(PetscArraycpy(PField(P, FIELD_XREB), PField(P, FIELD_X), P->dim * P->n)); /* a restart has them */
@@ -578,6 +579,7 @@ PetscErrorCode SimRun(Sim sim)
   PetscCall(IOWriteProbes(sim));
   PetscCall(SimTotalMass(sim, &sim->mass));
   PetscCall(IOSummary(sim));
+  if (sim->decomp->log_stats) PetscCall(DecompWriteStats(sim->decomp, sim->outdir));
   PetscCall(PetscPrintf(sim->comm, "sphfsi: %" PetscInt_FMT " steps in %.2f s (%.3g particle-steps/s); output in %s\n", sim->step - step0, (double)sim->wall_loop, (double)((sim->particle_steps - ps0) / PetscMax(sim->wall_loop, 1e-9)), sim->outdir));
   PetscFunctionReturn(PETSC_SUCCESS);
 }

@@ -6,7 +6,7 @@ rank<r>.csv; D/setup: the same run with -max_steps 0): the counts per rank and s
 left out and the rebuilds, rebalancing and output of the time loop stay in."""
 import csv, glob, json, math, os
 
-PPE = ("PPE assembly", "PPE solve")
+PPE = ("PPE assembly", "PPE solve", "AMG setup", "AMG V-cycle")  # the last two: hypre's, inside PPE solve
 TREE = ("allreduce", "bcast", "reduce", "scan", "allgather", "gather", "barrier", "ibarrier", "other_coll")  # latency ~ log2 P each
 
 
@@ -109,6 +109,9 @@ def run_stats(d):
         st[f"{grp}_a2a_pairs"] = max(lc[r][grp].get("a2a_pairs", 0.0) for r in lc)
         st[f"{grp}_a2av_dests_max"] = max(lc[r][grp].get("a2av_dests", 0.0) for r in lc)
         st[f"{grp}_coll_bytes_max"] = max(lc[r][grp].get("coll_bytes", 0.0) for r in lc)
+        # what a rank puts on the network: point to point and its share of the collectives (below 9
+        # ranks migration and ghosts go by MPI_Alltoallv, a collective)
+        st[f"{grp}_bytes_max"], st[f"{grp}_bytes_mean"] = stat([lc[r][grp].get("send_bytes", 0.0) + lc[r][grp].get("coll_bytes", 0.0) for r in lc])
     st.update(partition_log(f"{d}/run", P, n))
     return st
 

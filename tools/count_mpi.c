@@ -9,7 +9,9 @@
  *     MPI_Alltoallv also the destinations it has something for (the messages a sparse exchange
  *     would send), MPI_Alltoall(v) the P - 1 pairwise steps Open MPI runs.
  * The stage is the one the program last pushed (PetscLogStagePush, interposed too), so the counts
- * split into the code's phases (Halo+migrate, PPE solve, ...); "Main Stage" holds the set-up.
+ * split into the code's phases (Halo+migrate, PPE solve, ...); "Main Stage" holds the set-up; inside
+ * hypre's HYPRE_BoomerAMGSetup / HYPRE_BoomerAMGSolve (interposed) the stages "AMG setup" and
+ * "AMG V-cycle" (stages of the PPE solve).
  * At MPI_Finalize each rank writes $COUNT_MPI_DIR/rank<r>.csv: one row per stage that saw traffic.
  * Build (tools/count_traffic.sh does): mpicc -shared -fPIC -O2 tools/count_mpi.c -o build/libcount_mpi.so -ldl
  * Use: COUNT_MPI_DIR=dir mpiexec -x LD_PRELOAD=build/libcount_mpi.so -x COUNT_MPI_DIR -n P bin/sphfsi ... */
@@ -125,6 +127,26 @@ int PetscLogStagePop(void)
   if (depth > 0) depth--;
   return real();
 }
+
+/* ---- hypre's BoomerAMG (through PETSc's PCHYPRE): its set-up and its V-cycles as stages of their
+ * own, so that the PPE's traffic splits into what the set-up costs at every step and the rest ---- */
+#define STAGE_AMG_SETUP (MAX_STAGES - 2)
+#define STAGE_AMG_SOLVE (MAX_STAGES - 1)
+typedef int (*AmgFn)(void *, void *, void *, void *);
+
+static int Amg(const char *fn, int stage, const char *name, void *s, void *A, void *b, void *x)
+{
+  AmgFn real = (AmgFn)dlsym(RTLD_NEXT, fn);
+  int   e;
+  snprintf(stage_name[stage], sizeof(stage_name[0]), "%s", name);
+  if (depth < 256) stack[depth] = stage;
+  depth++;
+  e = real(s, A, b, x);
+  depth--;
+  return e;
+}
+int HYPRE_BoomerAMGSetup(void *s, void *A, void *b, void *x) { return Amg("HYPRE_BoomerAMGSetup", STAGE_AMG_SETUP, "AMG setup", s, A, b, x); }
+int HYPRE_BoomerAMGSolve(void *s, void *A, void *b, void *x) { return Amg("HYPRE_BoomerAMGSolve", STAGE_AMG_SOLVE, "AMG V-cycle", s, A, b, x); }
 
 /* ---- point to point ---- */
 int MPI_Send(const void *b, int n, MPI_Datatype t, int d, int tag, MPI_Comm c) { Send(n, t, d, c); Blocking(); return PMPI_Send(b, n, t, d, tag, c); }

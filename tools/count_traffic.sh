@@ -25,7 +25,8 @@
 # Output: OUTDIR (default out/count)/NAME_npP/{run,mpi,setup/{run,mpi}}, partition_*.csv; then
 # tools/count_report.py OUTDIR writes OUTDIR/count.md and the plot.
 # Environment: COUNT_ONLY (subset of: partition strong levels weak), COUNT_NPS, COUNT_WEAK_NPS,
-# COUNT_CASES (subset of the strong runs), MPIEXEC, BINDIR, COUNT_TIMEOUT (s per run, 3600).
+# COUNT_CASES (subset of the strong runs), COUNT_WEAK_FLUIDS (wcsph isph), MPIEXEC, BINDIR,
+# COUNT_TIMEOUT (s per run, 3600).
 cd "$(dirname "$0")/.." || exit 2
 OUT=${1:-out/count}
 BIN=${BINDIR:-bin}
@@ -112,8 +113,8 @@ fi
 if has "$ONLY" weak; then
   for np in $WNPS; do
     dx=$(weak_dx $np)
-    run weak_wcsph $np $S2 -dx $dx -fluid wcsph -max_steps 20
-    run weak_isph $np $S2 -dx $dx -fluid isph -max_steps 4
+    has "${COUNT_WEAK_FLUIDS:-wcsph isph}" wcsph && run weak_wcsph $np $S2 -dx $dx -fluid wcsph -max_steps 20
+    has "${COUNT_WEAK_FLUIDS:-wcsph isph}" isph && run weak_isph $np $S2 -dx $dx -fluid isph -max_steps 4
   done
 fi
 [ -z "$FAILS" ] || { echo "failed:$FAILS" >&2; exit 1; }

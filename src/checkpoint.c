@@ -494,7 +494,7 @@ PetscErrorCode CheckpointRestart(Sim sim)
     PetscCallMPI(MPI_Bcast(sim->decomp->owner, (PetscMPIInt)ncell, MPI_INT, 0, sim->comm));
   } else PetscCall(DecompPartition(sim->decomp, sim->P));
   PetscCall(PetscViewerDestroy(&v));
-  PetscCall(NeighbourhoodRebuildKeepPartition(&sim->nbhd));
+  PetscCall(NeighbourhoodRebuildKeepPartition(&sim->nbhd, sim->step));
   if (sim->solid && !sim->P->f[FIELD_XLIST].on) PetscCall(SolidPrepare(sim)); /* as after every rebuild: the solids' list, xref */
   SwapPositions(sim->P, FIELD_XREB);
   /* ghosts take every field's current value */

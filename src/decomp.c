@@ -43,6 +43,7 @@ PetscErrorCode DecompSetFromOptions(Decomp d)
   PetscCall(OptReal("-rebalance_threshold", "Repartition when max/mean work per rank exceeds this (>= 1)", "", d->threshold, &d->threshold, NULL));
   PetscCall(OptInt("-rebalance_every", "Steps between load-imbalance checks (> 0)", "", d->check_every, &d->check_every, NULL));
   PetscCall(OptInt("-decomp_sparse_ranks", "From this many ranks on, migration and ghosts go to the ranks concerned only (a two-sided set-up, see -build_twosided) instead of MPI_Alltoallv, whose cost grows with the ranks", "", sparse_ranks, &sparse_ranks, NULL));
+  PetscCall(OptBool("-decomp_log_stats", "Record each rank's ghosts, owned particles, work and neighbour ranks after every rebuild (and ISPH's PPE rows per step) and write their max and sum over the ranks to OUTDIR/partition_stats.csv at the end (tools/count_traffic.sh); the results do not change", "", d->log_stats, &d->log_stats, NULL));
   PetscCall(OptBool("-decomp_split_solids", "With fluid and solids: balance the solid particles over the ranks as a second METIS constraint (the solid sub-steps are a phase of their own)", "", d->split_solids, &d->split_solids, NULL));
   PetscOptionsEnd();
   PetscCheck(d->threshold >= 1.0, d->comm, PETSC_ERR_ARG_OUTOFRANGE, "-rebalance_threshold %g must be >= 1", (double)d->threshold);
@@ -66,6 +67,8 @@ PetscErrorCode DecompDestroy(Decomp *d)
   PetscFunctionBeginUser;
   if (!*d) PetscFunctionReturn(PETSC_SUCCESS);
   PetscCall(PetscFree3((*d)->owner, (*d)->wcount, (*d)->scount));
+  PetscCall(PetscFree((*d)->log[0]));
+  PetscCall(PetscFree((*d)->log[1]));
   PetscCall(PetscFree(*d));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -418,5 +421,69 @@ PetscErrorCode DecompView(Decomp d, PetscViewer v)
   if (d->grid->dim == 3) PetscCall(PetscSNPrintf(cells, sizeof(cells), "%" PetscInt_FMT " x %" PetscInt_FMT " x %" PetscInt_FMT, d->grid->n[0], d->grid->n[1], d->grid->n[2]));
   else PetscCall(PetscSNPrintf(cells, sizeof(cells), "%" PetscInt_FMT " x %" PetscInt_FMT, d->grid->n[0], d->grid->n[1]));
   PetscCall(PetscViewerASCIIPrintf(v, "Decomposition: %d rank(s), %s cells of %g m, rebalance past %.2f (checked every %" PetscInt_FMT " steps), %" PetscInt_FMT " repartition(s), %s exchanges\n", d->size, cells, (double)d->grid->cs, (double)d->threshold, d->check_every, d->nrepartition, d->sparse ? "sparse" : "all-to-all"));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* Append one record of LogWidth[which] reals (the step first) to the log `which` (0: rebuilds, 1: PPE rows). */
+static const PetscInt LogWidth[2] = {6, 2};
+
+static PetscErrorCode LogAppend(Decomp d, PetscInt which, const PetscReal *rec)
+{
+  const PetscInt w = LogWidth[which];
+  PetscFunctionBeginUser;
+  if (d->nlog[which] == d->caplog[which]) {
+    PetscReal *a;
+    d->caplog[which] = 2 * d->caplog[which] + 64;
+    PetscCall(PetscMalloc1(w * d->caplog[which], &a));
+    if (d->nlog[which]) PetscCall(PetscArraycpy(a, d->log[which], w * d->nlog[which]));
+    PetscCall(PetscFree(d->log[which]));
+    d->log[which] = a;
+  }
+  PetscCall(PetscArraycpy(d->log[which] + w * d->nlog[which]++, rec, w));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode DecompLogRebuild(Decomp d, Particles P, PetscInt nbr, PetscInt step)
+{
+  PetscReal rec[6] = {(PetscReal)step, (PetscReal)P->ng, (PetscReal)P->n, (PetscReal)Work(P), (PetscReal)nbr, P->n ? (PetscReal)P->ng / P->n : 0};
+  PetscFunctionBeginUser;
+  PetscCall(LogAppend(d, 0, rec));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode DecompLogRows(Decomp d, PetscInt nrow, PetscInt step)
+{
+  PetscReal rec[2] = {(PetscReal)step, (PetscReal)nrow};
+  PetscFunctionBeginUser;
+  PetscCall(LogAppend(d, 1, rec));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode DecompWriteStats(Decomp d, const char *outdir)
+{
+  const char *file[2] = {"partition_stats.csv", "ppe_rows.csv"}, *names[2][6] = {{"step", "ghosts", "owned", "work", "nbr_ranks", "ghosts_per_owned"}, {"step", "ppe_rows"}};
+  PetscFunctionBeginUser;
+  for (PetscInt which = 0; which < 2; which++) {
+    const PetscInt w = LogWidth[which], n = d->nlog[which];
+    PetscReal     *mx = NULL, *sum = NULL;
+    char           path[PETSC_MAX_PATH_LEN];
+    FILE          *f = NULL;
+    if (!n) continue; /* the same on every rank: records are made collectively */
+    PetscCall(PetscSNPrintf(path, sizeof(path), "%s/%s", outdir, file[which]));
+    PetscCall(PetscFOpen(d->comm, path, "w", &f));
+    PetscCall(PetscFPrintf(d->comm, f, "# %s: max and sum over %d rank(s) of each value, one row %s\nstep", file[which], d->size, which ? "per PPE numbering" : "per rebuild (ghosts, migration)"));
+    for (PetscInt k = 1; k < w; k++) PetscCall(PetscFPrintf(d->comm, f, ",%s_max,%s_sum", names[which][k], names[which][k]));
+    PetscCall(PetscFPrintf(d->comm, f, "\n"));
+    if (!d->rank) PetscCall(PetscMalloc2(w * n, &mx, w * n, &sum));
+    PetscCallMPI(MPI_Reduce(d->log[which], mx, (PetscMPIInt)(w * n), MPIU_REAL, MPI_MAX, 0, d->comm));
+    PetscCallMPI(MPI_Reduce(d->log[which], sum, (PetscMPIInt)(w * n), MPIU_REAL, MPI_SUM, 0, d->comm));
+    for (PetscInt r = 0; r < n && !d->rank; r++) {
+      PetscCall(PetscFPrintf(PETSC_COMM_SELF, f, "%.0f", (double)mx[w * r]));
+      for (PetscInt k = 1; k < w; k++) PetscCall(PetscFPrintf(PETSC_COMM_SELF, f, ",%.10g,%.10g", (double)mx[w * r + k], (double)sum[w * r + k]));
+      PetscCall(PetscFPrintf(PETSC_COMM_SELF, f, "\n"));
+    }
+    PetscCall(PetscFree2(mx, sum));
+    PetscCall(PetscFClose(d->comm, f));
+  }
   PetscFunctionReturn(PETSC_SUCCESS);
 }

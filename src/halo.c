@@ -142,6 +142,8 @@ PetscErrorCode HaloBuild(Halo h, Decomp d, Particles P)
   }
   PetscCall(PetscFree(fill));
   h->nghost_sent = nsend;
+  h->nbr_send     = 0;
+  for (PetscMPIInt r = 0; r < size; r++) h->nbr_send += r != d->rank && scnt[r] > 0;
   PetscCall(ExchangeRecords(d->comm, d->sparse, rs, scnt, sdisp, sbuf, rcnt, rdisp, &rbuf, &nrecv));
 
   PetscCall(ParticlesReserve(P, n + nrecv));

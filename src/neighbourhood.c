@@ -61,6 +61,7 @@ static PetscErrorCode Rebuild(Neighbourhood *nb, PetscBool full, PetscInt step)
   PetscCall(PetscLogStagePush(nb->stage_halo));
   PetscCall(HaloBuild(nb->halo, nb->decomp, P));
   PetscCall(PetscLogStagePop());
+  if (nb->decomp->log_stats) PetscCall(DecompLogRebuild(nb->decomp, P, nb->halo->nbr_send, step));
   PetscCall(PetscLogStagePush(nb->stage_neighbour));
   PetscCall(CellsBuild(nb->cells, P));
   if (full && P->f[FIELD_XREB].on) PetscCall(PetscArraycpy(PField(P, FIELD_XREB), PField(P, FIELD_X), P->dim * P->n)); /* a restart has them */
@@ -76,10 +77,10 @@ PetscErrorCode NeighbourhoodRebuild(Neighbourhood *nb, PetscInt step)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode NeighbourhoodRebuildKeepPartition(Neighbourhood *nb)
+PetscErrorCode NeighbourhoodRebuildKeepPartition(Neighbourhood *nb, PetscInt step)
 {
   PetscFunctionBeginUser;
-  PetscCall(Rebuild(nb, PETSC_FALSE, 0));
+  PetscCall(Rebuild(nb, PETSC_FALSE, step));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

@@ -115,6 +115,7 @@ PetscErrorCode PPENumber(PPE ppe, Sim sim)
     if (fs[a] > 0) nd++;
   }
   ppe->nrow = n;
+  if (sim->decomp->log_stats) PetscCall(DecompLogRows(sim->decomp, n, sim->step));
   PetscCallMPI(MPI_Scan(&n, &ppe->rstart, 1, MPIU_INT, MPI_SUM, ppe->comm));
   ppe->rstart -= n;
   cnt[0] = n; cnt[1] = nd; cnt[2] = n == 0;

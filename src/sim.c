@@ -475,6 +475,7 @@ PetscErrorCode SimRun(Sim sim)
   PetscCall(IOWriteProbes(sim));
   PetscCall(SimTotalMass(sim, &sim->mass));
   PetscCall(IOSummary(sim));
+  if (sim->decomp->log_stats) PetscCall(DecompWriteStats(sim->decomp, sim->outdir));
   PetscCall(PetscPrintf(sim->comm, "sphfsi: %" PetscInt_FMT " steps in %.2f s (%.3g particle-steps/s); output in %s\n", sim->step - step0, (double)sim->wall_loop, (double)((sim->particle_steps - ps0) / PetscMax(sim->wall_loop, 1e-9)), sim->outdir));
   PetscFunctionReturn(PETSC_SUCCESS);
 }

@@ -33,7 +33,14 @@ Per rank and step (P ranks, max over ranks from the partition):
             restriction, prolongation), per set-up 10 exchanges and 2 reductions per level, each
             with nbr_max neighbours (optimistic: coarse levels have more).
 alpha: point-to-point latency, o: overhead per extra message, alpha_ar: latency of one allreduce
-stage, beta: bandwidth per rank (assumptions for an InfiniBand cluster, stated in the output)."""
+stage, beta: bandwidth per rank (assumptions for an InfiniBand cluster, stated in the output).
+
+Counted inputs (issue 46; docs/scaling.md): model_counted() is the same model with what
+tools/count_traffic.sh counted on 1..64 ranks in place of the assumptions that the counts contradict:
+exchange rounds (alpha each) and messages (o each) instead of -log_view's messages taken as
+exchanges; hypre's rounds, messages and collectives per solve instead of the V-cycle formula; the
+collectives counted; the flow's halo and imbalance as factors on the partition's; the CG iterations'
+growth with P.  tools/count_report.py evaluates it (costs_3d, fit_log2)."""
 import csv, json, math, os, re, sys
 
 
@@ -164,6 +171,90 @@ def model(row, c, scheme, a, aar, beta, alltoallv, nsub=0, o=0.5e-6):
     comp, ppe = comp * c[scheme].get("share", 1.0), ppe * c[scheme].get("share", 1.0)
     comm = n_msg * ex + byt / beta + n_red * aar * lg + rebuilds * reb + lat_ppe + ghost
     return dict(comp=comp, ppe=ppe, solid=solid, comm=comm, total=comp + ppe + solid + comm, ppe_lat=lat_ppe)
+
+
+def fit_log2(vals, P, lo=16):
+    """A count at P ranks: measured when P was run, else the least-squares line in log2 P through the
+    measured points from `lo` ranks on (the sparse exchanges, as at 1024), never below zero."""
+    if P in vals: return vals[P]
+    pts = [(math.log2(q), v) for q, v in vals.items() if q >= lo]
+    if len(pts) < 2: return vals[max(vals)]
+    n, sx, sy = len(pts), sum(p[0] for p in pts), sum(p[1] for p in pts)
+    sxx, sxy = sum(p[0] ** 2 for p in pts), sum(p[0] * p[1] for p in pts)
+    b = (n * sxy - sx * sy) / (n * sxx - sx ** 2)
+    return max(0.0, (sy - b * sx) / n + b * math.log2(P))
+
+
+def model_counted(row, c, scheme, k, a, o, aar, beta):
+    """Time per step on the busiest rank with the counted inputs k (tools/count_report.py) instead of the
+    assumed ones; row: the partition at P (bin/partition_model).  Corrections against model():
+      work      the partition's work_max times the run's imbalance over the partition's (k['imb_ratio']);
+      ghosts    halo_max times the run's ghosts over the partition's (k['halo_ratio']); bytes k['bytes_per_ghost'] each;
+      exchanges every round of sends between two waits costs alpha, every further message o: counted rounds
+                (k['rounds']) and messages (k['sends_per_round_nbr'] x rounds x the partition's neighbour ranks),
+                rebuilds' alltoall(v) pairwise steps counted (k['a2a_pairs'], alpha each);
+      reductions every counted tree collective (allreduce, bcast, scan, allgather, ibarrier, ...), alpha_ar log2 P;
+      PPE       hypre's counted rounds, messages and collectives per solve, and the CG iterations k['its']."""
+    P = int(row["ranks"])
+    lg = math.log2(P) if P > 1 else 0
+    nbr = float(row["nbr_ranks_max"])
+    work = float(row["work_max"]) * (k.get("imb_ratio", 1.0) if P > 1 else 1.0)
+    ghosts = float(row["halo_max"]) * k.get("halo_ratio", 1.0)
+    share = c[scheme].get("share", 1.0) if P > 1 else 1.0
+    if scheme == "wcsph":
+        comp, ppe = c["wcsph"]["c_work"] * work * share, 0.0
+    else:
+        ci = c["isph"]
+        its = k["its"]
+        vc = ci["vcycles"] * (its + 1) / (ci["its"] + 1)  # V-cycles per step follow the iterations
+        rows_max = float(row["ppe_rows_max"])
+        comp = ci["c_nonppe"] * work * share
+        ppe = (ci["c_asm"] + ci["c_setup"] + vc * ci["c_vcycle"] + its * ci["c_matmult"] + ci["c_cg_other"]) * rows_max * share
+    if P == 1:
+        return dict(comp=comp, ppe=ppe, comm=0.0, ppe_comm=0.0, total=comp + ppe)
+    rounds, sends = k["rounds"], k["sends_per_round_nbr"] * k["rounds"] * nbr
+    comm = (rounds * a + max(sends - rounds, 0) * o + k["bytes_per_ghost"] * ghosts / beta + k["tree"] * aar * lg
+            + k["a2a_pairs"] * a + c.get("c_ghost", 0.0) * ghosts)
+    ppe_comm = 0.0
+    if scheme == "isph":
+        pr, ps = k["ppe_rounds"], k["ppe_sends_per_round_nbr"] * k["ppe_rounds"] * nbr
+        ppe_comm = pr * a + max(ps - pr, 0) * o + k["ppe_bytes"] / beta + k["ppe_tree"] * aar * lg
+    return dict(comp=comp, ppe=ppe, comm=comm, ppe_comm=ppe_comm, total=comp + ppe + comm + ppe_comm)
+
+
+def costs_3d(out, args, idle=None):
+    """The 3D costs of tools/bench3d.sh's runs in OUT and the two 3D partitions, as main() sets them up
+    (the 2-rank share factor and c_ghost): (costs, rows 1.05 M, rows 8.7 M).  idle: scheme -> particle-
+    steps/s on 1 and 2 ranks of an idle machine, to which the loaded runs' costs are scaled."""
+    rows1 = [r for r in csv.DictReader(open(f"{out}/partition_spheric_test2.csv")) if r.get("case") == "spheric_test2" and r.get("ranks")]
+    rows9 = [r for r in csv.DictReader(open(f"{out}/partition_spheric_test2_9M.csv")) if r.get("case") == "spheric_test2" and r.get("ranks")]
+    N = int(rows1[0]["particles"])
+    n_meas = json.load(open(f"{out}/{COST_RUNS[3]['isph'][0]}/summary.json"))["particles"]
+    c = load_costs(out, 3, 2 * float(rows1[0]["ppe_rows_mean"]) * n_meas / N)
+    c["c_ghost"] = args["c_ghost"]
+    for s, (ps1, ps2) in (idle or {}).items():
+        # runs made while other jobs loaded the machine: every per-unit cost scaled so that the 1-rank
+        # time per step is the idle machine's (particle-steps/s ps1 on 1 rank, ps2 on 2), the split
+        # between the phases (-log_view) kept as measured
+        f = (c[s]["particles"] / ps1) / c[s]["t_step"]
+        for k in [k for k in c[s] if k.startswith("c_")]: c[s][k] *= f
+        c[s]["loaded_by"] = 1 / f
+        c[s]["t_step"], c[s]["t_step2"] = c[s]["particles"] / ps1, c[s]["particles"] / ps2
+    for s in ("wcsph", "isph"):
+        c[s]["halo2"] = float(rows1[0]["halo_max"]) * (c[s]["particles"] / N) ** (2 / 3)
+        m2 = model(rows1[0], c, s, args["alpha"], args["alpha_ar"], args["beta"], "as is", 0, args["o"])
+        c[s]["share"] = max(1.0, c[s]["t_step2"] / m2["total"])
+        c[s]["eff2"] = c[s]["t_step"] / (2 * c[s]["t_step2"])
+    return c, rows1, rows9
+
+
+def one_rank(row):
+    """The partition's first row (2 ranks) as the whole problem on one rank."""
+    one = dict(row)
+    for key in ("work", "cost", "ppe_rows", "solid"):
+        one[f"{key}_max"] = str(float(row[f"{key}_mean"]) * 2)
+    one.update(ranks="1", ppe_rows_mean=str(float(row["ppe_rows_mean"]) * 2), halo_max="0", nbr_ranks_max="0")
+    return one
 
 
 def main():

@@ -23,6 +23,11 @@ struct _p_Decomp {
   PetscBool   sparse;       /* exchange particles with the ranks concerned only (exchange.h) */
   PetscInt    empty_max;    /* most ranks that owned no particle at one imbalance check (this run) */
   PetscInt    nofluid_max;  /* most ranks that owned no fluid particle at one imbalance check */
+  /* -decomp_log_stats: this rank's ghosts, owned particles, work and neighbour ranks after each
+   * rebuild, and its PPE rows at each numbering, kept until the end (no communication before) */
+  PetscBool   log_stats;
+  PetscInt    nlog[2], caplog[2];
+  PetscReal  *log[2];
 };
 
 PetscErrorCode DecompCreate(MPI_Comm comm, Decomp *d);
@@ -51,3 +56,10 @@ PetscErrorCode DecompSortOwned(Decomp d, Particles P);
  * either is past the threshold (unless fewer cells than ranks are occupied: then the partition stays). */
 PetscErrorCode DecompBalance(Decomp d, Particles P, PetscInt step, PetscBool *repartitioned);
 PetscErrorCode DecompView(Decomp d, PetscViewer v);
+/* With -decomp_log_stats (tools/count_traffic.sh): record the state after a rebuild (ghosts P->ng,
+ * owned particles, work, ranks this rank sends ghosts to) or the PPE rows of this rank at a step;
+ * at the end, DecompWriteStats reduces the records over the ranks (max and sum of each) and rank 0
+ * writes OUTDIR/partition_stats.csv.  Off: nothing recorded, nothing written. */
+PetscErrorCode DecompLogRebuild(Decomp d, Particles P, PetscInt nbr, PetscInt step);
+PetscErrorCode DecompLogRows(Decomp d, PetscInt nrow, PetscInt step);
+PetscErrorCode DecompWriteStats(Decomp d, const char *outdir);

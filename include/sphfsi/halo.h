@@ -15,6 +15,7 @@ struct _p_Halo {
   PetscInt    cap_shift;
   MPI_Datatype unit[HALO_MAX_WIDTH + 1]; /* contiguous blocks of 1..HALO_MAX_WIDTH reals */
   PetscInt    nghost_sent;
+  PetscInt    nbr_send;  /* other ranks this rank sends ghosts to (the messages of a refresh) */
   PetscReal   period[3]; /* domain lengths, for periodic shifts */
   /* the ghosts of some kinds only (HaloRefreshKinds): rebuilt after each HaloBuild on first use */
   PetscSF     sf_kinds;

@@ -35,4 +35,4 @@ PetscErrorCode NeighbourhoodRebuild(Neighbourhood *nb, PetscInt step);
  * owners' new state and the list its pairs at the new positions (CellsRefreshPairs). */
 PetscErrorCode NeighbourhoodUpdate(Neighbourhood *nb, PetscInt step);
 /* The rebuild without outflow or rebalancing (a restart repeats the last rebuild of the run). */
-PetscErrorCode NeighbourhoodRebuildKeepPartition(Neighbourhood *nb);
+PetscErrorCode NeighbourhoodRebuildKeepPartition(Neighbourhood *nb, PetscInt step);

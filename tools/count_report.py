@@ -22,6 +22,7 @@ import scaling_model as sm  # noqa: E402
 out = sys.argv[1]
 costdir = sys.argv[2] if len(sys.argv) > 2 else "out/bench"
 CASES = {"dam_wcsph": ("dam_break", "2D dam break, WCSPH", "wcsph"), "dam_isph": ("dam_break", "2D dam break, ISPH", "isph"),
+         "dam_isph100": ("dam_break", "2D dam break, ISPH, first 100 steps", "isph"),
          "s2_wcsph": ("spheric_test2_0.04", "3D SPHERIC Test 2, WCSPH", "wcsph"), "s2_isph": ("spheric_test2_0.025", "3D SPHERIC Test 2, ISPH", "isph"),
          "weak_wcsph": ("weak_np{P}", "3D weak series, WCSPH", "wcsph"), "weak_isph": ("weak_np{P}", "3D weak series, ISPH", "isph")}
 NPS = (1, 2, 4, 8, 16, 32, 64)
@@ -289,7 +290,7 @@ for name, (part_name, title, scheme) in CASES.items():
 
 # ISPH iterations against P at a fixed problem, and BoomerAMG's levels
 md.append("\n## CG + BoomerAMG iterations per solve at a fixed problem\n")
-for name in ("dam_isph", "s2_isph"):
+for name in ("dam_isph", "dam_isph100", "s2_isph"):
     rr = data.get(name)
     if not rr: continue
     its = {P: r["measured"]["its"] for P, r in rr.items() if P in (1, 8, 64)}

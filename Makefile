@@ -19,7 +19,7 @@ ifdef PETSC_DIR
 else
   PETSC_CFLAGS := $(shell pkg-config --cflags PETSc 2>/dev/null) $(shell pkg-config --cflags hdf5-mpi 2>/dev/null || pkg-config --cflags hdf5 2>/dev/null)
   PETSC_LIBS   := $(shell pkg-config --libs PETSc 2>/dev/null) $(shell pkg-config --libs hdf5-mpi 2>/dev/null || pkg-config --libs hdf5 2>/dev/null)
-  # hypre, when PETSc has it: src/csr_hypre.c builds hypre matrices itself
+  # hypre, when PETSc has it: src/base/csr_hypre.c builds hypre matrices itself
   PETSC_VARS   := $(shell pkg-config --variable=prefix PETSc 2>/dev/null)/lib/petsc/conf/petscvariables
   PETSC_CFLAGS += $(shell sed -n 's/^HYPRE_INCLUDE = //p' $(PETSC_VARS) 2>/dev/null)
   PETSC_LIBS   += $(shell sed -n 's/^HYPRE_LIB = //p' $(PETSC_VARS) 2>/dev/null)
@@ -51,12 +51,13 @@ else
   BUILD    := build
   BINDIR   := bin
 endif
-CFLAGS  := $(OPT) -std=gnu11 -Wall -Wextra -Wno-unused-parameter -Iinclude $(PETSC_CFLAGS) $(METIS_CFLAGS)
+CFLAGS  := $(OPT) -std=gnu11 -Wall -Wextra -Wno-unused-parameter -Isrc $(PETSC_CFLAGS) $(METIS_CFLAGS)
 LDLIBS  := $(PETSC_LIBS) $(METIS_LIBS) -lm
 LDFLAGS := $(SANFLAGS)
 
-LIB_SRC  := $(wildcard src/*.c src/scenes/*.c)
-LIB_SRC  := $(filter-out src/main.c,$(LIB_SRC))
+# src/<layer>/: base, particles, fluid, solid, io, scenes, run (docs/architecture.md); headers beside their sources
+LIB_SRC  := $(wildcard src/*/*.c)
+LIB_SRC  := $(filter-out src/run/main.c,$(LIB_SRC))
 LIB_OBJ  := $(LIB_SRC:%.c=$(BUILD)/%.o)
 TEST_SRC := $(wildcard tests/test_*.c)
 TEST_BIN := $(TEST_SRC:tests/%.c=$(BINDIR)/%)
@@ -73,28 +74,28 @@ export MPIEXEC MPIEXEC_FLAGS
 .PHONY: all deps run check check-unit bench hard ranks study slurm clean tests install layers FORCE
 all: $(BIN) $(TEST_BIN)
 
-$(BUILD)/%.o: %.c $(wildcard include/sphfsi/*.h)
+$(BUILD)/%.o: %.c $(wildcard src/*/*.h)
 	@mkdir -p $(dir $@)
 	$(CC) $(CFLAGS) -c $< -o $@
 
 # The version (file VERSION) and the commit, for -version and summary.json, and the absolute path of
 # the reference data of this source tree (REFDATA), so that the program finds them from any current
-# directory (the lookup order: src/refdata.c): rewritten only when they change.
+# directory (the lookup order: src/base/refdata.c): rewritten only when they change.
 REFDATA ?= ../shared/refdata
 SPHFSI_VERSION := $(shell cat VERSION 2>/dev/null || echo unknown)
-SPHFSI_COMMIT  := $(shell git rev-parse --short HEAD 2>/dev/null || echo unknown)$(shell git rev-parse HEAD >/dev/null 2>&1 && ! git diff --quiet HEAD -- src include 2>/dev/null && echo +modified)
+SPHFSI_COMMIT  := $(shell git rev-parse --short HEAD 2>/dev/null || echo unknown)$(shell git rev-parse HEAD >/dev/null 2>&1 && ! git diff --quiet HEAD -- src 2>/dev/null && echo +modified)
 $(BUILD)/sphfsi_build.h: FORCE
 	@mkdir -p $(BUILD)
 	@printf '#define SPHFSI_VERSION "%s"\n#define SPHFSI_COMMIT "%s"\n#define SPHFSI_SOURCE_REFDATA "%s"\n' '$(SPHFSI_VERSION)' '$(SPHFSI_COMMIT)' '$(abspath $(REFDATA))' > $@.tmp
 	@if cmp -s $@.tmp $@; then rm -f $@.tmp; else mv $@.tmp $@; fi
-$(BUILD)/src/version.o: $(BUILD)/sphfsi_build.h
-$(BUILD)/src/version.o: CFLAGS += -I$(BUILD)
+$(BUILD)/src/base/version.o: $(BUILD)/sphfsi_build.h
+$(BUILD)/src/base/version.o: CFLAGS += -I$(BUILD)
 FORCE:
 
 $(BUILD)/libsphfsi.a: $(LIB_OBJ)
 	@rm -f $@; ar rcs $@ $^
 
-$(BIN): $(BUILD)/src/main.o $(BUILD)/libsphfsi.a
+$(BIN): $(BUILD)/src/run/main.o $(BUILD)/libsphfsi.a
 	@mkdir -p $(BINDIR)
 	$(CC) $(LDFLAGS) -o $@ $^ $(LDLIBS)
 

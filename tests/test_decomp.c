@@ -1,8 +1,8 @@
 /* Decomposition and halo: through migration and forced repartitioning, every id exists exactly once
  * across ranks, and every ghost holds its owner's current values (x, rho, p after the step, v after
  * its refresh). Run on 2 ranks. */
-#include <sphfsi/sim.h>
-#include <sphfsi/wcsph.h>
+#include "run/sim.h"
+#include "fluid/wcsph.h"
 
 /* Gather (id, x, y, vx, vy, rho, p) of all owned particles to every rank, indexed by id. */
 static PetscErrorCode GatherById(Sim sim, PetscInt N, PetscReal *all, PetscInt *count)

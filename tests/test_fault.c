@@ -2,8 +2,8 @@
  * the particle and the step, and the last good state written, finite and restartable.  The NaN is
  * let in through gravity after 15 steps of a dam break (the state itself was checked finite then),
  * so it first shows in step 16; the last good state is the copy of step 10.  Run on 2 ranks. */
-#include <sphfsi/sim.h>
-#include <sphfsi/guard.h>
+#include "run/sim.h"
+#include "run/guard.h"
 #include <math.h>
 
 int main(int argc, char **argv)

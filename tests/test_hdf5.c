@@ -1,7 +1,7 @@
 /* A parallel HDF5 snapshot reads back: every id once, every field equal to what was written (with
  * -fluid isph or -wcsph_shift also the free-surface flag, `free_surface`). */
-#include <sphfsi/sim.h>
-#include <sphfsi/io.h>
+#include "run/sim.h"
+#include "io/io.h"
 #include <petscviewerhdf5.h>
 
 static PetscErrorCode CompareField(Sim sim, PetscViewer v, const char *name, const PetscReal *a, PetscInt width, PetscReal *err)

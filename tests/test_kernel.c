@@ -2,9 +2,9 @@
  * 3D), compact support, gradient antisymmetry; the neighbour lists of a random cloud in 2D and 3D
  * (one smoothing length, and two) equal a brute-force search; the corrected SPH gradient
  * of a linear field is exact to round-off on an irregular particle cloud. */
-#include <sphfsi/kernel.h>
-#include <sphfsi/cells.h>
-#include <sphfsi/operators.h>
+#include "base/kernel.h"
+#include "particles/cells.h"
+#include "fluid/operators.h"
 
 /* The interior lattice sums (Eq. 17's normalisation, div r = d) cover the whole support: within
  * the lattice quadrature error of a kernel at h >= 1.3 dx (Wendland C2 there: 1 %, 2.6 % in 2D),

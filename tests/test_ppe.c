@@ -9,9 +9,9 @@
  *    operator is exact for quadratics up to the kernel's lattice-sum error (the second moment of
  *    the cubic spline summed over the lattice at h = 1.3 dx, 0.02 %); a wrong coefficient or
  *    density would be off by tens of per cent.  Run on 1 or 2 ranks. */
-#include <sphfsi/sim.h>
-#include <sphfsi/isph.h>
-#include <sphfsi/kernel.h>
+#include "run/sim.h"
+#include "fluid/isph.h"
+#include "base/kernel.h"
 #include <petscmathypre.h>
 
 /* An AIJ copy of M (converted from hypre's format) */

@@ -5,9 +5,9 @@
  * between 1 and 2 ranks, so the runs agree to the solver tolerance: run with -ppe_ksp_rtol 1e-10 and
  * -tol 1e-6.  Another scene with -case NAME and its options.  Run on 2 ranks or more (tests/run_tests.sh:
  * 2 and 8), where some ranks may own no fluid or no particle at all. */
-#include <sphfsi/sim.h>
-#include <sphfsi/scene.h>
-#include <sphfsi/guard.h>
+#include "run/sim.h"
+#include "scenes/scene.h"
+#include "run/guard.h"
 
 static PetscErrorCode RunCase(MPI_Comm comm, const char *outdir, Sim *sim)
 {

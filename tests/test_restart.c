@@ -9,8 +9,8 @@
  * Neighbour sums do not depend on the decomposition, so WCSPH and solids agree bit for bit even
  * across rank counts; with -fluid isph the solver's parallel preconditioner does not, so use
  * -ppe_ksp_rtol 1e-10 -tol 1e-8 there.  Another scene with -case NAME and its options.  2 ranks. */
-#include <sphfsi/sim.h>
-#include <sphfsi/scene.h>
+#include "run/sim.h"
+#include "scenes/scene.h"
 
 typedef struct {
   PetscInt   N, w, nrow, ncol, step;

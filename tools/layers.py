@@ -1,14 +1,14 @@
 #!/usr/bin/env python3
 """The layers of the code and the calls and includes that cross them (issue 47, "The code's shape").
 
-Each source file (src/**/*.c, include/sphfsi/*.h) belongs to one layer, lowest first:
-  base       kernel, materials, dimensions, CSR matrices, reference data, reading options, version
-  particles  the particle arrays and the parallel machinery: grid, cells, decomposition, halo, exchange,
-             and the neighbourhood that brings them up to date after particles move
-  physics    the fluids (WCSPH, ISPH, the pressure equation, walls, operators) and the solids
-  io         snapshots, checkpoints, output directories, disk space
-  scenes     the scenes and the helpers that build them
-  run        the driver (sim), the run guard, the size guard, options bookkeeping, main
+Each source file belongs to the layer of its folder, src/<folder>/, lowest first:
+  base       (src/base)      kernel, materials, dimensions, CSR matrices, reference data, reading options, version
+  particles  (src/particles) the particle arrays and the parallel machinery: grid, cells, decomposition, halo,
+                             exchange, and the neighbourhood that brings them up to date after particles move
+  physics    (src/fluid, src/solid) the fluids (WCSPH, ISPH, the pressure equation, walls, operators), the solids
+  io         (src/io)        snapshots, checkpoints, output directories, disk space
+  scenes     (src/scenes)    the scenes and the helpers that build them
+  run        (src/run)       the driver (sim), the run guard, the size guard, options bookkeeping, main
 A file may call and include files of its own layer and of the layers below.  A call or an include
 from a lower layer into a higher one is "upward": it ties the lower layer to the driver or to a
 module above it.  This script lists them, and the cycles of the file-level call graph.
@@ -22,15 +22,7 @@ import glob, os, re, sys
 
 ROOT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..")
 ORDER = ["base", "particles", "physics", "io", "scenes", "run"]
-LAYER = {
-    "base": "base dim kernel material version csr csr_hypre refdata options_used",
-    "particles": "particles grid cells decomp halo exchange neighbourhood",
-    "physics": "operators boundary fluid_terms shifting wcsph isph ppe solid solid_total solid_updated solid_terms solid_impl",
-    "io": "io io_space checkpoint restart_file outdir",
-    "scenes": "scene",
-    "run": "sim guard size_guard main",
-}
-OF = {m: layer for layer, ms in LAYER.items() for m in ms.split()}
+FOLDER = {"base": "base", "particles": "particles", "fluid": "physics", "solid": "physics", "io": "io", "scenes": "scenes", "run": "run"}
 
 # Upward edges that remain to be removed: "file -> symbol" (a call) or "file -> #include header".
 KNOWN_FILE = os.path.join(ROOT, "tools", "layers_known.txt")
@@ -39,6 +31,10 @@ KNOWN = {l.strip() for l in open(KNOWN_FILE) if l.strip() and not l.startswith("
 
 # files that are one module between them (calls among them are the module's own)
 GROUP = {"solid_total": "solid", "solid_updated": "solid", "solid_impl": "solid", "solid_terms": "solid", "csr_hypre": "csr"}
+
+
+def folder(path):
+    return os.path.relpath(path, ROOT).split(os.sep)[1]
 
 
 def module(path):
@@ -53,14 +49,15 @@ def strip(text):
     """The text without comments and string literals (kept line for line)."""
     text = re.sub(r"/\*.*?\*/", lambda m: "\n" * m.group(0).count("\n"), text, flags=re.S)
     text = re.sub(r"//[^\n]*", "", text)
-    return re.sub(r'"(\\.|[^"\\\n])*"', '""', text)
+    return re.sub(r'^(?!\s*#\s*include)[^\n]*', lambda m: re.sub(r'"(\\.|[^"\\\n])*"', '""', m.group(0)), text, flags=re.M)
 
 
 def main():
-    files = sorted(glob.glob(os.path.join(ROOT, "src", "**", "*.c"), recursive=True)) + sorted(glob.glob(os.path.join(ROOT, "include", "sphfsi", "*.h")))
-    unknown = [f for f in files if module(f) not in OF]
+    files = sorted(glob.glob(os.path.join(ROOT, "src", "*", "*.[ch]")))
+    unknown = sorted({folder(f) for f in files if folder(f) not in FOLDER})
     if unknown:
-        sys.exit("tools/layers.py: no layer for " + ", ".join(os.path.relpath(f, ROOT) for f in unknown) + " (add it to LAYER)")
+        sys.exit("tools/layers.py: no layer for src/" + ", src/".join(unknown) + " (add it to FOLDER)")
+    OF = {module(f): FOLDER[folder(f)] for f in files}
     # definitions other files can call: functions defined at the start of a line (not static in a .c
     # file; static inline in a header counts) and function-like macros of headers
     owner = {}
@@ -77,7 +74,8 @@ def main():
         m = module(path)
         text = strip(open(path).read())
         for no, line in enumerate(text.split("\n"), 1):
-            for inc in re.findall(r"#\s*include\s*<sphfsi/(\w+)\.h>", line):
+            for inc in re.findall(r'#\s*include\s*"\w+/(\w+)\.h"', line):
+                inc = GROUP.get(inc, inc)
                 if inc != m and ORDER.index(OF[inc]) > ORDER.index(OF[m]):
                     up.append((path, no, "#include " + inc + ".h", OF[m], OF[inc]))
             for name in re.findall(r"\b([A-Za-z_]\w*)\s*\(", line):

@@ -11,10 +11,10 @@
  * solid S (the time a solid particle takes per fluid step, in units of a wall particle's);
  * -split_solids: the solid particles balanced as a second constraint (-decomp_split_solids of a run).
  * Usage: bin/partition_model -options_file cases/dam_break.opts -dx 8.2e-5 [-nparts_max 1024] */
-#include <sphfsi/sim.h>
-#include <sphfsi/scene.h>
-#include <sphfsi/solid.h>
-#include <sphfsi/kernel.h>
+#include "run/sim.h"
+#include "scenes/scene.h"
+#include "solid/solid.h"
+#include "base/kernel.h"
 #include <petscbt.h>
 
 typedef struct {

@@ -1,4 +1,4 @@
-"""The reference data for the plotting tools, looked for as the program looks (src/refdata.c) and
+"""The reference data for the plotting tools, looked for as the program looks (src/base/refdata.c) and
 from any current directory: $SPHFSI_REFDATA when set (then only there), else the first of
 TOOLS/../refdata (installed: PREFIX/share/sphfsi/tools beside PREFIX/share/sphfsi/refdata),
 TOOLS/../../shared/refdata (a checkout with shared/ beside it) and ../shared/refdata from the current

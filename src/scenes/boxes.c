@@ -21,9 +21,9 @@
  * x0,x1,y0,y1,z0,z1[,s[,rows]] has its floor at z0 and walls on all four sides up to z1; obstacle
  * faces left,right,front,back,bottom,top (x-, x+, y-, y+, z-, z+); -domain six numbers; a level
  * gauge x,y; a pressure gauge x,y,z; a solid gauge x0,y0,z0,x1,y1,z1 (probes solid_dx, _dy, _dz). */
-#include <sphfsi/scene.h>
-#include <sphfsi/dim.h>
-#include <sphfsi/options_used.h>
+#include "scenes/scene.h"
+#include "base/dim.h"
+#include "base/options_used.h"
 
 #define NBOX 8
 #define NTANK 4

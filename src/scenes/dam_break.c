@@ -1,7 +1,7 @@
 /* Collapse of a water column of width a and height 2a (Martin & Moyce 1952) in a tank. */
-#include <sphfsi/scene.h>
-#include <sphfsi/options_used.h>
-#include <sphfsi/refdata.h>
+#include "scenes/scene.h"
+#include "base/options_used.h"
+#include "base/refdata.h"
 
 typedef struct {
   PetscReal a, H, L, top;

@@ -9,9 +9,9 @@
  * over t sqrt(g/H) <= 8 (the series TNL-SPH compares: H1_2, H2_3, H3_3, H4_4); pressures as the
  * first impact peak p / (rho g H) and its time against the representative event 5, and the rms of
  * p / (rho g H) over t sqrt(g/H) in [2, t_end] (the experiment's t = 0 is the gate's release). */
-#include <sphfsi/scene.h>
-#include <sphfsi/options_used.h>
-#include <sphfsi/refdata.h>
+#include "scenes/scene.h"
+#include "base/options_used.h"
+#include "base/refdata.h"
 
 #define NGAUGE  4
 #define NSENSOR 4

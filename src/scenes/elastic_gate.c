@@ -8,10 +8,10 @@
  * -dim 3: the same layout extruded in z (SceneExtrudeBegin) over -gate_width, periodic across it
  * (a slab of the 2D case, which it must reproduce), or with -gate_side_walls between the walls of
  * the tank's real width (0.1 m by default), on a uniform lattice. */
-#include <sphfsi/scene.h>
-#include <sphfsi/options_used.h>
-#include <sphfsi/solid.h>
-#include <sphfsi/refdata.h>
+#include "scenes/scene.h"
+#include "base/options_used.h"
+#include "solid/solid.h"
+#include "base/refdata.h"
 
 typedef struct {
   PetscReal W, H, L, t, top;   /* water width and depth, gate length and thickness, wall top */

@@ -1,8 +1,8 @@
 /* Water at rest in a tank: the floor pressure must be rho g H and nothing must move.  In 2D or 3D
  * (-dim 3: a square tank W x W, the water H deep, gravity along -z). */
-#include <sphfsi/scene.h>
-#include <sphfsi/options_used.h>
-#include <sphfsi/refdata.h>
+#include "scenes/scene.h"
+#include "base/options_used.h"
+#include "base/refdata.h"
 
 typedef struct {
   PetscReal W, H;

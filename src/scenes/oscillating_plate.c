@@ -7,10 +7,10 @@
  * Euler-Bernoulli with E' = E.  The clamp's face (x = 0, the root of the beam theory) is where the
  * total-Lagrangian solid's clamp face points sit; the beam's own correction, Timoshenko's shear
  * and rotary inertia (+0.6 % on the period at L = 10 H), is reported beside it. */
-#include <sphfsi/scene.h>
-#include <sphfsi/options_used.h>
-#include <sphfsi/solid.h>
-#include <sphfsi/refdata.h>
+#include "scenes/scene.h"
+#include "base/options_used.h"
+#include "solid/solid.h"
+#include "base/refdata.h"
 
 typedef struct {
   PetscReal L, H, W, vf, kL; /* W: the width in z (3D) */

@@ -2,10 +2,10 @@
  * Hc between fixed walls at y = 0 and y = Hc, periodic in x, driven by a body force F in x.
  * Steady profile u(y) = F / (2 nu) y (Hc - y), u_max = F Hc^2 / (8 nu), Re = u_max Hc / nu.
  * Defaults: Hc = 1 mm, nu = 1e-6 m^2/s, Re = 0.0125, i.e. F = 1e-4 m/s^2, u_max = 1.25e-5 m/s. */
-#include <sphfsi/scene.h>
-#include <sphfsi/options_used.h>
-#include <sphfsi/refdata.h>
-#include <sphfsi/kernel.h>
+#include "scenes/scene.h"
+#include "base/options_used.h"
+#include "base/refdata.h"
+#include "base/kernel.h"
 
 typedef struct {
   PetscReal Hc, Lc, Re, nu;

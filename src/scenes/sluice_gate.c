@@ -18,9 +18,9 @@
  *   q = Cd a sqrt(2 g h_up),  Cd = Cc / sqrt(1 + Cc a / h_up),  vena contracta depth Cc a,
  * with Cc read from the reference data's sluice_gate_reference_coefficients.csv.  The reservoir drains,
  * so the relation is applied quasi-steadily to q(t) and h_up(t) in a window after the start-up. */
-#include <sphfsi/scene.h>
-#include <sphfsi/options_used.h>
-#include <sphfsi/refdata.h>
+#include "scenes/scene.h"
+#include "base/options_used.h"
+#include "base/refdata.h"
 
 typedef struct {
   PetscReal W, H, a, Lc, top;  /* water width, depth, gate opening, channel length, wall height */

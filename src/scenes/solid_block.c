@@ -8,9 +8,9 @@
  *              (Eqs. 25-34) is on; d_min shows it.
  * Probes: s_err (rotate: max |S - Q S0 Q^T| / s0; otherwise max |S| / s0), d_min (smallest
  * distance between two solid particles / dx), e_kin, e_strain. */
-#include <sphfsi/scene.h>
-#include <sphfsi/options_used.h>
-#include <sphfsi/solid.h>
+#include "scenes/scene.h"
+#include "base/options_used.h"
+#include "solid/solid.h"
 
 typedef enum { BLOCK_TRANSLATE = 0, BLOCK_ROTATE, BLOCK_STRETCH } BlockMotion;
 static const char *const BlockMotions[] = {"translate", "rotate", "stretch", "BlockMotion", "BLOCK_", NULL};

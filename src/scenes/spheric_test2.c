@@ -14,9 +14,9 @@
  * |p - p_exp| / (rho g H) over [0, t_end], the peak (largest value over the run) and the first peak
  * (largest before t = 1 s: the front's impact, which the issue's target names; a run's later spikes
  * do not hide it) against the experiment's; levels as the rms and max of |h - h_exp| / H. */
-#include <sphfsi/scene.h>
-#include <sphfsi/options_used.h>
-#include <sphfsi/refdata.h>
+#include "scenes/scene.h"
+#include "base/options_used.h"
+#include "base/refdata.h"
 
 #define NLEVEL  4
 #define NSENSOR 8

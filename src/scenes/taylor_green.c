@@ -6,8 +6,8 @@
  * v = U sin(kx) cos(ky) is this field shifted by L/4 in x and y; its pressure has the opposite sign.)
  * With -dim 3 the same field fills a triply periodic cube of side L, uniform in z (w = 0): still an
  * exact solution, which checks the 3D operators and the periodic images in every direction. */
-#include <sphfsi/scene.h>
-#include <sphfsi/options_used.h>
+#include "scenes/scene.h"
+#include "base/options_used.h"
 
 typedef struct {
   PetscReal L, U, Re;

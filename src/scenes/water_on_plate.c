@@ -4,11 +4,11 @@
  * takes must equal the weight of the water plus the plate's own.  Checks that the fluid's
  * pressure reaches the solid whole (Newton's third law of the fluid-solid pair forces) in both
  * fluid schemes. */
-#include <sphfsi/scene.h>
-#include <sphfsi/options_used.h>
-#include <sphfsi/solid.h>
-#include <sphfsi/refdata.h>
-#include <sphfsi/kernel.h>
+#include "scenes/scene.h"
+#include "base/options_used.h"
+#include "solid/solid.h"
+#include "base/refdata.h"
+#include "base/kernel.h"
 
 typedef struct {
   PetscReal W, H, T;       /* periodic width, water depth, plate thickness */

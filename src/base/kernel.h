@@ -1,0 +1,102 @@
+/* Smoothing kernels, all of support radius 2h, in 2D and 3D:
+ *   cubic        the cubic B-spline, Eq. 12 (the paper's, with h = 1.3 dx);
+ *   wendland_c2  Wendland C2 (Dehnen & Aly 2012, Table 1): free of the pairing instability at any
+ *                number of neighbours, so its discretisation error falls as h/dx grows;
+ *   wendland_c4  Wendland C4: smoother, for larger h/dx.
+ * With q = r / (2h) the Wendland kernels are sigma (1 - q)^4 (1 + 4q) and
+ * sigma (1 - q)^6 (1 + 6q + 35/3 q^2).  For particles of different sizes the pair uses
+ * h_ab = sqrt(h_a h_b) (section 3.3).  A run has one kernel and one h / dx (-kernel, -h_factor),
+ * held by the simulation and handed to the modules that evaluate W. */
+#pragma once
+#include "base/base.h"
+
+typedef enum { KERNEL_CUBIC = 0, KERNEL_WENDLAND_C2, KERNEL_WENDLAND_C4 } KernelType;
+extern const char *const KernelTypes[];
+
+#define SPH_H_FACTOR 1.3 /* the paper's h = 1.3 dx: the default of -h_factor (but Wendland C2's) */
+#define SPH_H_FACTOR_WENDLAND_C2 1.4 /* the square lattice under pressure is stable (tools/lattice_stability.py) */
+
+typedef struct {
+  KernelType type;
+  PetscInt   dim;      /* 2 or 3: the normalisation */
+  PetscReal  h_factor; /* h / dx of particles made by the scenes */
+  PetscReal  num, den; /* normalisation sigma(h) = num / (den pi h^dim) */
+} SPHKernel;
+
+static inline void KernelInit(SPHKernel *K, KernelType t, PetscInt dim, PetscReal h_factor)
+{
+  static const PetscReal num[3][2] = {{10.0, 1.0}, {7.0, 21.0}, {9.0, 495.0}}, den[3][2] = {{7.0, 1.0}, {4.0, 16.0}, {4.0, 256.0}};
+  K->type = t; K->dim = dim; K->h_factor = h_factor;
+  K->num = num[t][dim == 3]; K->den = den[t][dim == 3];
+}
+
+/* -h_factor's default for a kernel */
+static inline PetscReal KernelDefaultHFactor(KernelType t) { return t == KERNEL_WENDLAND_C2 ? SPH_H_FACTOR_WENDLAND_C2 : SPH_H_FACTOR; }
+
+/* The normalisation sigma(h); for the cubic spline in 2D the paper's 10 / (7 pi h^2) */
+static inline PetscReal KernelSigma(const SPHKernel *K, PetscReal h) { return K->dim == 3 ? K->num / (K->den * PETSC_PI * h * h * h) : K->num / (K->den * PETSC_PI * h * h); }
+
+/* W(r, h) */
+static inline PetscReal KernelW(const SPHKernel *K, PetscReal r, PetscReal h)
+{
+  PetscReal R = r / h, s = KernelSigma(K, h);
+  if (R >= 2.0) return 0.0;
+  switch (K->type) {
+  case KERNEL_CUBIC:
+    if (R < 1.0) return s * (1.0 - 1.5 * R * R + 0.75 * R * R * R);
+    else { PetscReal t = 2.0 - R; return s * 0.25 * t * t * t; }
+  case KERNEL_WENDLAND_C2: { PetscReal q = 0.5 * R, u = 1.0 - q, u2 = u * u; return s * u2 * u2 * (1.0 + 4.0 * q); }
+  case KERNEL_WENDLAND_C4: { PetscReal q = 0.5 * R, u = 1.0 - q, u3 = u * u * u; return s * u3 * u3 * (1.0 + 6.0 * q + 35.0 / 3.0 * q * q); }
+  }
+  return 0.0;
+}
+
+/* F_ab = (dW/dr) / r, so that grad_a W_ab = F_ab (x_a - x_b); finite at r -> 0.  For the Wendland
+ * kernels dW/dq = -20 q (1-q)^3 sigma and -56/3 q (1 + 5q) (1-q)^5 sigma, with r = 2 h q. */
+static inline PetscReal KernelF(const SPHKernel *K, PetscReal r, PetscReal h)
+{
+  PetscReal R = r / h, s = KernelSigma(K, h) / (h * h);
+  if (R >= 2.0) return 0.0;
+  switch (K->type) {
+  case KERNEL_CUBIC:
+    if (R < 1.0) return s * (-3.0 + 2.25 * R);
+    else { PetscReal t = 2.0 - R; return -0.75 * s * t * t / R; }
+  case KERNEL_WENDLAND_C2: { PetscReal u = 1.0 - 0.5 * R; return -5.0 * s * u * u * u; }
+  case KERNEL_WENDLAND_C4: { PetscReal q = 0.5 * R, u = 1.0 - q, u2 = u * u; return -14.0 / 3.0 * s * (1.0 + 5.0 * q) * u2 * u2 * u; }
+  }
+  return 0.0;
+}
+
+/* dW/dr(r, h); the gradient is grad_a W_ab = dW/dr * (x_a - x_b) / r, Eq. 15 */
+static inline PetscReal KernelDW(const SPHKernel *K, PetscReal r, PetscReal h) { return KernelF(K, r, h) * r; }
+
+static inline PetscReal PairH(PetscReal ha, PetscReal hb) { return ha == hb ? ha : PetscSqrtReal(ha * hb); }
+
+/* Sums over one particle's neighbours on a full square (3D: cubic) lattice of spacing 1
+ * (h = h_factor), the interior values that normalise the operators built on them:
+ *   LATTICE_W:         sum W, the summation density (Eq. 17) per rho0;
+ *   LATTICE_DIVR:      -sum F r^2, div r (d in the continuum);
+ *   LATTICE_LAPLACIAN: -sum F r^4 / (r^2 + eta^2 h^2): the Laplacian of Eqs. 16 and 22 applied to
+ *     |x|^2 is 2 / rho times this against the exact 2 d / rho, so d over it normalises them (the
+ *     cubic spline at 1.3 dx in 2D: +1.05 % with eta = 0, -0.02 % with the paper's eta = 0.1 h;
+ *     Wendland C2 at 2 dx: -0.08 % and -1.5 %).  eta is read only for this sum. */
+typedef enum { LATTICE_W, LATTICE_DIVR, LATTICE_LAPLACIAN } LatticeSum;
+static inline PetscReal KernelLatticeSum(const SPHKernel *K, LatticeSum which, PetscReal eta)
+{
+  PetscReal s = 0, h = K->h_factor;
+  PetscInt  n = (PetscInt)PetscCeilReal(2.0 * h), nz = K->dim == 3 ? n : 0;
+  for (PetscInt k = -nz; k <= nz; k++)
+    for (PetscInt j = -n; j <= n; j++)
+      for (PetscInt i = -n; i <= n; i++) {
+        PetscReal r2 = (PetscReal)(i * i + j * j + k * k), r = PetscSqrtReal(r2);
+        switch (which) {
+        case LATTICE_W: s += KernelW(K, r, h); break;
+        case LATTICE_DIVR: s += -KernelF(K, r, h) * r * r; break;
+        case LATTICE_LAPLACIAN: if (r2 > 0) s -= KernelF(K, r, h) * r2 * r2 / (r2 + eta * eta * h * h); break;
+        }
+      }
+  return s;
+}
+
+/* Rows of wall particles that cover the kernel's support from the wall's face: ceil(2 h / dx) */
+static inline PetscInt KernelSupportRows(const SPHKernel *K) { return (PetscInt)PetscCeilReal(2.0 * K->h_factor - 1e-9); }

@@ -1,0 +1,73 @@
+#include "fluid/boundary.h"
+#include "base/dim.h"
+
+/* Wall state from the fluid neighbours of each owned wall/dummy or solid particle: the no-slip
+ * mirror velocity always, the Adami pressure and EOS density when `pressure` is set (WCSPH; with
+ * ISPH the pressure equation gives it).  A solid's pressure goes to its fluid view.  Adami's
+ * moving-wall term rho_f a_w . r is left out for solids: a particle's own acceleration carries the
+ * solid's elastic waves (hundreds of g at the wetted surface when loaded), not the motion of the
+ * interface. */
+SPH_INLINE PetscErrorCode WallStateD(Sim sim, PetscBool pressure, const PetscInt D)
+{
+  Particles        P = sim->P;
+  Cells            C = sim->cells;
+  const PetscReal *x = PField(P, FIELD_X), *v = PField(P, FIELD_V), *g = sim->g;
+  PetscReal       *p = PField(P, FIELD_P), *rho = PField(P, FIELD_RHO), *vw = PField(P, FIELD_VWALL), *fv = PField(P, FIELD_FVIEW);
+  const PetscReal *m = PField(P, FIELD_M);
+  const FieldId    refresh[] = {FIELD_VWALL, FIELD_P, FIELD_RHO, FIELD_FVIEW};
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscLogStagePush(sim->stage[STAGE_PHYSICS]));
+  for (PetscInt a = 0; a < P->n; a++) {
+    PetscReal sw = 0, sp = 0, sg[3] = {0, 0, 0}, sv[3] = {0, 0, 0}, pg;
+    PetscBool solid = KindIsSolid(P->kind[a]);
+    const PetscReal *wa;
+    if (!(KindIsWall(P->kind[a]) || (solid && fv))) continue;
+    wa = CellsPairW(C, P, a);
+    for (PetscInt k = C->nstart[a]; k < C->nstart[a + 1]; k++) {
+      PetscInt  b = C->nbr[k];
+      PetscReal d[3], w = wa[k - C->nstart[a]];
+      if (!KindIsFluid(P->kind[b])) continue;
+      VSub(x + D * a, x + D * b, d, D);
+      sw += w;
+      sp += p[b] * w;
+      for (PetscInt i = 0; i < D; i++) sg[i] += rho[b] * d[i] * w;
+      for (PetscInt i = 0; i < D; i++) sv[i] += v[D * b + i] * w;
+    }
+    for (PetscInt i = 0; i < D; i++) vw[D * a + i] = sw > 0 ? 2.0 * v[D * a + i] - sv[i] / sw : v[D * a + i];
+    pg = sp + g[0] * sg[0] + g[1] * sg[1]; /* sum p_f W + g . sum rho_f r_wf W */
+    if (D == 3) pg += g[2] * sg[2];
+    if (solid) {
+      if (pressure) fv[3 * a] = sw > 0 ? PetscMax(pg / sw, 0.0) : 0;
+      fv[3 * a + 1] = pressure ? EOSDensity(&sim->fl, fv[3 * a]) : sim->fl.rho0;
+      fv[3 * a + 2] = fv[3 * a + 1] * m[a] / rho[a];
+    } else if (pressure) {
+      /* Adami et al. 2012, Eq. 27 (static wall): p_w = (sum p_f W + g . sum rho_f r_wf W) / sum W */
+      p[a]   = sw > 0 ? pg / sw : 0;
+      if (sim->fl.wall_clip) p[a] = PetscMax(p[a], 0.0); /* a wall pushes, never pulls: fluid in tension would stick to it */
+      rho[a] = EOSDensity(&sim->fl, p[a]);
+    }
+  }
+  PetscCall(PetscLogStagePop());
+  PetscCall(PetscLogStagePush(sim->stage[STAGE_HALO]));
+  if (fv) PetscCall(HaloRefresh(sim->halo, P, 1, refresh + 3));
+  PetscCall(HaloRefresh(sim->halo, P, pressure ? 3 : 1, refresh));
+  PetscCall(PetscLogStagePop());
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+static PetscErrorCode WallState(Sim sim, PetscBool pressure) { return SPH_DIM_DISPATCH(sim->dim, WallStateD, sim, pressure); }
+
+PetscErrorCode BoundaryWallState(Sim sim)
+{
+  PetscFunctionBeginUser;
+  PetscCall(WallState(sim, PETSC_TRUE));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode BoundaryWallVelocity(Sim sim)
+{
+  PetscFunctionBeginUser;
+  PetscCall(WallState(sim, PETSC_FALSE));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}

@@ -1,0 +1,430 @@
+#include "fluid/isph.h"
+#include "base/options_used.h"
+#include "solid/solid.h"
+#include "fluid/boundary.h"
+#include "base/kernel.h"
+#include "fluid/fluid_terms.h"
+#include "fluid/shifting.h"
+#include "base/dim.h"
+
+const char *const ISPHFreeSurfaces[] = {"density", "divr", "ISPHFreeSurface", "ISPH_FS_", NULL};
+const char *const ISPHSources[]      = {"divergence", "density", "blend", "ISPHSource", "ISPH_SOURCE_", NULL};
+const char *const ISPHGradients[]    = {"eq14", "corrected", "hybrid", "ISPHGradient", "ISPH_GRAD_", NULL};
+
+PetscErrorCode ISPHSetUp(Sim sim)
+{
+  ISPH      s;
+  PetscInt  fs, src, grad;
+  PetscFunctionBeginUser;
+  PetscCall(PetscNew(&s));
+  sim->isph   = s;
+  s->beta     = 0.9;
+  s->divr_min = 1.5;
+  /* Defaults measured on the still tank (docs/convergence.md): the corrected gradient is exact for
+   * the hydrostatic field in the bulk, where Eq. 14 is 1 % off on the lattice; a small density
+   * weight in the source restores the positions that the divergence source lets drift */
+  s->blend    = 0.01;
+  s->alpha    = 0.1;
+  s->source   = ISPH_SOURCE_BLEND;
+  s->gradient = ISPH_GRAD_CORRECTED;
+  s->solid_eq14 = PETSC_TRUE;
+  /* a thin jet's correction matrix is nearly singular; corrected there, splashing particles were
+   * flung at 16 m/s and over walls (docs/convergence.md, -isph_gradient_cond) */
+  s->grad_cond  = 0.25;
+  fs = s->fs; src = s->source; grad = s->gradient;
+  PetscOptionsBegin(sim->comm, NULL, "ISPH fluid (section 2.8)", "ISPH");
+  PetscCall(OptEList("-isph_free_surface", "Free-surface criterion: density (rho* < beta rho0, section 2.5) or divr (divergence of position)", "", ISPHFreeSurfaces, 2, ISPHFreeSurfaces[fs], &fs, NULL));
+  PetscCall(OptReal("-isph_beta", "Free surface where rho* < beta rho0 (paper: 0.8 < beta < 0.99)", "", s->beta, &s->beta, NULL));
+  PetscCall(OptReal("-isph_divr", "Free surface where div r < this (2 in the bulk in 2D)", "", s->divr_min, &s->divr_min, NULL));
+  PetscCall(OptEList("-isph_source", "PPE source: divergence (Eq. 13, 48), density ((rho0 - rho*)/(rho0 dt^2)) or blend", "", ISPHSources, 3, ISPHSources[src], &src, NULL));
+  PetscCall(OptReal("-isph_blend", "Weight of the density source in -isph_source blend", "", s->blend, &s->blend, NULL));
+  PetscCall(OptEList("-isph_gradient", "Pressure gradient of the corrector: eq14 (symmetric, Eq. 14), corrected (Bonet-Lok), hybrid (corrected on and next to the free surface)", "", ISPHGradients, 3, ISPHGradients[grad], &grad, NULL));
+  PetscCall(OptReal("-isph_gradient_cond", "The corrected gradient only where its correction matrix is well conditioned: smallest over largest eigenvalue above this (1 on a full or half support; small across a thin jet; 0: wherever it is invertible); elsewhere the uncorrected difference form", "", s->grad_cond, &s->grad_cond, NULL));
+  PetscCall(OptBool("-isph_solid_eq14", "Fluid particles next to a solid body (and not at the free surface) take Eq. 14, whose pair forces are those the body receives: the momentum exchange is exact", "", s->solid_eq14, &s->solid_eq14, NULL));
+  PetscCall(OptReal("-isph_alpha", "Artificial viscosity (Eq. 24, velocity scale c0) in the predictor; damps the free-surface noise of the projection", "", s->alpha, &s->alpha, NULL));
+  PetscCall(OptBool("-isph_wall_contact", "A free-surface particle (P = 0, so no pressure stops it) that approaches a wall within dx of its first row loses its velocity towards the wall", "", s->wall_contact, &s->wall_contact, NULL));
+  PetscCall(OptReal("-isph_shift", "Particle shifting coefficient A (D = A h |v| dt, Skillen et al. 2013); 0 = off", "", s->shift, &s->shift, NULL));
+  PetscOptionsEnd();
+  s->fs = (ISPHFreeSurface)fs; s->source = (ISPHSource)src; s->gradient = (ISPHGradient)grad;
+  PetscCheck(s->beta > 0 && s->beta < 1, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-isph_beta %g must be in (0, 1); the paper uses 0.8 .. 0.99", (double)s->beta);
+  PetscCheck(s->divr_min > 0 && s->divr_min < 2, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-isph_divr %g must be in (0, 2)", (double)s->divr_min);
+  PetscCheck(s->blend >= 0 && s->blend <= 1, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-isph_blend %g must be in [0, 1]", (double)s->blend);
+  PetscCheck(s->alpha >= 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-isph_alpha %g must be >= 0", (double)s->alpha);
+  PetscCheck(s->shift >= 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-isph_shift %g must be >= 0", (double)s->shift);
+  PetscCheck(s->grad_cond >= 0 && s->grad_cond < 1, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-isph_gradient_cond %g must be in [0, 1): the smallest over the largest eigenvalue of the correction matrix (0.25 the default)", (double)s->grad_cond);
+  if (s->source == ISPH_SOURCE_DIVERGENCE) s->blend = 0;
+  if (s->source == ISPH_SOURCE_DENSITY) s->blend = 1;
+  s->lat_w    = KernelLatticeSum(&sim->kernel, LATTICE_W, 0);
+  s->lat_divr = KernelLatticeSum(&sim->kernel, LATTICE_DIVR, 0);
+  PetscCall(PPECreate(sim->comm, &s->ppe));
+  PetscCall(PPESetFromOptions(s->ppe, (PetscBool)!(sim->solid && sim->solid->implicit)));
+  PetscCall(ParticlesEnableField(sim->P, FIELD_ACC, PETSC_FALSE));
+  PetscCall(ParticlesEnableField(sim->P, FIELD_VWALL, PETSC_FALSE));
+  PetscCall(ParticlesEnableField(sim->P, FIELD_VSTAR, PETSC_TRUE)); /* read by neighbours after the predictor's rebuild */
+  PetscCall(ParticlesEnableField(sim->P, FIELD_FS, PETSC_FALSE));
+  PetscCall(ParticlesEnableField(sim->P, FIELD_ROW, PETSC_FALSE));
+  if (sim->fl.xsph > 0 || s->shift > 0) PetscCall(ParticlesEnableField(sim->P, FIELD_XSPH, PETSC_FALSE));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode ISPHDestroy(ISPH *isph)
+{
+  PetscFunctionBeginUser;
+  if (!*isph) PetscFunctionReturn(PETSC_SUCCESS);
+  PetscCall(PPEDestroy(&(*isph)->ppe));
+  PetscCall(PetscFree((*isph)->src));
+  PetscCall(PetscFree(*isph));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode ISPHView(Sim sim, PetscViewer v)
+{
+  ISPH s = sim->isph;
+  PetscFunctionBeginUser;
+  PetscCall(PetscViewerASCIIPrintf(v, "ISPH: free surface by %s (%s %g), PPE source %s (density weight %g), gradient %s (corrected where its matrix's eigenvalue ratio > %g)%s, AV alpha %g, shifting A = %g, XSPH %g\n", ISPHFreeSurfaces[s->fs], s->fs == ISPH_FS_DENSITY ? "beta" : "div r <", (double)(s->fs == ISPH_FS_DENSITY ? s->beta : s->divr_min), ISPHSources[s->source], (double)s->blend, ISPHGradients[s->gradient], (double)s->grad_cond, s->solid_eq14 && s->gradient != ISPH_GRAD_EQ14 ? " (Eq. 14 next to solids)" : "", (double)s->alpha, (double)s->shift, (double)sim->fl.xsph));
+  PetscCall(PPEView(s->ppe, v));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode ISPHInitialize(Sim sim)
+{
+  Particles  P   = sim->P;
+  PetscReal *rho = PField(P, FIELD_RHO);
+  PetscFunctionBeginUser;
+  for (PetscInt a = 0; a < P->n + P->ng; a++)
+    if (KindIsWall(P->kind[a])) rho[a] = sim->fl.rho0; /* solids' fluid view: BoundaryWallVelocity */
+  PetscCall(BoundaryWallVelocity(sim));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode ISPHTimeStep(Sim sim, PetscReal *dt)
+{
+  Particles        P = sim->P;
+  const PetscReal *v = PField(P, FIELD_V), *h = PField(P, FIELD_H);
+  const PetscReal  g = PetscSqrtReal(VDot(sim->g, sim->g, P->dim));
+  PetscReal        lim = PETSC_MAX_REAL, hmin = PETSC_MAX_REAL;
+
+  PetscFunctionBeginUser;
+  /* The force limit uses the body force only: the projection's velocity change does not scale
+   * with dt, so a limit on (v - v_t)/dt would shrink dt without end. */
+  for (PetscInt a = 0; a < P->n; a++) {
+    PetscReal vn;
+    if (!KindIsFluid(P->kind[a])) continue;
+    vn   = PetscSqrtReal(VDot(v + P->dim * a, v + P->dim * a, P->dim));
+    hmin = PetscMin(hmin, h[a]);
+    if (vn > 0) lim = PetscMin(lim, sim->cfl * h[a] / vn);                                     /* CFL on the flow speed */
+    if (g > 0) lim = PetscMin(lim, 0.25 * PetscSqrtReal(h[a] / g));                            /* body force */
+    if (sim->fl.mu > 0) lim = PetscMin(lim, 0.125 * h[a] * h[a] * sim->fl.rho0 / sim->fl.mu); /* viscous */
+    if (sim->isph->alpha > 0) lim = PetscMin(lim, 0.5 * h[a] / (sim->isph->alpha * sim->fl.c0));    /* explicit AV, nu ~ alpha c0 h / 8 */
+  }
+  { /* the fallback is decided on the global minimum: a rank without fluid has no limit of its own,
+     * and its fallback would cut every rank's step (8 ranks of the dam break: 81 steps, not 41) */
+    PetscReal m[3] = {lim, hmin, PETSC_MAX_REAL};
+    if (sim->solid) PetscCall(SolidTransitLimit(sim, &m[2])); /* the pressure is frozen over the solid sub-steps: at most about one elastic transit */
+    PetscCall(MPIU_Allreduce(MPI_IN_PLACE, m, 3, MPIU_REAL, MPIU_MIN, sim->comm));
+    lim = m[0] == PETSC_MAX_REAL ? sim->cfl * m[1] / sim->v_ref : m[0]; /* nothing moves and no force yet */
+    *dt = PetscMin(lim, m[2]);
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* Eqs. 45-47: v* = v + dt (g + viscous Eq. 16) at r_t; r* = r + dt v.  Walls get
+ * v* = v + dt g, the velocity whose projection with their Neumann pressure (ppe.h) leaves them
+ * at rest, so that the velocity divergence sees no spurious source at a wall in hydrostatics. */
+SPH_INLINE PetscErrorCode PredictorD(Sim sim, const PetscInt D)
+{
+  Particles        P = sim->P;
+  Cells            C = sim->cells;
+  const PetscReal *v = PField(P, FIELD_V), *rho = PField(P, FIELD_RHO), *m = PField(P, FIELD_M), *h = PField(P, FIELD_H), *vw = PField(P, FIELD_VWALL), *fv = PField(P, FIELD_FVIEW);
+  PetscReal       *x = PField(P, FIELD_X), *vs = PField(P, FIELD_VSTAR);
+  const PetscReal  dt = sim->dt, mu = sim->fl.mu, alpha = sim->isph->alpha;
+
+  PetscFunctionBeginUser;
+  for (PetscInt a = 0; a < P->n; a++) {
+    PetscReal ac[3] = {sim->g[0], sim->g[1], sim->g[2]};
+    if (KindIsFluid(P->kind[a]) && (mu > 0 || alpha > 0))
+      for (PetscInt k = C->nstart[a]; k < C->nstart[a + 1]; k++) {
+        PetscInt         b = C->nbr[k];
+        PetscReal        d[3], dvab[3], r2, hab = PairH(h[a], h[b]);
+        const PetscReal *vb = KindIsBoundary(P->kind[b]) ? vw + D * b : v + D * b;
+        PetscReal        mb, rb, pb, c, av;
+        VSub(x + D * a, x + D * b, d, D);
+        r2 = VDot(d, d, D);
+        FluidView(fv, P->kind[b], b, m, rho, NULL, &mb, &rb, &pb);
+        c = LaminarViscosity(mb, mu, rho[a], rb, C->f[k] * r2, r2, hab, sim->fl.eta, sim->fl.lap_kappa);
+        VSub(v + D * a, v + D * b, dvab, D);
+        av = alpha > 0 ? mb * ArtificialViscosity(alpha, sim->fl.c0, hab, 0.5 * (rho[a] + rb), VDot(dvab, d, D), r2) * C->f[k] : 0;
+        for (PetscInt i = 0; i < D; i++) ac[i] += c * (v[D * a + i] - vb[i]) - av * d[i];
+      }
+    for (PetscInt i = 0; i < D; i++) vs[D * a + i] = v[D * a + i] + dt * ac[i];
+  }
+  for (PetscInt a = 0; a < P->n; a++)
+    if (KindIsFluid(P->kind[a]))
+      for (PetscInt i = 0; i < D; i++) x[D * a + i] += dt * v[D * a + i];
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+static PetscErrorCode Predictor(Sim sim) { return SPH_DIM_DISPATCH(sim->dim, PredictorD, sim); }
+
+/* rho* by summation (Eq. 17) normalised by the full-lattice sum, walls at rho0; free surface by
+ * rho* < beta rho0 (section 2.5) or div r < divr_min; and the PPE source of fluid rows,
+ * (1 - w) div v* / dt (Eq. 13 with 1/rho_a, Eq. 48) + w (rho0 - rho*) / (rho0 dt^2) (density
+ * invariance, Shao & Lo 2003): one pass, since v* of the neighbours came with the rebuild. */
+SPH_INLINE PetscErrorCode DensityFreeSurfaceSourceD(Sim sim, const PetscInt D)
+{
+  ISPH             s = sim->isph;
+  Particles        P = sim->P;
+  Cells            C = sim->cells;
+  const PetscReal *x = PField(P, FIELD_X), *m = PField(P, FIELD_M), *h = PField(P, FIELD_H), *vs = PField(P, FIELD_VSTAR), *fv = PField(P, FIELD_FVIEW);
+  PetscReal       *rho = PField(P, FIELD_RHO), *fs = PField(P, FIELD_FS);
+  const PetscReal  rho0 = sim->fl.rho0, dt = sim->dt, w = s->blend;
+  const PetscBool  confined = sim->confined;
+  const FieldId    refresh[] = {FIELD_RHO, FIELD_FS};
+  PetscInt         nfree = 0;
+
+  PetscFunctionBeginUser;
+  if (P->n > s->cap_src) {
+    PetscCall(PetscFree(s->src));
+    s->cap_src = (PetscInt)(1.2 * P->n) + 16;
+    PetscCall(PetscMalloc1(s->cap_src, &s->src));
+  }
+  for (PetscInt a = 0; a < P->n; a++) {
+    PetscReal sw, divr = 0, div = 0;
+    fs[a] = 0; s->src[a] = 0;
+    if (!KindIsFluid(P->kind[a])) {
+      if (!KindIsSolid(P->kind[a])) rho[a] = rho0; /* a solid keeps its own */
+      continue;
+    }
+    const PetscReal *wa = CellsPairW(C, P, a);
+    sw = m[a] * KernelW(&sim->kernel, 0, h[a]);
+    for (PetscInt k = C->nstart[a]; k < C->nstart[a + 1]; k++) {
+      PetscInt  b = C->nbr[k];
+      PetscReal d[3], dvs[3], F = C->f[k], mb, rb, pb;
+      VSub(x + D * a, x + D * b, d, D);
+      VSub(vs + D * b, vs + D * a, dvs, D);
+      FluidView(fv, P->kind[b], b, m, rho, NULL, &mb, &rb, &pb);
+      sw += mb * wa[k - C->nstart[a]];
+      divr -= mb / rho0 * F * VDot(d, d, D);
+      div += mb * F * VDot(dvs, d, D);
+    }
+    rho[a] = sw / s->lat_w;
+    divr *= 2.0 / s->lat_divr;
+    /* a confined flow (Taylor-Green, Poiseuille) has no free surface: a particle whose rho* dips
+     * below beta rho0 there is disorder, and a P = 0 row inside the fluid would be wrong */
+    fs[a] = !confined && (s->fs == ISPH_FS_DENSITY ? rho[a] < s->beta * rho0 : divr < s->divr_min) ? 1.0 : 0.0;
+    nfree += fs[a] > 0;
+    s->src[a] = (1 - w) * div / (rho[a] * dt) + w * (rho0 - rho[a]) / (rho0 * dt * dt);
+  }
+  PetscCall(MPIU_Allreduce(&nfree, &s->nfree, 1, MPIU_INT, MPI_SUM, sim->comm));
+  PetscCall(PetscLogStagePush(sim->stage[STAGE_HALO]));
+  PetscCall(HaloRefresh(sim->halo, P, 2, refresh));
+  PetscCall(PetscLogStagePop());
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+static PetscErrorCode DensityFreeSurfaceSource(Sim sim) { return SPH_DIM_DISPATCH(sim->dim, DensityFreeSurfaceSourceD, sim); }
+
+/* grad P / rho at particle a.  Eq. 14 (symmetric, conserves momentum; its rho_a cancels), or the
+ * difference form with the kernel-gradient correction of Bonet & Lok 1999, exact for a linear P
+ * on a truncated support: the free surface, where Eq. 14 sees half the gradient and lets surface
+ * particles fall at g/2.  The corrected form divides by rho0: rho* is truncated there too.  One
+ * pass gathers both forms and whether a free-surface particle is in reach (hybrid). */
+SPH_INLINE void PressureGradient(Particles P, Cells C, PetscInt a, ISPHGradient mode, PetscBool solid_eq14, PetscReal cond, PetscReal rho0, PetscReal g[], const PetscInt D)
+{
+  const PetscReal *x = PField(P, FIELD_X), *m = PField(P, FIELD_M), *rho = PField(P, FIELD_RHO), *p = PField(P, FIELD_P), *fs = PField(P, FIELD_FS), *fv = PField(P, FIELD_FVIEW);
+  PetscReal        gs[3] = {0, 0, 0}, gd[3] = {0, 0, 0}, M[6] = {0, 0, 0, 0, 0, 0}, pa = p[a] / (rho[a] * rho[a]);
+  PetscBool        near = (PetscBool)(fs[a] > 0), corrected, body = PETSC_FALSE;
+  for (PetscInt k = C->nstart[a]; k < C->nstart[a + 1]; k++) {
+    PetscInt  b = C->nbr[k];
+    PetscReal d[3], F = C->f[k], mb, rb, pb, cs, vb;
+    VSub(x + D * a, x + D * b, d, D);
+    FluidView(fv, P->kind[b], b, m, rho, p, &mb, &rb, &pb);
+    cs = mb * (pb / (rb * rb) + pa) * F; vb = mb / rho0 * F;
+    for (PetscInt i = 0; i < D; i++) gs[i] += cs * d[i];
+    if (!(KindIsWall(P->kind[b]) && fs[b] > 0)) { /* a dry wall (its pressure clipped, ppe.c) would tilt the plane fit */
+      for (PetscInt i = 0; i < D; i++) gd[i] += vb * (pb - p[a]) / rho0 * d[i];
+      SymOuterSubtract(M, vb, d, D); /* (x_b - x_a) (x) V_b grad_a W */
+    }
+    if (fs[b] > 0 && KindIsFluid(P->kind[b])) near = PETSC_TRUE;
+    if (KindIsSolid(P->kind[b])) body = PETSC_TRUE;
+  }
+  corrected = (PetscBool)(mode == ISPH_GRAD_CORRECTED || (mode == ISPH_GRAD_HYBRID && near));
+  if (solid_eq14 && body && !near) corrected = PETSC_FALSE; /* the pair forces the body receives (FluidLoad) */
+  if (!corrected) {
+    for (PetscInt i = 0; i < D; i++) g[i] = gs[i];
+    return;
+  }
+  /* the correction only where M is well conditioned: its eigenvalues' ratio above cond (a thin jet's
+   * M is nearly singular, and M^-1 amplifies the pressure's noise across it) */
+  if (!SymSolveConditioned(M, gd, cond, g, D))
+    for (PetscInt i = 0; i < D; i++) g[i] = gd[i];
+}
+
+/* A free-surface particle has P = 0 in the pressure equation, so no pressure acts on it and a wall
+ * it flies at cannot push it back until it has passed the wall's first row (a splashing front at an
+ * impact).  Such a particle within dx of the first wall row, moving towards the wall, loses that
+ * velocity component (an inelastic contact).  The wall's normal is that of the wall particles'
+ * volume seen from the particle, n = -sum_w V_w grad_a W_aw / |.|; the distance is the smallest
+ * (x_a - x_w) . n over the first-row (KIND_WALL) neighbours.  Walls are at rest. */
+SPH_INLINE void WallContact(Particles P, Cells C, PetscInt a, PetscReal rho0, PetscReal dxa, PetscReal v[], const PetscInt D)
+{
+  const PetscReal *x = PField(P, FIELD_X), *m = PField(P, FIELD_M);
+  PetscReal        g[3] = {0, 0, 0}, gn, n[3], dmin = PETSC_MAX_REAL, vn;
+  for (PetscInt k = C->nstart[a]; k < C->nstart[a + 1]; k++) {
+    PetscInt b = C->nbr[k];
+    if (!KindIsWall(P->kind[b])) continue;
+    for (PetscInt i = 0; i < D; i++) g[i] += m[b] / rho0 * C->f[k] * (x[D * a + i] - x[D * b + i]);
+  }
+  gn = PetscSqrtReal(VDot(g, g, D));
+  if (gn == 0) return;
+  for (PetscInt i = 0; i < D; i++) n[i] = -g[i] / gn;
+  for (PetscInt k = C->nstart[a]; k < C->nstart[a + 1]; k++) {
+    PetscInt  b = C->nbr[k];
+    PetscReal d[3];
+    if (P->kind[b] != KIND_WALL) continue;
+    VSub(x + D * a, x + D * b, d, D);
+    dmin = PetscMin(dmin, VDot(d, n, D));
+  }
+  vn = VDot(v, n, D);
+  if (dmin < dxa && vn < 0)
+    for (PetscInt i = 0; i < D; i++) v[i] -= vn * n[i];
+}
+
+/* Eqs. 49, 51: v = v* - dt grad P / rho; acc = (v - v_t) / dt. */
+SPH_INLINE PetscErrorCode CorrectorD(Sim sim, const PetscInt D)
+{
+  ISPH             s = sim->isph;
+  Particles        P = sim->P;
+  Cells            C = sim->cells;
+  const PetscReal *vs = PField(P, FIELD_VSTAR);
+  PetscReal       *v = PField(P, FIELD_V), *acc = PField(P, FIELD_ACC);
+  const PetscReal  dt = sim->dt;
+
+  PetscFunctionBeginUser;
+  for (PetscInt a = 0; a < P->n; a++) {
+    PetscReal g[3], vn[3];
+    if (!KindIsFluid(P->kind[a])) continue;
+    PressureGradient(P, C, a, s->gradient, s->solid_eq14, s->grad_cond, sim->fl.rho0, g, D);
+    for (PetscInt i = 0; i < D; i++) vn[i] = vs[D * a + i] - dt * g[i];
+    if (s->wall_contact && PField(P, FIELD_FS)[a] > 0) WallContact(P, C, a, sim->fl.rho0, PField(P, FIELD_H)[a] / sim->kernel.h_factor, vn, D);
+    for (PetscInt i = 0; i < D; i++) {
+      acc[D * a + i] = (vn[i] - v[D * a + i]) / dt;
+      v[D * a + i]   = vn[i];
+    }
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+static PetscErrorCode Corrector(Sim sim) { return SPH_DIM_DISPATCH(sim->dim, CorrectorD, sim); }
+
+/* Position corrections as velocities: XSPH (Eq. 44) and Fickian shifting (shifting.h); a particle
+ * is next to the free surface when a fluid neighbour is on it. */
+SPH_INLINE PetscErrorCode DriftD(Sim sim, const PetscInt D)
+{
+  ISPH             s = sim->isph;
+  Particles        P = sim->P;
+  Cells            C = sim->cells;
+  const PetscReal *x = PField(P, FIELD_X), *m = PField(P, FIELD_M), *rho = PField(P, FIELD_RHO), *v = PField(P, FIELD_V), *h = PField(P, FIELD_H), *fs = PField(P, FIELD_FS);
+  PetscReal       *xs = PField(P, FIELD_XSPH);
+  const PetscReal  dt = sim->dt, rho0 = sim->fl.rho0, eps = sim->fl.xsph;
+  const FieldId    vel[] = {FIELD_V};
+  PetscReal       *dv = NULL; /* velocity corrections of shifted particles, applied after the loop (2D) */
+
+  PetscFunctionBeginUser;
+  if (s->shift > 0 && sim->fl.shift_correct) PetscCall(PetscCalloc1(D * P->n, &dv));
+  if (eps != 0 || dv) { /* only XSPH and the shift's velocity correction read the neighbours' v */
+    PetscCall(PetscLogStagePush(sim->stage[STAGE_HALO]));
+    PetscCall(HaloRefresh(sim->halo, P, 1, vel));
+    PetscCall(PetscLogStagePop());
+  }
+  for (PetscInt a = 0; a < P->n; a++) {
+    PetscReal sx[3] = {0, 0, 0}, c[3] = {0, 0, 0};
+    PetscBool near_fs = PETSC_FALSE;
+    ShiftGrad sg = {{0}, {0}};
+    for (PetscInt i = 0; i < D; i++) xs[D * a + i] = 0;
+    if (!KindIsFluid(P->kind[a])) continue;
+    const PetscReal *wa = eps != 0 ? CellsPairW(C, P, a) : NULL; /* W only for XSPH */
+    for (PetscInt k = C->nstart[a]; k < C->nstart[a + 1]; k++) {
+      PetscInt  b = C->nbr[k];
+      PetscReal d[3], dvab[3];
+      VSub(x + D * a, x + D * b, d, D);
+      VSub(v + D * a, v + D * b, dvab, D);
+      if (KindIsFluid(P->kind[b])) {
+        if (wa) {
+          PetscReal w = XSPHWeight(wa[k - C->nstart[a]], m[b], rho[a], rho[b]);
+          for (PetscInt i = 0; i < D; i++) sx[i] -= w * dvab[i];
+        }
+        if (fs[b] > 0) near_fs = PETSC_TRUE;
+        if (dv) ShiftGradAdd(&sg, m[b] / rho0, C->f[k], d, dvab, D);
+      }
+      if (!KindIsSolid(P->kind[b])) /* a solid's volume: its own mass over its own density */
+        for (PetscInt i = 0; i < D; i++) c[i] += m[b] / rho0 * C->f[k] * d[i];
+      else
+        for (PetscInt i = 0; i < D; i++) c[i] += m[b] / rho[b] * C->f[k] * d[i];
+    }
+    for (PetscInt i = 0; i < D; i++) xs[D * a + i] = eps * sx[i];
+    ShiftVelocity(s->shift, fs[a] > 0 ? SHIFT_SURFACE : near_fs ? SHIFT_NEAR_SURFACE : SHIFT_BULK, h[a], v + D * a, dt, c, xs + D * a, D);
+    if (dv) {
+      PetscReal dr[3];
+      for (PetscInt i = 0; i < D; i++) dr[i] = dt * (xs[D * a + i] - eps * sx[i]);
+      ShiftCorrectVelocity(&sg, dr, dv + D * a, D);
+    }
+  }
+  if (dv) {
+    PetscReal *vv = PField(P, FIELD_V);
+    for (PetscInt k = 0; k < D * P->n; k++) vv[k] += dv[k];
+    PetscCall(PetscFree(dv));
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+static PetscErrorCode Drift(Sim sim) { return SPH_DIM_DISPATCH(sim->dim, DriftD, sim); }
+
+/* Eq. 50: r = r_t + dt (v_t + v) / 2 = r* + dt^2 acc / 2, plus the drift corrections. */
+SPH_INLINE PetscErrorCode MoveToEndD(Sim sim, const PetscInt D)
+{
+  Particles        P = sim->P;
+  const PetscReal *acc = PField(P, FIELD_ACC), *xs = PField(P, FIELD_XSPH);
+  PetscReal       *x = PField(P, FIELD_X);
+  const PetscReal  dt = sim->dt;
+  for (PetscInt a = 0; a < P->n; a++) {
+    if (!KindIsFluid(P->kind[a])) continue;
+    for (PetscInt i = 0; i < D; i++) x[D * a + i] += 0.5 * dt * dt * acc[D * a + i] + (xs ? dt * xs[D * a + i] : 0);
+  }
+  return PETSC_SUCCESS;
+}
+
+static PetscErrorCode MoveToEnd(Sim sim) { return SPH_DIM_DISPATCH(sim->dim, MoveToEndD, sim); }
+
+PetscErrorCode ISPHPressureEquation(Sim sim)
+{
+  ISPH s = sim->isph;
+  PetscFunctionBeginUser;
+  PetscCall(PetscLogStagePush(sim->stage[STAGE_PHYSICS]));
+  PetscCall(DensityFreeSurfaceSource(sim));
+  PetscCall(PetscLogStagePop());
+  PetscCall(PPENumber(s->ppe, sim));
+  PetscCall(PPEAssemble(s->ppe, sim, s->src));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode ISPHStep(Sim sim)
+{
+  ISPH s = sim->isph;
+  PetscFunctionBeginUser;
+  if (sim->has_solid) PetscCall(BoundaryWallVelocity(sim)); /* the solids moved (and may have rebuilt) since the last step */
+  PetscCall(PetscLogStagePush(sim->stage[STAGE_PHYSICS]));
+  PetscCall(Predictor(sim));
+  PetscCall(PetscLogStagePop());
+  PetscCall(NeighbourhoodRebuild(&sim->nbhd, sim->step)); /* neighbours at r* */
+  PetscCall(ISPHPressureEquation(sim));
+  PetscCall(PPESolve(s->ppe, sim));
+  PetscCall(PetscLogStagePush(sim->stage[STAGE_PHYSICS]));
+  PetscCall(Corrector(sim));
+  if (PField(sim->P, FIELD_XSPH)) PetscCall(Drift(sim));
+  PetscCall(MoveToEnd(sim));
+  PetscCall(PetscLogStagePop());
+  PetscCall(NeighbourhoodRebuild(&sim->nbhd, sim->step));
+  PetscCall(BoundaryWallVelocity(sim));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}

@@ -1,0 +1,251 @@
+#include "fluid/wcsph.h"
+#include "base/options_used.h"
+#include "fluid/boundary.h"
+#include "base/kernel.h"
+#include "fluid/fluid_terms.h"
+#include "solid/solid.h"
+#include "fluid/shifting.h"
+#include "base/dim.h"
+
+PetscErrorCode WCSPHSetUp(Sim sim)
+{
+  FluidMaterial *fl   = &sim->fl;
+  PetscReal      skin = WCSPH_SKIN_DEFAULT;
+  PetscFunctionBeginUser;
+  PetscOptionsBegin(sim->comm, NULL, "WCSPH fluid", "WCSPH");
+  PetscCall(OptReal("-wcsph_shift", "Particle shifting coefficient A (D = A h |v| dt, Skillen et al. 2013; none on the free surface, div r < 1.5, and next to it); 0 = off", "", fl->shift, &fl->shift, NULL));
+  PetscCall(OptBool("-wcsph_wall_clip", "Clip the wall pressure (Adami extrapolation) at 0: fluid in tension next to a wall is not held on it", "", fl->wall_clip, &fl->wall_clip, NULL));
+  PetscCall(OptReal("-wcsph_skin", "Verlet skin of the neighbour list, in particle spacings: the pairs within 2h + skin are kept and the list is rebuilt only once some particle has moved half the skin; 0 rebuilds at every step", "", skin, &skin, NULL));
+  PetscOptionsEnd();
+  PetscCheck(fl->shift >= 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-wcsph_shift %g must be >= 0", (double)fl->shift);
+  PetscCheck(skin >= 0 && skin <= 2, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-wcsph_skin %g must be in [0, 2] particle spacings", (double)skin);
+  sim->nbhd.skin = skin * sim->dx;
+  if (sim->nbhd.skin > 0) PetscCall(ParticlesEnableField(sim->P, FIELD_XREB, PETSC_FALSE)); /* the positions at the last rebuild */
+  /* the solids' sub-steps move them after the list's pairs are computed, and their own list is made
+   * then (SolidPrepare): a restart needs those positions too */
+  if (sim->nbhd.skin > 0 && sim->has_solid) PetscCall(ParticlesEnableField(sim->P, FIELD_XLIST, PETSC_FALSE));
+  fl->lat_divr = KernelLatticeSum(&sim->kernel, LATTICE_DIVR, 0);
+  PetscCall(ParticlesEnableField(sim->P, FIELD_ACC, PETSC_FALSE));
+  PetscCall(ParticlesEnableField(sim->P, FIELD_DRHO, PETSC_FALSE));
+  PetscCall(ParticlesEnableField(sim->P, FIELD_VWALL, PETSC_FALSE)); /* ghosts: refreshed by BoundaryWallState */
+  if (fl->xsph > 0 || fl->shift > 0) PetscCall(ParticlesEnableField(sim->P, FIELD_XSPH, PETSC_FALSE));
+  if (fl->shift > 0 && !sim->confined) PetscCall(ParticlesEnableField(sim->P, FIELD_FS, PETSC_TRUE)); /* ghosts: at the rebuild */
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode WCSPHView(Sim sim, PetscViewer v)
+{
+  const FluidMaterial *fl = &sim->fl;
+  PetscFunctionBeginUser;
+  PetscCall(PetscViewerASCIIPrintf(v, "WCSPH: c0 %g m/s, AV alpha %g, delta-SPH %g, XSPH %g, shifting A = %g, wall pressure %s, neighbour skin %g dx\n", (double)fl->c0, (double)fl->alpha, (double)fl->delta, (double)fl->xsph, (double)fl->shift, fl->wall_clip ? "clipped at 0" : "as extrapolated (may be < 0)", (double)(sim->nbhd.skin / sim->dx)));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode WCSPHPressure(Sim sim)
+{
+  Particles  P = sim->P;
+  PetscReal *rho = PField(P, FIELD_RHO), *p = PField(P, FIELD_P);
+  PetscFunctionBeginUser;
+  for (PetscInt a = 0; a < P->n + P->ng; a++)
+    if (KindIsFluid(P->kind[a])) p[a] = EOSPressure(&sim->fl, rho[a]);
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* drho/dt of owned fluid: continuity Eq. 18, optional delta-SPH diffusion (Molteni & Colagrossi
+ * 2009, hydrostatic part removed); and the XSPH velocity correction Eq. 44 plus the shifting
+ * velocity (shifting.h) over the coming step sim->dt.  With shifting, the free-surface flags (div r)
+ * of the neighbours are those of the last call, which the rebuild gave the ghosts; the new flags
+ * are written after the loop, so the result does not depend on the order of the particles.  A
+ * confined flow has no free surface: a void that opens in it (div r < 1.5 of 2) is shifted shut. */
+SPH_INLINE PetscErrorCode ContinuityD(Sim sim, const PetscInt D)
+{
+  Particles            P = sim->P;
+  Cells                C = sim->cells;
+  const PetscReal     *x = PField(P, FIELD_X), *v = PField(P, FIELD_V), *rho = PField(P, FIELD_RHO);
+  const PetscReal     *m = PField(P, FIELD_M), *h = PField(P, FIELD_H), *g = sim->g;
+  PetscReal           *drho = PField(P, FIELD_DRHO), *xs = PField(P, FIELD_XSPH), *fs = PField(P, FIELD_FS);
+  PetscBool           *surface = NULL;
+  PetscReal           *dv = NULL; /* velocity corrections of shifted particles, applied after the loop (2D) */
+  const FluidMaterial *fl   = &sim->fl;
+  const PetscReal      dcoef = fl->delta * fl->c0, dhyd = fl->rho0 / (fl->c0 * fl->c0);
+  const PetscBool      shift = (PetscBool)(fl->shift > 0), surf = (PetscBool)(shift && fs);
+
+  PetscFunctionBeginUser;
+  if (surf) PetscCall(PetscCalloc1(P->n, &surface));
+  if (shift && fl->shift_correct) PetscCall(PetscCalloc1(D * P->n, &dv));
+  for (PetscInt a = 0; a < P->n; a++) {
+    PetscReal dr = 0, dd = 0, sxs[3] = {0, 0, 0}, c[3] = {0, 0, 0}, divr = 0;
+    PetscBool near = PETSC_FALSE;
+    ShiftGrad sg = {{0}, {0}};
+    const PetscReal *xa = x + D * a, *va = v + D * a, ra = rho[a], *wa;
+    if (!KindIsFluid(P->kind[a])) continue;
+    wa = xs ? CellsPairW(C, P, a) : NULL;
+    for (PetscInt k = C->nstart[a]; k < C->nstart[a + 1]; k++) {
+      PetscInt  b = C->nbr[k];
+      PetscReal d[3], dvab[3], F = C->f[k], vb = m[b] / rho[b];
+      VSub(xa, x + D * b, d, D);
+      VSub(va, v + D * b, dvab, D);
+      dr += vb * F * VDot(dvab, d, D);
+      if (shift) {
+        for (PetscInt i = 0; i < D; i++) c[i] += vb * F * d[i];
+        divr -= vb * F * VDot(d, d, D);
+      }
+      if (!KindIsFluid(P->kind[b])) continue;
+      if (dv) ShiftGradAdd(&sg, vb, F, d, dvab, D);
+      if (surf && fs[b] > 0) near = PETSC_TRUE;
+      if (dcoef > 0) {
+        PetscReal gd = -g[0] * d[0] - g[1] * d[1], dh;
+        if (D == 3) gd -= g[2] * d[2];
+        dh = dhyd * gd; /* rho_b^H - rho_a^H */
+        dd += PairH(h[a], h[b]) * vb * (-2.0 * F) * (rho[b] - ra - dh);
+      }
+      if (xs) {
+        PetscReal w = XSPHWeight(wa[k - C->nstart[a]], m[b], ra, rho[b]);
+        for (PetscInt i = 0; i < D; i++) sxs[i] -= w * dvab[i];
+      }
+    }
+    drho[a] = ra * dr + dcoef * dd;
+    if (xs)
+      for (PetscInt i = 0; i < D; i++) xs[D * a + i] = fl->xsph * sxs[i];
+    if (surf) surface[a] = (PetscBool)(2.0 * divr / fl->lat_divr < SHIFT_DIVR_SURFACE);
+    if (shift) {
+      PetscReal s0[3], dr[3];
+      for (PetscInt i = 0; i < D; i++) s0[i] = xs[D * a + i];
+      ShiftVelocity(fl->shift, surf && surface[a] ? SHIFT_SURFACE : near ? SHIFT_NEAR_SURFACE : SHIFT_BULK, h[a], v + D * a, sim->dt, c, xs + D * a, D);
+      for (PetscInt i = 0; i < D; i++) dr[i] = sim->dt * (xs[D * a + i] - s0[i]);
+      if (dv) ShiftCorrectVelocity(&sg, dr, dv + D * a, D);
+    }
+  }
+  if (dv) {
+    PetscReal *vw = PField(P, FIELD_V);
+    for (PetscInt k = 0; k < D * P->n; k++) vw[k] += dv[k];
+    PetscCall(PetscFree(dv));
+  }
+  if (surf) {
+    for (PetscInt a = 0; a < P->n; a++) fs[a] = surface[a] ? 1.0 : 0.0;
+    PetscCall(PetscFree(surface));
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+static PetscErrorCode Continuity(Sim sim) { return SPH_DIM_DISPATCH(sim->dim, ContinuityD, sim); }
+
+/* Acceleration of owned fluid: pressure Eq. 19 with artificial viscosity Eq. 24, laminar viscosity
+ * Eq. 16 (walls and solids with their no-slip velocity), gravity; solids as the fluid sees them
+ * (boundary.h) and, when on, the repulsive force Eq. 41 along their normals. */
+SPH_INLINE PetscErrorCode MomentumD(Sim sim, const PetscInt D)
+{
+  Particles            P = sim->P;
+  Cells                C = sim->cells;
+  const PetscReal     *x = PField(P, FIELD_X), *v = PField(P, FIELD_V), *rho = PField(P, FIELD_RHO), *p = PField(P, FIELD_P);
+  const PetscReal     *m = PField(P, FIELD_M), *h = PField(P, FIELD_H), *vw = PField(P, FIELD_VWALL), *fv = PField(P, FIELD_FVIEW);
+  const PetscReal     *nrm = sim->solid && sim->solid->repulsion ? PField(P, FIELD_NORMAL) : NULL;
+  PetscReal           *acc = PField(P, FIELD_ACC);
+  const FluidMaterial *fl  = &sim->fl;
+
+  PetscFunctionBeginUser;
+  for (PetscInt a = 0; a < P->n; a++) {
+    PetscReal        ac[3] = {0, 0, 0};
+    const PetscReal *xa = x + D * a, *va = v + D * a, ra = rho[a], pa = p[a] / (ra * ra), ha = h[a];
+    if (!KindIsFluid(P->kind[a])) continue;
+    for (PetscInt k = C->nstart[a]; k < C->nstart[a + 1]; k++) {
+      PetscInt  b = C->nbr[k];
+      PetscReal d[3], dvab[3], r2, F = C->f[k];
+      PetscReal hab = PairH(ha, h[b]), rb, mb, pb, pterm, visc;
+      VSub(xa, x + D * b, d, D);
+      VSub(va, v + D * b, dvab, D);
+      r2 = VDot(d, d, D);
+      FluidView(fv, P->kind[b], b, m, rho, p, &mb, &rb, &pb);
+      pterm = pa + pb / (rb * rb) + ArtificialViscosity(fl->alpha, fl->c0, hab, 0.5 * (ra + rb), VDot(dvab, d, D), r2);
+      visc  = LaminarViscosity(mb, fl->mu, ra, rb, F * r2, r2, hab, fl->eta, fl->lap_kappa);
+      if (nrm && KindIsSolid(P->kind[b])) {
+        PetscReal f = FSIRepulsion(VDot(dvab, nrm + D * b, D), PetscSqrtReal(r2) / (2 * hab), sim->dt);
+        f *= sim->solid->repulsion_scale; /* to the paper's 2D sum at 1.3 dx (solid.c); 1 there */
+        for (PetscInt i = 0; i < D; i++) ac[i] += f * nrm[D * b + i];
+      }
+      if (KindIsBoundary(P->kind[b])) VSub(va, vw + D * b, dvab, D);
+      for (PetscInt i = 0; i < D; i++) ac[i] += (visc * dvab[i] - mb * pterm * F * d[i]);
+    }
+    for (PetscInt i = 0; i < D; i++) acc[D * a + i] = ac[i] + sim->g[i];
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+static PetscErrorCode Momentum(Sim sim) { return SPH_DIM_DISPATCH(sim->dim, MomentumD, sim); }
+
+/* Pressure of fluid (EOS) and walls, then accelerations: the state after a rebuild. */
+PetscErrorCode WCSPHRates(Sim sim)
+{
+  PetscFunctionBeginUser;
+  PetscCall(PetscLogStagePush(sim->stage[STAGE_PHYSICS]));
+  PetscCall(WCSPHPressure(sim));
+  PetscCall(PetscLogStagePop());
+  PetscCall(BoundaryWallState(sim));
+  PetscCall(PetscLogStagePush(sim->stage[STAGE_PHYSICS]));
+  PetscCall(Momentum(sim));
+  PetscCall(PetscLogStagePop());
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode WCSPHTimeStep(Sim sim, PetscReal *dt)
+{
+  Particles        P = sim->P;
+  const PetscReal *v = PField(P, FIELD_V), *acc = PField(P, FIELD_ACC), *h = PField(P, FIELD_H), *rho = PField(P, FIELD_RHO);
+  PetscReal        lim = PETSC_MAX_REAL;
+
+  PetscFunctionBeginUser;
+  for (PetscInt a = 0; a < P->n; a++) {
+    if (!KindIsFluid(P->kind[a])) continue;
+    lim = PetscMin(lim, AcousticStepLimit(sim->cfl, h[a], sim->fl.c0, v + P->dim * a, acc + P->dim * a, P->dim)); /* CFL, force */
+    if (sim->fl.mu > 0) lim = PetscMin(lim, 0.125 * h[a] * h[a] * rho[a] / sim->fl.mu); /* viscous */
+  }
+  PetscCall(MPIU_Allreduce(&lim, dt, 1, MPIU_REAL, MPIU_MIN, sim->comm));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+static void KickVelocity(Sim sim, PetscReal dt)
+{
+  Particles  P = sim->P;
+  PetscReal *v = PField(P, FIELD_V), *acc = PField(P, FIELD_ACC);
+  PetscInt   D = P->dim;
+  for (PetscInt a = 0; a < P->n; a++) {
+    if (!KindIsFluid(P->kind[a])) continue;
+    for (PetscInt i = 0; i < D; i++) v[D * a + i] += dt * acc[D * a + i];
+  }
+}
+
+/* Velocity Verlet with density as a position-like variable (symplectic for the acoustic pair):
+ * v+ = v + dt/2 a;  rho' = rho + dt drho(x, v+);  x' = x + dt (v+ + xsph);  a' = a(x', rho');
+ * v' = v+ + dt/2 a'. */
+PetscErrorCode WCSPHStep(Sim sim)
+{
+  Particles     P  = sim->P;
+  const PetscReal dt = sim->dt;
+  const FieldId vel[] = {FIELD_V};
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscLogStagePush(sim->stage[STAGE_PHYSICS]));
+  KickVelocity(sim, 0.5 * dt);
+  PetscCall(PetscLogStagePop());
+  PetscCall(PetscLogStagePush(sim->stage[STAGE_HALO]));
+  PetscCall(HaloRefresh(sim->halo, P, 1, vel));
+  PetscCall(PetscLogStagePop());
+  PetscCall(PetscLogStagePush(sim->stage[STAGE_PHYSICS]));
+  PetscCall(Continuity(sim));
+  {
+    PetscReal *x = PField(P, FIELD_X), *v = PField(P, FIELD_V), *xs = PField(P, FIELD_XSPH), *rho = PField(P, FIELD_RHO), *drho = PField(P, FIELD_DRHO);
+    PetscInt   D = P->dim;
+    for (PetscInt a = 0; a < P->n; a++) {
+      if (!KindIsFluid(P->kind[a])) continue;
+      rho[a] += dt * drho[a];
+      for (PetscInt i = 0; i < D; i++) x[D * a + i] += dt * (v[D * a + i] + (xs ? xs[D * a + i] : 0));
+    }
+  }
+  PetscCall(PetscLogStagePop());
+  PetscCall(NeighbourhoodUpdate(&sim->nbhd, sim->step));
+  PetscCall(WCSPHRates(sim));
+  PetscCall(PetscLogStagePush(sim->stage[STAGE_PHYSICS]));
+  KickVelocity(sim, 0.5 * dt);
+  PetscCall(PetscLogStagePop());
+  PetscFunctionReturn(PETSC_SUCCESS);
+}

@@ -1,0 +1,18 @@
+/* Weakly compressible fluid: EOS Eq. 20, continuity Eq. 18, momentum Eq. 19 with the viscous
+ * term Eq. 16 and artificial viscosity Eq. 24, XSPH Eq. 44, optional delta-SPH density diffusion. */
+#pragma once
+#include "run/sim.h"
+
+/* -wcsph_skin default (particle spacings): the measured choice, docs/performance.md */
+#define WCSPH_SKIN_DEFAULT 0.3
+PetscErrorCode WCSPHSetUp(Sim sim);
+/* One line of the run's header: the WCSPH fluid's settings. */
+PetscErrorCode WCSPHView(Sim sim, PetscViewer v);
+/* Pressure from density for owned and ghost fluid particles (Eq. 20). */
+PetscErrorCode WCSPHPressure(Sim sim);
+/* acc, drho, xsph of owned fluid particles at the current state. */
+PetscErrorCode WCSPHRates(Sim sim);
+/* Largest stable step: CFL on c0 + |v|, viscous and force limits. */
+PetscErrorCode WCSPHTimeStep(Sim sim, PetscReal *dt);
+/* One kick-drift-kick step of length sim->dt (rebuilds neighbours). */
+PetscErrorCode WCSPHStep(Sim sim);

@@ -1,0 +1,514 @@
+#include "io/checkpoint.h"
+#include "run/guard.h"
+#include "io/io.h"
+#include "io/io_space.h"
+#include "scenes/scene.h"
+#include "base/refdata.h"
+#include "fluid/isph.h"
+#include "solid/solid.h"
+#include <petscviewerhdf5.h>
+#include <errno.h>
+
+#define CHECKPOINT_FORMAT  "sphfsi checkpoint"
+#define CHECKPOINT_VERSION 1
+
+/* Scalars of the state: names in the file, and where they live in the run. */
+static const char *const RealNames[STATE_NREAL] = {"time", "dt", "next_output", "next_probe", "next_checkpoint", "mass0", "mass_out", "particle_steps", "wall_used", "dt_first_fluid", "dt_first_solid", "ppe_its_sum"};
+static const char *const IntNames[STATE_NINT]   = {"step", "particles", "next_id", "repartitions", "solid_substeps_last", "solid_substeps_max", "solid_rebuilds", "ppe_solves", "ppe_its_max", "ppe_its_last", "isph_free_surface", "snapshots"};
+
+/* Pointers to the scalars; modules the scene lacks point to a dummy. */
+static void Slots(Sim sim, PetscReal *r[STATE_NREAL], PetscInt *i[STATE_NINT], PetscReal *rd, PetscInt *id)
+{
+  PPE   ppe = sim->isph ? sim->isph->ppe : NULL;
+  Solid s   = sim->solid;
+  r[0] = &sim->t; r[1] = &sim->dt; r[2] = &sim->next_out; r[3] = &sim->next_probe; r[4] = &sim->next_ckpt;
+  r[5] = &sim->mass0; r[6] = &sim->nbhd.mass_out; r[7] = &sim->particle_steps; r[8] = &sim->wall_used;
+  r[9] = &sim->guard->dt_first[0]; r[10] = &sim->guard->dt_first[1]; r[11] = ppe ? &ppe->its_sum : rd;
+  i[0] = &sim->step; i[1] = &sim->nbhd.nparticles; i[2] = &sim->next_id; i[3] = &sim->decomp->nrepartition;
+  i[4] = s ? &s->nsub_last : id; i[5] = s ? &s->nsub_max : id; i[6] = s ? &s->nrebuild : id;
+  i[7] = ppe ? &ppe->nsolve : id; i[8] = ppe ? &ppe->its_max : id; i[9] = ppe ? &ppe->its_last : id;
+  i[10] = sim->isph ? &sim->isph->nfree : id; i[11] = &sim->snap;
+}
+
+static PetscErrorCode StateScalars(Sim sim, SimState *s)
+{
+  PetscReal     *r[STATE_NREAL], rd = 0;
+  PetscInt      *i[STATE_NINT], id = 0;
+  PetscLogDouble now;
+  PetscFunctionBeginUser;
+  PetscCall(PetscTime(&now));
+  Slots(sim, r, i, &rd, &id);
+  for (PetscInt k = 0; k < STATE_NREAL; k++) s->r[k] = *r[k];
+  if (sim->wall_start > 0) s->r[8] += now - sim->wall_start; /* wall_used: with this run's loop so far */
+  for (PetscInt k = 0; k < STATE_NINT; k++) s->i[k] = *i[k];
+  s->nrows = sim->nprobe_rows;
+  s->nsnap = sim->snap;
+  for (PetscInt k = 0; k < sim->nkeep_series; k++) s->series_n[k] = sim->keep_series[k]->n;
+  for (PetscInt k = 0; k < sim->nkeep_reals; k++) s->kept[k] = *sim->keep_reals[k];
+  s->ncell = GridNumCells(&sim->grid);
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode StateView(Sim sim, SimState *s)
+{
+  Particles P = sim->P;
+  PetscFunctionBeginUser;
+  PetscCall(PetscMemzero(s, sizeof(*s)));
+  s->n = P->n; s->id = P->id; s->kind = P->kind; s->owner = sim->decomp->owner;
+  for (PetscInt f = 0; f < FIELD_COUNT; f++) s->f[f] = P->f[f].on ? P->f[f].a : NULL;
+  PetscCall(StateScalars(sim, s));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode StateDestroy(SimState *s)
+{
+  PetscFunctionBeginUser;
+  if (s->copy) {
+    PetscCall(PetscFree2(s->id, s->kind));
+    for (PetscInt f = 0; f < FIELD_COUNT; f++) PetscCall(PetscFree(s->f[f]));
+    PetscCall(PetscFree(s->owner));
+  }
+  PetscCall(PetscMemzero(s, sizeof(*s)));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode StateCopy(Sim sim, SimState *s)
+{
+  Particles P = sim->P;
+  PetscInt  nc = GridNumCells(&sim->grid);
+  PetscFunctionBeginUser;
+  if (!s->copy) PetscCall(PetscMemzero(s, sizeof(*s)));
+  if (s->cap < P->n || !s->id) { /* grow with room: the particle count drifts between ranks */
+    PetscInt cap = (3 * P->n) / 2 + 16;
+    PetscCall(PetscFree2(s->id, s->kind));
+    PetscCall(PetscMalloc2(cap, &s->id, cap, &s->kind));
+    for (PetscInt f = 0; f < FIELD_COUNT; f++) {
+      PetscCall(PetscFree(s->f[f]));
+      if (P->f[f].on) PetscCall(PetscMalloc1(cap * P->f[f].width, &s->f[f]));
+    }
+    s->cap = cap;
+  }
+  if (!s->owner) PetscCall(PetscMalloc1(nc, &s->owner));
+  s->copy = PETSC_TRUE;
+  s->n    = P->n;
+  PetscCall(PetscArraycpy(s->id, P->id, P->n));
+  PetscCall(PetscArraycpy(s->kind, P->kind, P->n));
+  for (PetscInt f = 0; f < FIELD_COUNT; f++)
+    if (P->f[f].on) PetscCall(PetscArraycpy(s->f[f], P->f[f].a, P->n * P->f[f].width));
+  PetscCall(PetscArraycpy(s->owner, sim->decomp->owner, nc));
+  PetscCall(StateScalars(sim, s));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* Comma-separated names of the allocated fields: a restart needs the same set. */
+static PetscErrorCode FieldList(Particles P, char *buf, size_t len)
+{
+  PetscFunctionBeginUser;
+  buf[0] = 0;
+  for (PetscInt f = 0; f < FIELD_COUNT; f++)
+    if (P->f[f].on) {
+      if (buf[0]) PetscCall(PetscStrlcat(buf, ",", len));
+      PetscCall(PetscStrlcat(buf, P->f[f].name, len));
+    }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+static PetscErrorCode WriteInts(PetscViewer v, MPI_Comm comm, const char *name, PetscInt n, const PetscInt *a)
+{
+  IS is;
+  PetscFunctionBeginUser;
+  PetscCall(ISCreateGeneral(comm, n, a, PETSC_USE_POINTER, &is));
+  PetscCall(PetscObjectSetName((PetscObject)is, name));
+  PetscCall(ISView(is, v));
+  PetscCall(ISDestroy(&is));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+static PetscErrorCode WriteReals(PetscViewer v, MPI_Comm comm, const char *name, PetscInt n, PetscInt bs, const PetscReal *a)
+{
+  Vec vec;
+  PetscFunctionBeginUser;
+  PetscCall(VecCreateMPIWithArray(comm, bs, n * bs, PETSC_DECIDE, a, &vec));
+  PetscCall(PetscObjectSetName((PetscObject)vec, name));
+  PetscCall(VecView(vec, v));
+  PetscCall(VecDestroy(&vec));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* n entries of dataset `name` for this rank (the ranks' n add up to the dataset's length). */
+static PetscErrorCode ReadInts(PetscViewer v, MPI_Comm comm, const char *name, PetscInt n, PetscInt *out)
+{
+  IS              is;
+  PetscLayout     map;
+  const PetscInt *a;
+  PetscFunctionBeginUser;
+  PetscCall(ISCreate(comm, &is));
+  PetscCall(ISSetType(is, ISGENERAL));
+  PetscCall(PetscObjectSetName((PetscObject)is, name));
+  PetscCall(ISGetLayout(is, &map));
+  PetscCall(PetscLayoutSetLocalSize(map, n));
+  PetscCall(ISLoad(is, v));
+  PetscCall(ISGetIndices(is, &a));
+  PetscCall(PetscArraycpy(out, a, n));
+  PetscCall(ISRestoreIndices(is, &a));
+  PetscCall(ISDestroy(&is));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+static PetscErrorCode ReadReals(PetscViewer v, MPI_Comm comm, const char *name, PetscInt n, PetscInt bs, PetscReal *out)
+{
+  Vec                vec;
+  const PetscScalar *a;
+  PetscFunctionBeginUser;
+  PetscCall(VecCreate(comm, &vec));
+  PetscCall(VecSetSizes(vec, n * bs, PETSC_DECIDE));
+  PetscCall(VecSetBlockSize(vec, bs));
+  PetscCall(VecSetType(vec, VECSTANDARD));
+  PetscCall(PetscObjectSetName((PetscObject)vec, name));
+  PetscCall(VecLoad(vec, v));
+  PetscCall(VecGetArrayRead(vec, &a));
+  PetscCall(PetscArraycpy(out, a, n * bs));
+  PetscCall(VecRestoreArrayRead(vec, &a));
+  PetscCall(VecDestroy(&vec));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode CheckpointWrite(Sim sim, const SimState *s, const char *path)
+{
+  Particles   P = sim->P;
+  MPI_Comm    comm = sim->comm;
+  PetscViewer v;
+  char        tmp[PETSC_MAX_PATH_LEN], fields[1024], name[64];
+  PetscInt    version = CHECKPOINT_VERSION, ranks = sim->size, ncol = 1 + sim->scene->nprobes, *owner = NULL;
+  const char *fluid = sim->has_fluid ? FluidSchemes[sim->fluid] : "none";
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscLogStagePush(sim->stage[STAGE_OUTPUT]));
+  PetscCall(PetscSNPrintf(tmp, sizeof(tmp), "%s.part", path));
+  PetscCall(FieldList(P, fields, sizeof(fields)));
+  PetscCall(PetscViewerHDF5Open(comm, tmp, FILE_MODE_WRITE, &v));
+  PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "format", PETSC_STRING, CHECKPOINT_FORMAT));
+  PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "version", PETSC_INT, &version));
+  PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "case", PETSC_STRING, sim->scene->name));
+  PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "fluid", PETSC_STRING, fluid));
+  PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "fields", PETSC_STRING, fields));
+  PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "ranks", PETSC_INT, &ranks));
+  PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "dx", PETSC_REAL, &sim->dx));
+  PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "cells", PETSC_INT, &s->ncell));
+  PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "probe_columns", PETSC_INT, &ncol));
+  PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "probe_rows", PETSC_INT, &s->nrows));
+  {
+    char *all;
+    PetscCall(PetscOptionsGetAll(NULL, &all));
+    PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "options", PETSC_STRING, all));
+    PetscCall(PetscFree(all));
+  }
+  PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "kept_series", PETSC_INT, &sim->nkeep_series));
+  PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "kept_values", PETSC_INT, &sim->nkeep_reals));
+  for (PetscInt k = 0; k < STATE_NREAL; k++) PetscCall(PetscViewerHDF5WriteAttribute(v, "/", RealNames[k], PETSC_REAL, &s->r[k]));
+  for (PetscInt k = 0; k < STATE_NINT; k++) PetscCall(PetscViewerHDF5WriteAttribute(v, "/", IntNames[k], PETSC_INT, &s->i[k]));
+  for (PetscInt k = 0; k < sim->nkeep_reals; k++) {
+    PetscCall(PetscSNPrintf(name, sizeof(name), "kept_value_%d", (int)k));
+    PetscCall(PetscViewerHDF5WriteAttribute(v, "/", name, PETSC_REAL, &s->kept[k]));
+  }
+  /* particles: each rank's block in its order, and the block sizes, for a same-size restart */
+  PetscCall(WriteInts(v, comm, "rank_counts", 1, &s->n));
+  PetscCall(WriteInts(v, comm, "id", s->n, s->id));
+  PetscCall(WriteInts(v, comm, "kind", s->n, s->kind));
+  for (PetscInt f = 0; f < FIELD_COUNT; f++)
+    if (P->f[f].on) PetscCall(WriteReals(v, comm, P->f[f].name, s->n, P->f[f].width, s->f[f]));
+  /* rank 0's: partition, probe rows, snapshot times and sizes, kept histories (empty ones are left out) */
+  if (!sim->rank) {
+    PetscCall(PetscMalloc1(s->ncell, &owner));
+    for (PetscInt c = 0; c < s->ncell; c++) owner[c] = s->owner[c];
+  }
+  PetscCall(WriteInts(v, comm, "partition", sim->rank ? 0 : s->ncell, owner));
+  PetscCall(PetscFree(owner));
+  if (s->nrows) PetscCall(WriteReals(v, comm, "probe_table", sim->rank ? 0 : s->nrows * ncol, 1, sim->probe_rows));
+  if (s->nsnap) PetscCall(WriteReals(v, comm, "snapshot_table", sim->rank ? 0 : 2 * s->nsnap, 1, sim->snaps));
+  for (PetscInt k = 0; k < sim->nkeep_series; k++) {
+    const Series *se = sim->keep_series[k];
+    PetscCall(PetscSNPrintf(name, sizeof(name), "kept_series_%d_n", (int)k));
+    PetscCall(PetscViewerHDF5WriteAttribute(v, "/", name, PETSC_INT, &s->series_n[k]));
+    if (!s->series_n[k]) continue;
+    PetscCall(PetscSNPrintf(name, sizeof(name), "kept_series_%d_t", (int)k));
+    PetscCall(WriteReals(v, comm, name, sim->rank ? 0 : s->series_n[k], 1, se->t));
+    PetscCall(PetscSNPrintf(name, sizeof(name), "kept_series_%d_y", (int)k));
+    PetscCall(WriteReals(v, comm, name, sim->rank ? 0 : s->series_n[k], 1, se->y));
+  }
+  PetscCall(PetscViewerDestroy(&v));
+  PetscCall(IORenameOnRoot(sim, tmp, path));
+  PetscCall(PetscLogStagePop());
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode CheckpointSave(Sim sim)
+{
+  SimState s;
+  char     path[PETSC_MAX_PATH_LEN];
+  PetscReal bytes;
+  PetscBool ok;
+  PetscFunctionBeginUser;
+  PetscCall(IOSpaceCheckpoint(sim, &bytes));
+  PetscCall(IOSpaceReserve(sim, "checkpoint.h5", bytes, &ok));
+  if (!ok) PetscFunctionReturn(PETSC_SUCCESS); /* the previous checkpoint stays */
+  PetscCall(PetscSNPrintf(path, sizeof(path), "%s/checkpoint.h5", sim->outdir));
+  PetscCall(StateView(sim, &s));
+  PetscCall(IOSpacePushWrite(path));
+  PetscCall(CheckpointWrite(sim, &s, path));
+  PetscCall(IOSpacePopWrite());
+  if (sim->io_fault.set) PetscFunctionReturn(PETSC_SUCCESS); /* not renamed into place */
+  sim->nckpt++;
+  if (sim->ckpt_interval > 0)
+    while (sim->next_ckpt <= sim->t + 1e-12 * sim->t_end) sim->next_ckpt += sim->ckpt_interval;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* n reals that rank 0 wrote (a history or a table), read on rank 0 and broadcast. */
+static PetscErrorCode ReadRootReals(Sim sim, PetscViewer v, const char *name, PetscInt n, PetscReal *out)
+{
+  PetscFunctionBeginUser;
+  PetscCall(ReadReals(v, sim->comm, name, sim->rank ? 0 : n, 1, out));
+  PetscCallMPI(MPI_Bcast(out, (PetscMPIInt)n, MPIU_REAL, 0, sim->comm));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+static PetscErrorCode ReadString(PetscViewer v, const char *name, char *buf, size_t len)
+{
+  char     *s = NULL;
+  PetscBool has;
+  PetscFunctionBeginUser;
+  buf[0] = 0;
+  PetscCall(PetscViewerHDF5HasAttribute(v, "/", name, &has));
+  if (!has) PetscFunctionReturn(PETSC_SUCCESS);
+  PetscCall(PetscViewerHDF5ReadAttribute(v, "/", name, PETSC_STRING, NULL, &s));
+  PetscCall(PetscStrncpy(buf, s, len));
+  PetscCall(PetscFree(s));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* The header: is this a checkpoint of this run's scene, scheme, fields and resolution? */
+static PetscErrorCode CheckHeader(Sim sim, PetscViewer v, PetscInt *ranks, PetscInt *ncell)
+{
+  const char *path = sim->restart;
+  char        buf[1024], fields[1024];
+  PetscReal   dx;
+  PetscInt    k, want;
+
+  PetscFunctionBeginUser;
+  PetscCall(ReadString(v, "format", buf, sizeof(buf)));
+  PetscCheck(!strcmp(buf, CHECKPOINT_FORMAT), sim->comm, PETSC_ERR_FILE_UNEXPECTED, "-restart %s is not an sphfsi checkpoint (snapshots particles_*.h5 cannot be restarted from; use checkpoint.h5 or last_good.h5 of a run)", path);
+  PetscCall(PetscViewerHDF5ReadAttribute(v, "/", "version", PETSC_INT, NULL, &k));
+  PetscCheck(k == CHECKPOINT_VERSION, sim->comm, PETSC_ERR_FILE_UNEXPECTED, "-restart %s has checkpoint format version %d; this program reads version %d", path, (int)k, CHECKPOINT_VERSION);
+  PetscCall(ReadString(v, "case", buf, sizeof(buf)));
+  PetscCheck(!strcmp(buf, sim->scene->name), sim->comm, PETSC_ERR_USER_INPUT, "-restart %s is a checkpoint of scene %s, not of -case %s: restart with -case %s (its options file)", path, buf, sim->scene->name, buf);
+  PetscCall(ReadString(v, "fluid", buf, sizeof(buf)));
+  PetscCheck(!strcmp(buf, sim->has_fluid ? FluidSchemes[sim->fluid] : "none"), sim->comm, PETSC_ERR_USER_INPUT, "-restart %s was written with -fluid %s, this run has -fluid %s: restart with -fluid %s", path, buf, FluidSchemes[sim->fluid], buf);
+  PetscCall(PetscViewerHDF5ReadAttribute(v, "/", "dx", PETSC_REAL, NULL, &dx));
+  PetscCheck(PetscAbsReal(dx - sim->dx) <= 1e-12 * dx, sim->comm, PETSC_ERR_USER_INPUT, "-restart %s was written with -dx %g, this run has -dx %g: a restart keeps the resolution (drop -dx or give %g)", path, (double)dx, (double)sim->dx, (double)dx);
+  PetscCall(ReadString(v, "fields", buf, sizeof(buf)));
+  PetscCall(FieldList(sim->P, fields, sizeof(fields)));
+  PetscCheck(!strcmp(buf, fields), sim->comm, PETSC_ERR_USER_INPUT, "-restart %s holds the particle fields {%s}, this run allocates {%s}: restart with the options the checkpoint was written with (e.g. -xsph, -isph_shift, -wcsph_shift, -solid_gradient, -fsi_*)", path, buf, fields);
+  PetscCall(PetscViewerHDF5ReadAttribute(v, "/", "cells", PETSC_INT, NULL, ncell));
+  PetscCheck(*ncell == GridNumCells(&sim->grid), sim->comm, PETSC_ERR_USER_INPUT, "-restart %s has a grid of %d cells, this run %d: the scene's geometry options differ from the checkpointed run's", path, (int)*ncell, (int)GridNumCells(&sim->grid));
+  PetscCall(PetscViewerHDF5ReadAttribute(v, "/", "probe_columns", PETSC_INT, NULL, &k));
+  PetscCheck(k == 1 + sim->scene->nprobes, sim->comm, PETSC_ERR_FILE_UNEXPECTED, "-restart %s has %d probe columns, scene %s %d", path, (int)k, sim->scene->name, (int)(1 + sim->scene->nprobes));
+  PetscCall(PetscViewerHDF5ReadAttribute(v, "/", "kept_series", PETSC_INT, NULL, &k));
+  PetscCall(PetscViewerHDF5ReadAttribute(v, "/", "kept_values", PETSC_INT, NULL, &want));
+  PetscCheck(k == sim->nkeep_series && want == sim->nkeep_reals, sim->comm, PETSC_ERR_FILE_UNEXPECTED, "-restart %s keeps %d histories and %d values of the scene, this program %d and %d: written by another version", path, (int)k, (int)want, (int)sim->nkeep_series, (int)sim->nkeep_reals);
+  PetscCall(PetscViewerHDF5ReadAttribute(v, "/", "ranks", PETSC_INT, NULL, ranks));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* Options that may change at a restart (run control, output, diagnostics); a change of any other
+ * is reported. */
+static PetscBool RunControl(const char *name)
+{
+  const char *exact[]  = {"-restart", "-t_end", "-max_steps", "-max_wall_time", "-checkpoint_interval", "-output_dir", "-output_interval", "-probe_interval", "-progress_every", "-dt", "-cfl", "-dt_min", "-unused_options", "-refdata_dir", "-help", "-overwrite", "-max_memory"};
+  const char *prefix[] = {"-log", "-info", "-malloc", "-options_", "-ppe_ksp_monitor", "-ppe_ksp_view", "-ppe_ksp_converged"};
+  for (size_t k = 0; k < sizeof(exact) / sizeof(exact[0]); k++)
+    if (!strcmp(name, exact[k])) return PETSC_TRUE;
+  for (size_t k = 0; k < sizeof(prefix) / sizeof(prefix[0]); k++)
+    if (!strncmp(name, prefix[k], strlen(prefix[k]))) return PETSC_TRUE;
+  return PETSC_FALSE;
+}
+
+/* The value of option `name` in a PetscOptionsGetAll string ("" for a flag, NULL if absent). */
+static const char *ValueIn(char *all, const char *name, char *buf, size_t len)
+{
+  size_t n = strlen(name);
+  for (char *p = strstr(all, name); p; p = strstr(p + 1, name)) {
+    char *v;
+    if ((p != all && p[-1] != ' ') || (p[n] != ' ' && p[n] != 0)) continue;
+    v = p + n + (p[n] == ' ');
+    if (*v == '-' && !(v[1] >= '0' && v[1] <= '9') && v[1] != '.') return ""; /* a flag */
+    buf[0] = 0;
+    strncat(buf, v, PetscMin(len - 1, strcspn(v, " ")));
+    return buf;
+  }
+  return NULL;
+}
+
+/* Physics options that differ from the checkpointed run's: a warning (the run goes on, e.g. with a
+ * changed -alpha, but it is then no continuation of the same run). */
+static PetscErrorCode CompareOptions(Sim sim, PetscViewer v)
+{
+  char     *then = NULL, *now = NULL, diff[2048] = "", a[256], b[256];
+  PetscBool has;
+  PetscFunctionBeginUser;
+  PetscCall(PetscViewerHDF5HasAttribute(v, "/", "options", &has));
+  if (!has) PetscFunctionReturn(PETSC_SUCCESS);
+  PetscCall(PetscViewerHDF5ReadAttribute(v, "/", "options", PETSC_STRING, NULL, &then));
+  PetscCall(PetscOptionsGetAll(NULL, &now));
+  for (int pass = 0; pass < 2; pass++) { /* options of the checkpointed run, then this run's */
+    char *list = pass ? now : then;
+    for (char *p = list; (p = strchr(p, '-'));) {
+      char        name[256] = "";
+      const char *va, *vb;
+      size_t      n = strcspn(p, " ");
+      if ((p != list && p[-1] != ' ') || (p[1] >= '0' && p[1] <= '9') || p[1] == '.' || n >= sizeof(name)) { p++; continue; }
+      strncat(name, p, n);
+      p += n;
+      if (RunControl(name)) continue;
+      va = ValueIn(then, name, a, sizeof(a));
+      vb = ValueIn(now, name, b, sizeof(b));
+      if (pass && va) continue; /* compared in the first pass */
+      if (va && vb && !strcmp(va, vb)) continue;
+      if (strlen(diff) + strlen(name) + (va ? strlen(va) : 7) + (vb ? strlen(vb) : 7) + 16 >= sizeof(diff)) break; /* enough said */
+      PetscCall(PetscSNPrintf(diff + strlen(diff), sizeof(diff) - strlen(diff), " %s %s -> %s;", name, va ? (*va ? va : "(set)") : "(unset)", vb ? (*vb ? vb : "(set)") : "(unset)"));
+    }
+  }
+  if (diff[0]) PetscCall(PetscPrintf(sim->comm, "sphfsi: warning: options differ from the checkpointed run's:%s the run goes on with this run's values\n", diff));
+  PetscCall(PetscFree(then));
+  PetscCall(PetscFree(now));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* Scalars, probe rows, snapshot times and the scene's kept histories and values. */
+static PetscErrorCode ReadRunState(Sim sim, PetscViewer v)
+{
+  PetscReal *r[STATE_NREAL], rd = 0;
+  PetscInt  *i[STATE_NINT], id = 0, ncol = 1 + sim->scene->nprobes;
+  char       name[64];
+
+  PetscFunctionBeginUser;
+  Slots(sim, r, i, &rd, &id);
+  for (PetscInt k = 0; k < STATE_NREAL; k++) PetscCall(PetscViewerHDF5ReadAttribute(v, "/", RealNames[k], PETSC_REAL, NULL, r[k]));
+  for (PetscInt k = 0; k < STATE_NINT; k++) PetscCall(PetscViewerHDF5ReadAttribute(v, "/", IntNames[k], PETSC_INT, NULL, i[k]));
+  for (PetscInt k = 0; k < sim->nkeep_reals; k++) {
+    PetscCall(PetscSNPrintf(name, sizeof(name), "kept_value_%d", (int)k));
+    PetscCall(PetscViewerHDF5ReadAttribute(v, "/", name, PETSC_REAL, NULL, sim->keep_reals[k]));
+  }
+  PetscCall(PetscViewerHDF5ReadAttribute(v, "/", "probe_rows", PETSC_INT, NULL, &sim->nprobe_rows));
+  PetscCall(PetscFree(sim->probe_rows));
+  sim->cap_probe_rows = sim->nprobe_rows + 64;
+  PetscCall(PetscMalloc1(sim->cap_probe_rows * ncol, &sim->probe_rows));
+  if (sim->nprobe_rows) PetscCall(ReadReals(v, sim->comm, "probe_table", sim->rank ? 0 : sim->nprobe_rows * ncol, 1, sim->probe_rows));
+  PetscCall(PetscFree(sim->snaps));
+  sim->snap_cap = sim->snap + 16;
+  PetscCall(PetscMalloc1(2 * sim->snap_cap, &sim->snaps));
+  if (sim->snap) PetscCall(ReadRootReals(sim, v, "snapshot_table", 2 * sim->snap, sim->snaps));
+  for (PetscInt k = 0; k < sim->nkeep_series; k++) {
+    Series    *se = sim->keep_series[k];
+    PetscInt   n;
+    PetscReal *buf;
+    PetscCall(PetscSNPrintf(name, sizeof(name), "kept_series_%d_n", (int)k));
+    PetscCall(PetscViewerHDF5ReadAttribute(v, "/", name, PETSC_INT, NULL, &n));
+    PetscCall(SeriesDestroy(se));
+    if (!n) continue;
+    PetscCall(PetscMalloc1(2 * n, &buf));
+    PetscCall(PetscSNPrintf(name, sizeof(name), "kept_series_%d_t", (int)k));
+    PetscCall(ReadRootReals(sim, v, name, n, buf));
+    PetscCall(PetscSNPrintf(name, sizeof(name), "kept_series_%d_y", (int)k));
+    PetscCall(ReadRootReals(sim, v, name, n, buf + n));
+    for (PetscInt j = 0; j < n; j++) PetscCall(SeriesAppend(se, buf[j], buf[n + j]));
+    PetscCall(PetscFree(buf));
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* Owned particles: with the checkpoint's number of ranks each rank takes its own block back (the
+ * same particles in the same order); otherwise an even split, sorted out by the migration. */
+static PetscErrorCode ReadParticles(Sim sim, PetscViewer v, PetscInt ranks)
+{
+  Particles P = sim->P;
+  PetscInt  n = PETSC_DECIDE, N = sim->nbhd.nparticles, nsum;
+  PetscFunctionBeginUser;
+  if (ranks == sim->size) PetscCall(ReadInts(v, sim->comm, "rank_counts", 1, &n));
+  else PetscCall(PetscSplitOwnership(sim->comm, &n, &N));
+  PetscCall(MPIU_Allreduce(&n, &nsum, 1, MPIU_INT, MPI_SUM, sim->comm));
+  PetscCheck(nsum == sim->nbhd.nparticles, sim->comm, PETSC_ERR_FILE_UNEXPECTED, "-restart %s: the ranks' blocks hold %d particles, the header says %d", sim->restart, (int)nsum, (int)sim->nbhd.nparticles);
+  P->n = P->ng = 0;
+  PetscCall(ParticlesReserve(P, n));
+  P->n = n;
+  PetscCall(ReadInts(v, sim->comm, "id", n, P->id));
+  PetscCall(ReadInts(v, sim->comm, "kind", n, P->kind));
+  for (PetscInt f = 0; f < FIELD_COUNT; f++)
+    if (P->f[f].on) PetscCall(ReadReals(v, sim->comm, P->f[f].name, n, P->f[f].width, P->f[f].a));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* Positions x and those of field f (FIELD_XREB, FIELD_XLIST) trade places, ghosts included. */
+static void SwapPositions(Particles P, FieldId f)
+{
+  PetscReal *t = P->f[FIELD_X].a;
+  if (!P->f[f].on) return;
+  P->f[FIELD_X].a = P->f[f].a;
+  P->f[f].a       = t;
+}
+
+PetscErrorCode CheckpointRestart(Sim sim)
+{
+  PetscViewer v;
+  PetscInt    ranks, ncell, nf = 0;
+  FieldId     all[FIELD_COUNT];
+  int         err = 0;
+
+  PetscFunctionBeginUser;
+  if (!sim->rank) { /* readable, and an HDF5 file (its signature), before HDF5 tries */
+    FILE         *f = fopen(sim->restart, "rb");
+    unsigned char sig[8] = {0};
+    if (!f) err = errno;
+    else {
+      if (fread(sig, 1, 8, f) != 8 || memcmp(sig, "\211HDF\r\n\032\n", 8)) err = -1;
+      fclose(f);
+    }
+  }
+  PetscCallMPI(MPI_Bcast(&err, 1, MPI_INT, 0, sim->comm));
+  PetscCheck(err >= 0, sim->comm, PETSC_ERR_FILE_UNEXPECTED, "-restart %s is not an HDF5 file: give a checkpoint (OUTDIR/checkpoint.h5 or OUTDIR/last_good.h5)", sim->restart);
+  PetscCheck(!err, sim->comm, PETSC_ERR_FILE_OPEN, "Cannot open the restart file -restart %s (%s)", sim->restart, strerror(err));
+  PetscCall(PetscViewerHDF5Open(sim->comm, sim->restart, FILE_MODE_READ, &v));
+  PetscCall(CheckHeader(sim, v, &ranks, &ncell));
+  PetscCall(CompareOptions(sim, v));
+  PetscCall(ReadRunState(sim, v));
+  PetscCheck(sim->t < sim->t_end * (1 - 1e-12), sim->comm, PETSC_ERR_USER_INPUT, "-restart %s is at t = %g, not before -t_end %g: give a later -t_end to continue the run", sim->restart, (double)sim->t, (double)sim->t_end);
+  PetscCall(ReadParticles(sim, v, ranks));
+  /* the run's last rebuild, at the positions it had then */
+  SwapPositions(sim->P, FIELD_XREB);
+  if (ranks == sim->size) {
+    PetscInt *owner;
+    PetscCall(PetscMalloc1(ncell, &owner));
+    PetscCall(ReadInts(v, sim->comm, "partition", sim->rank ? 0 : ncell, owner));
+    for (PetscInt c = 0; c < ncell && !sim->rank; c++) sim->decomp->owner[c] = (PetscMPIInt)owner[c];
+    PetscCall(PetscFree(owner));
+    PetscCallMPI(MPI_Bcast(sim->decomp->owner, (PetscMPIInt)ncell, MPI_INT, 0, sim->comm));
+  } else PetscCall(DecompPartition(sim->decomp, sim->P));
+  PetscCall(PetscViewerDestroy(&v));
+  PetscCall(NeighbourhoodRebuildKeepPartition(&sim->nbhd, sim->step));
+  if (sim->solid && !sim->P->f[FIELD_XLIST].on) PetscCall(SolidPrepare(sim)); /* as after every rebuild: the solids' list, xref */
+  SwapPositions(sim->P, FIELD_XREB);
+  /* ghosts take every field's current value */
+  for (PetscInt f = 0; f < FIELD_COUNT; f++)
+    if (sim->P->f[f].on && f != FIELD_XREB) all[nf++] = (FieldId)f;
+  PetscCall(HaloRefresh(sim->halo, sim->P, nf, all));
+  if (sim->P->f[FIELD_XLIST].on) { /* WCSPH's skin with solids: the main list's pairs and the solids' list where the run made them */
+    SwapPositions(sim->P, FIELD_XLIST);
+    PetscCall(CellsRefreshPairs(sim->cells, sim->P));
+    PetscCall(SolidPrepare(sim));
+    SwapPositions(sim->P, FIELD_XLIST);
+  } else if (sim->nbhd.skin > 0) PetscCall(CellsRefreshPairs(sim->cells, sim->P)); /* the main list's pairs now (-wcsph_skin) */
+  if (sim->solid) PetscCall(CellsUpdatePairs(sim->solid->nl, sim->P)); /* solid pairs: their current kernel values */
+  sim->ckpt_t = sim->t; /* the state the last checkpoint holds (summary.json) */
+  PetscCall(PetscPrintf(sim->comm, "sphfsi: restarted from %s (written on %d rank(s)) at step %" PetscInt_FMT ", t = %g\n", sim->restart, (int)ranks, sim->step, (double)sim->t));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}

@@ -1,0 +1,53 @@
+/* Checkpoint and restart.  A checkpoint is the whole state of a run at the end of a step, in one
+ * HDF5 file written collectively by all ranks under a temporary name and renamed when complete:
+ * every owned particle with its id, kind and every field the scene allocates; the time loop's
+ * counters (t, step, dt, next output/probe/checkpoint times, first adaptive steps); the cell
+ * partition; every probe row so far; the snapshots' times and sizes; the scene's kept histories
+ * and values (SceneKeep*); solver and outflow counters.  Its snapshot datasets (id, kind, x, v, p,
+ * rho, m, h, stress) have the names and shapes of a snapshot's.
+ *
+ * A restart on the same number of ranks continues bit for bit: it restores the partition and
+ * repeats the run's last rebuild at the positions it had then (FIELD_XREB: solids move after it,
+ * and WCSPH's Verlet skin keeps a list over steps), then computes the pairs where the run last did
+ * (FIELD_XLIST, with solids and a skin), so neighbour lists, their order and every sum are the same.  On another number of ranks the
+ * partition is made anew; neighbour sums do not depend on it (cells.h), so WCSPH and solids still
+ * agree bit for bit, ISPH to the solver tolerance. */
+#pragma once
+#include "run/sim.h"
+
+enum { STATE_NREAL = 12, STATE_NINT = 12 };
+
+/* The state at the end of a step.  A view points into the live run; a copy (the last good state,
+ * guard.h) owns its arrays.  Histories only grow, so a state keeps their lengths, not their data. */
+typedef struct {
+  PetscBool    copy;
+  PetscInt     n, cap;             /* owned particles, capacity of a copy */
+  PetscInt    *id, *kind;
+  PetscReal   *f[FIELD_COUNT];     /* owned part of every allocated field */
+  PetscInt     ncell;
+  PetscMPIInt *owner;              /* cell partition */
+  PetscReal    r[STATE_NREAL];     /* scalars, named in checkpoint.c */
+  PetscInt     i[STATE_NINT];
+  PetscInt     nrows, nsnap;       /* probe rows and snapshots so far */
+  PetscInt     series_n[SIM_MAX_KEEP];
+  PetscReal    kept[SIM_MAX_KEEP]; /* the scene's kept values */
+} SimState;
+
+/* The live state (no copy). */
+PetscErrorCode StateView(Sim sim, SimState *s);
+/* A copy of the live state, reusing the buffers of *s. */
+PetscErrorCode StateCopy(Sim sim, SimState *s);
+PetscErrorCode StateDestroy(SimState *s);
+
+/* Write a state to path (collective; path.part first, renamed when complete). */
+PetscErrorCode CheckpointWrite(Sim sim, const SimState *s, const char *path);
+/* The run's regular checkpoint: OUTDIR/checkpoint.h5 from the live state. */
+PetscErrorCode CheckpointSave(Sim sim);
+/* Before the options are read (SimSetFromOptions): with -restart FILE, check that FILE is a whole
+ * checkpoint (one line naming what is wrong: missing, not HDF5, truncated, unreadable datasets) and
+ * add every option it was written with that the command line does not give (restart_file.c). */
+PetscErrorCode CheckpointInheritOptions(MPI_Comm comm);
+/* In SimSetUp, after the scene populated and the grid was set up: replace the particles and the
+ * run's state by those of -restart FILE and rebuild as the run had.  Errors name what does not
+ * match (scene, scheme, fields, dx, options). */
+PetscErrorCode CheckpointRestart(Sim sim);

@@ -1,0 +1,96 @@
+#include "io/io_space.h"
+#include "scenes/scene.h"
+#include "base/refdata.h"
+#include <errno.h>
+#include <sys/statvfs.h>
+#include <unistd.h>
+
+#define IO_SPACE_MARGIN 1.1     /* HDF5's headers and chunk rounding over the raw data */
+#define IO_SPACE_SLACK  65536.0 /* bytes: attributes, the XDMF, probes.csv and summary.json beside it */
+
+PetscErrorCode IOFault(Sim sim, const char *fmt, ...)
+{
+  va_list ap;
+  size_t  len;
+  PetscFunctionBeginUser;
+  if (sim->io_fault.set) PetscFunctionReturn(PETSC_SUCCESS);
+  va_start(ap, fmt);
+  PetscCall(PetscVSNPrintf(sim->io_fault.msg, sizeof(sim->io_fault.msg), fmt, &len, ap));
+  va_end(ap);
+  sim->io_fault.set = PETSC_TRUE;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode IOSpaceReserve(Sim sim, const char *file, PetscReal bytes, PetscBool *ok)
+{
+  double free_bytes = -1, need = IO_SPACE_MARGIN * (double)bytes + IO_SPACE_SLACK;
+  PetscFunctionBeginUser;
+  if (!sim->rank) {
+    struct statvfs fs;
+    if (!statvfs(sim->outdir, &fs)) free_bytes = (double)fs.f_bavail * (double)fs.f_frsize; /* what this user may fill */
+  }
+  PetscCallMPI(MPI_Bcast(&free_bytes, 1, MPI_DOUBLE, 0, sim->comm));
+  *ok = (PetscBool)(free_bytes < 0 || free_bytes >= need); /* unknown: try, and let a failed write say it */
+  if (!*ok) PetscCall(IOFault(sim, "no space left on device writing %s/%s (it needs about %.3g MB, %.3g MB are free): free space or give another -output_dir, then continue from the last checkpoint", sim->outdir, file, need / 1e6, free_bytes / 1e6));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* Bytes per particle of the listed fields, id and kind included. */
+static PetscReal FieldBytes(Particles P, PetscBool snapshot)
+{
+  const FieldId out[] = {FIELD_X, FIELD_V, FIELD_P, FIELD_RHO, FIELD_M, FIELD_H, FIELD_S, FIELD_FS}; /* a snapshot's (io.c) */
+  PetscReal     b = 2 * sizeof(PetscInt);
+  if (!snapshot) return (PetscReal)ParticlesBytesPerParticle(P);
+  for (size_t k = 0; k < sizeof(out) / sizeof(out[0]); k++)
+    if (P->f[out[k]].on) b += P->f[out[k]].width * sizeof(PetscReal);
+  return b;
+}
+
+PetscErrorCode IOSpaceSnapshot(Sim sim, PetscReal *bytes)
+{
+  PetscFunctionBeginUser;
+  *bytes = (PetscReal)sim->nbhd.nparticles * FieldBytes(sim->P, PETSC_TRUE);
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode IOSpaceCheckpoint(Sim sim, PetscReal *bytes)
+{
+  PetscFunctionBeginUser;
+  *bytes = (PetscReal)sim->nbhd.nparticles * FieldBytes(sim->P, PETSC_FALSE) + (PetscReal)sim->nprobe_rows * (1 + sim->scene->nprobes) * sizeof(PetscReal) + (PetscReal)GridNumCells(&sim->grid) * sizeof(PetscInt) + 2.0 * sim->snap * sizeof(PetscReal);
+  for (PetscInt k = 0; k < sim->nkeep_series; k++) *bytes += 2.0 * sim->keep_series[k]->n * sizeof(PetscReal);
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+static char writing[PETSC_MAX_PATH_LEN]; /* the file being written (IOSpacePushWrite) */
+
+/* An error handler may not raise errors: plain C only. */
+static PetscErrorCode WriteFailed(MPI_Comm comm, int line, const char *fun, const char *file, PetscErrorCode n, PetscErrorType p, const char *mess, void *ctx)
+{
+  int  err = errno, rank = 0;
+  char part[PETSC_MAX_PATH_LEN + 8];
+  (void)comm; (void)line; (void)fun; (void)file; (void)n; (void)ctx;
+  if (p != PETSC_ERROR_INITIAL) return n;
+  (void)MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+  fprintf(stderr, "sphfsi: error: rank %d could not write %s: %s (exit status %d; the last complete checkpoint is kept)\n", rank, writing, err == ENOSPC || err == EDQUOT || err == EIO || err == EROFS ? strerror(err) : mess ? mess : "HDF5 error", SIM_EXIT_IO);
+  fflush(stderr);
+  (void)snprintf(part, sizeof(part), "%s.part", writing);
+  (void)unlink(part);
+  MPI_Abort(MPI_COMM_WORLD, SIM_EXIT_IO);
+  return n;
+}
+
+PetscErrorCode IOSpacePushWrite(const char *file)
+{
+  PetscFunctionBeginUser;
+  PetscCall(PetscStrncpy(writing, file, sizeof(writing)));
+  PetscCall(PetscPushErrorHandler(WriteFailed, NULL));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode IOSpacePopWrite(void)
+{
+  PetscFunctionBeginUser;
+  PetscCall(PetscPopErrorHandler());
+  writing[0] = 0;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}

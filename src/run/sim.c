@@ -1,0 +1,481 @@
+#include "run/sim.h"
+#include "base/options_used.h"
+#include "scenes/scene.h"
+#include "fluid/wcsph.h"
+#include "fluid/isph.h"
+#include "solid/solid.h"
+#include "fluid/boundary.h"
+#include "io/io.h"
+#include "base/kernel.h"
+#include "io/checkpoint.h"
+#include "run/guard.h"
+#include "io/outdir.h"
+#include "run/size_guard.h"
+
+const char *const FluidSchemes[] = {"wcsph", "isph", "FluidScheme", "FLUID_", NULL};
+const char *const KernelTypes[]  = {"cubic", "wendland_c2", "wendland_c4", "KernelType", "KERNEL_", NULL};
+
+PetscErrorCode SimCreate(MPI_Comm comm, Sim *sim)
+{
+  Sim s;
+  PetscFunctionBeginUser;
+  PetscCall(PetscNew(sim));
+  s       = *sim;
+  s->comm = comm;
+  PetscCallMPI(MPI_Comm_rank(comm, &s->rank));
+  PetscCallMPI(MPI_Comm_size(comm, &s->size));
+  s->dim            = 2;
+  s->fluid          = FLUID_WCSPH;
+  s->cfl            = 0.25;
+  s->t_end          = -1;
+  s->dx             = -1;
+  s->max_steps      = PETSC_MAX_INT;
+  s->progress_every = 5;
+  s->ckpt_step      = -1;
+  s->ckpt_t         = -1;
+  s->fl.rho0        = 1000.0;
+  s->fl.mu          = 1.0e-3;
+  s->fl.eta         = 0.1; /* the paper's */
+  s->fl.lap_kappa   = 1;
+  s->fl.alpha       = 0.02;
+  s->fl.xsph        = 0.0;
+  s->fl.wall_clip   = PETSC_TRUE; /* WCSPH walls push, never pull (boundary.c) */
+  s->g[1]           = -9.81;
+  KernelInit(&s->kernel, KERNEL_CUBIC, 2, SPH_H_FACTOR);
+  s->has_fluid      = PETSC_TRUE;
+  s->sl.rho0        = 1000.0;
+  s->sl.alpha       = 1.0;
+  s->sl.eps         = 0.3;
+  s->sl.n           = 4.0;
+  {
+    const char *names[STAGE_COUNT] = {"Neighbours", "Halo+migrate", "Physics", "PPE assembly", "PPE solve", "Solid", "Output", "Guard"};
+    for (PetscInt k = 0; k < STAGE_COUNT; k++) { /* a second Sim in one program shares the stages */
+      PetscCall(PetscLogStageGetId(names[k], &s->stage[k]));
+      if (s->stage[k] < 0) PetscCall(PetscLogStageRegister(names[k], &s->stage[k]));
+    }
+  }
+  PetscCall(GuardCreate(&s->guard));
+  PetscCall(ParticlesCreate(comm, &s->P));
+  PetscCall(DecompCreate(comm, &s->decomp));
+  PetscCall(HaloCreate(comm, &s->halo));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode SimDestroy(Sim *sim)
+{
+  Sim s = *sim;
+  PetscFunctionBeginUser;
+  if (!s) PetscFunctionReturn(PETSC_SUCCESS);
+  if (s->scene && s->scene->destroy) PetscCall(s->scene->destroy(s));
+  PetscCall(OutDirClose(s));
+  PetscCall(IOFinalize(s));
+  PetscCall(ISPHDestroy(&s->isph));
+  PetscCall(SolidDestroy(&s->solid));
+  PetscCall(CellsDestroy(&s->cells));
+  PetscCall(HaloDestroy(&s->halo));
+  PetscCall(DecompDestroy(&s->decomp));
+  PetscCall(ParticlesDestroy(&s->P));
+  PetscCall(PetscFree(s->snaps));
+  PetscCall(PetscFree(s->refdata_missing));
+  PetscCall(GuardDestroy(&s->guard));
+  PetscCall(SizeGuardDestroy(&s->size_guard));
+  PetscCall(PetscFree(*sim));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* Generic options: scene, scheme, resolution, time, output. */
+PetscErrorCode SimSetFromOptions(Sim sim)
+{
+  char      name[64] = "", names[512];
+  PetscBool set, dx_set, t_set;
+  PetscInt  fluid = sim->fluid, ktype;
+  PetscReal hfac;
+
+  PetscFunctionBeginUser;
+  PetscCall(CheckpointInheritOptions(sim->comm)); /* -restart FILE alone: the scene and options of FILE */
+  PetscCall(PetscOptionsHasHelp(NULL, &sim->help));
+  PetscCall(SceneListNames(names, sizeof(names)));
+  PetscOptionsBegin(sim->comm, NULL, "sphfsi: SPH for fluid-structure interaction", "Sim");
+  PetscCall(PetscOptionsString("-case", "Scene to run", "", name, name, sizeof(name), &set));
+  PetscCall(OptEList("-fluid", "Fluid pressure scheme", "", FluidSchemes, 2, FluidSchemes[sim->fluid], &fluid, NULL));
+  /* Defaults by measurement (docs/convergence.md): WCSPH's square start lattice is unstable under
+   * its own pressure with the cubic spline at 1.3 dx and stable with Wendland C2 at 1.4 dx
+   * (tools/lattice_stability.py), at the same cost; ISPH keeps the paper's kernel, whose still tank
+   * is at rest (its pressure is noisy with Wendland C2). */
+  ktype = fluid == FLUID_WCSPH ? KERNEL_WENDLAND_C2 : KERNEL_CUBIC;
+  PetscCall(OptEList("-kernel", "Smoothing kernel of every scheme and the solid: cubic (Eq. 12), wendland_c2, wendland_c4 (Dehnen & Aly 2012); support 2h; default: wendland_c2 with -fluid wcsph, cubic with isph", "", KernelTypes, 3, KernelTypes[ktype], &ktype, NULL));
+  hfac = KernelDefaultHFactor((KernelType)ktype);
+  PetscCall(OptReal("-h_factor", "Smoothing length over particle spacing, h / dx; default 1.4 for wendland_c2 (its lattice-stable value), else the paper's 1.3; wall rows default to cover 2h", "", hfac, &hfac, NULL));
+  PetscCall(OptReal("-dx", "Particle spacing of the finest particles (m); default: the scene's", "", sim->dx, &sim->dx, &dx_set));
+  PetscCall(OptReal("-t_end", "Physical end time (s); default: the scene's", "", sim->t_end, &sim->t_end, &t_set));
+  PetscCall(OptReal("-dt", "Fixed time step (s); 0 = adaptive", "", sim->dt_fixed, &sim->dt_fixed, NULL));
+  PetscCall(OptReal("-cfl", "Courant number of the adaptive time step", "", sim->cfl, &sim->cfl, NULL));
+  PetscCall(OptInt("-max_steps", "Stop after this many steps", "", sim->max_steps, &sim->max_steps, NULL));
+  PetscCall(PetscOptionsString("-output_dir", "Output directory (default out/CASE; with -restart, the checkpoint's directory)", "", sim->outdir, sim->outdir, sizeof(sim->outdir), NULL));
+  PetscCall(OptBool("-overwrite", "A new run into a directory that holds an earlier run's output removes that output (snapshots, probes, summary, checkpoints); without it the run refuses to start", "", sim->overwrite, &sim->overwrite, NULL));
+  PetscCall(OptReal("-output_interval", "Snapshot interval in physical time (s); 0 = none", "", sim->out_interval, &sim->out_interval, NULL));
+  PetscCall(OptReal("-probe_interval", "probes.csv row interval in physical time (s); 0 = every step", "", sim->probe_interval, &sim->probe_interval, NULL));
+  PetscCall(OptInt("-progress_every", "Seconds of wall time between progress lines; 0 = none", "", sim->progress_every, &sim->progress_every, NULL));
+  PetscCall(OptReal("-checkpoint_interval", "Checkpoint interval in physical time (s), OUTDIR/checkpoint.h5, also at the end; 0 = none (a stop by signal or -max_wall_time writes one anyway)", "", sim->ckpt_interval, &sim->ckpt_interval, NULL));
+  PetscCall(PetscOptionsString("-restart", "Continue the run of this checkpoint (OUTDIR/checkpoint.h5 or last_good.h5): the scene and every option come from the checkpoint, options given now override them, output goes on in the checkpoint's directory", "", sim->restart, sim->restart, sizeof(sim->restart), NULL));
+  PetscCall(PetscOptionsString("-refdata_dir", "Reference data for the errors in summary.json (default $SPHFSI_REFDATA, else per file the first of PREFIX/share/sphfsi/refdata, EXEDIR/refdata, the build's SRCDIR/../shared/refdata, ../shared/refdata from the current directory)", "", sim->refdata_dir, sim->refdata_dir, sizeof(sim->refdata_dir), NULL));
+  PetscOptionsEnd();
+  sim->fluid = (FluidScheme)fluid;
+  PetscCheck(hfac >= 1 && hfac <= 3, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-h_factor %g must be in [1, 3] (h / dx; 1.3 for the cubic spline, 1.5-2.5 for the Wendland kernels)", (double)hfac);
+  KernelInit(&sim->kernel, (KernelType)ktype, 2, hfac);
+  PetscCheck(set && name[0], sim->comm, PETSC_ERR_USER_INPUT, "No scene given: use -case NAME with NAME one of: %s (or -options_file cases/NAME.opts)", names);
+  PetscCall(SceneFind(name, &sim->scene));
+  PetscCheck(sim->scene, sim->comm, PETSC_ERR_USER_INPUT, "Unknown -case %s: choose one of %s", name, names);
+  PetscCheck(!dx_set || sim->dx > 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dx %g must be > 0", (double)sim->dx);
+  PetscCheck(!t_set || sim->t_end > 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-t_end %g must be > 0", (double)sim->t_end);
+  PetscCheck(sim->dt_fixed >= 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dt %g must be > 0 (or 0 for an adaptive step)", (double)sim->dt_fixed);
+  PetscCheck(sim->cfl > 0 && sim->cfl <= 1, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-cfl %g must be in (0, 1]", (double)sim->cfl);
+  PetscCheck(sim->out_interval >= 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-output_interval %g must be >= 0", (double)sim->out_interval);
+  PetscCheck(sim->probe_interval >= 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-probe_interval %g must be >= 0", (double)sim->probe_interval);
+  PetscCheck(sim->max_steps >= 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-max_steps must be >= 0");
+  PetscCheck(sim->progress_every >= 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-progress_every %" PetscInt_FMT " must be >= 0 (seconds of wall time between progress lines; 0 = none)", sim->progress_every);
+  PetscCheck(sim->ckpt_interval >= 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-checkpoint_interval %g must be >= 0 (s of physical time; 0 = none)", (double)sim->ckpt_interval);
+  PetscCall(GuardSetFromOptions(sim));
+  if (!sim->outdir[0] && sim->restart[0]) { /* the directory the checkpoint belongs to */
+    char *slash;
+    PetscCall(PetscStrncpy(sim->outdir, sim->restart, sizeof(sim->outdir)));
+    if ((slash = strrchr(sim->outdir, '/'))) *slash = 0;
+    else PetscCall(PetscStrncpy(sim->outdir, ".", sizeof(sim->outdir)));
+  }
+  if (!sim->outdir[0]) PetscCall(PetscSNPrintf(sim->outdir, sizeof(sim->outdir), "out/%s", sim->scene->name));
+  PetscCall(DecompSetFromOptions(sim->decomp));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* Fluid material options; defaults from the scene (c0 = 10 v_ref). */
+static PetscErrorCode FluidOptions(Sim sim)
+{
+  PetscBool norm = PETSC_TRUE;
+  PetscFunctionBeginUser;
+  if (sim->fl.c0 <= 0) sim->fl.c0 = 10.0 * sim->v_ref;
+  PetscOptionsBegin(sim->comm, NULL, "Fluid", "Sim");
+  PetscCall(OptReal("-rho0", "Fluid reference density (kg/m^3)", "", sim->fl.rho0, &sim->fl.rho0, NULL));
+  PetscCall(OptReal("-mu", "Fluid dynamic viscosity (Pa s), Eq. 16", "", sim->fl.mu, &sim->fl.mu, NULL));
+  PetscCall(OptReal("-eta", "Regularisation eta / h of the laminar viscosity (Eq. 16) and the pressure Laplacian (Eq. 22), r^2 / (r^2 + eta^2 h^2); the paper 0.1, which weakens the nearest pairs by 4 % at h = 2 dx (-lap_normalise restores the operator's lattice sum)", "", sim->fl.eta, &sim->fl.eta, NULL));
+  PetscCall(OptBool("-lap_normalise", "Scale the laminar viscosity (Eq. 16) and the pressure Laplacian (Eq. 22) so that they are exact on the lattice for the run's kernel, h / dx and -eta (kernel.h)", "", norm, &norm, NULL));
+  PetscCall(OptReal("-c0", "Artificial sound speed (m/s), Eq. 20; default 10x the scene's expected maximum speed", "", sim->fl.c0, &sim->fl.c0, NULL));
+  PetscCall(OptReal("-alpha", "Artificial viscosity coefficient, Eq. 24", "", sim->fl.alpha, &sim->fl.alpha, NULL));
+  PetscCall(OptReal("-delta", "Density diffusion coefficient (delta-SPH); 0 = off", "", sim->fl.delta, &sim->fl.delta, NULL));
+  PetscCall(OptReal("-xsph", "XSPH epsilon, Eq. 44; 0 = off", "", sim->fl.xsph, &sim->fl.xsph, NULL));
+  PetscCall(OptReal("-start_jitter", "Displace each particle of the fluid's start lattice at random by up to this fraction of dx in x and y (by its id: the same on any number of ranks); a perfect lattice gives way all at once where the flow squeezes it (Taylor-Green's stagnation points); 0 = the lattice", "", sim->start_jitter, &sim->start_jitter, NULL));
+  PetscCall(OptBool("-shift_correct", "With particle shifting (-wcsph_shift, -isph_shift): correct a shifted particle's velocity to its new place, v += dr . grad v", "", sim->fl.shift_correct, &sim->fl.shift_correct, NULL));
+  PetscOptionsEnd();
+  PetscCheck(sim->fl.rho0 > 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-rho0 %g must be > 0", (double)sim->fl.rho0);
+  PetscCheck(sim->fl.mu >= 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-mu %g must be >= 0", (double)sim->fl.mu);
+  PetscCheck(sim->fl.eta > 0 && sim->fl.eta <= 1, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-eta %g must be in (0, 1] (eta / h; the paper 0.1)", (double)sim->fl.eta);
+  sim->fl.lap_kappa = norm ? (PetscReal)sim->dim / KernelLatticeSum(&sim->kernel, LATTICE_LAPLACIAN, sim->fl.eta) : 1.0;
+  PetscCheck(sim->fl.c0 > 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-c0 %g must be > 0", (double)sim->fl.c0);
+  PetscCheck(sim->fl.alpha >= 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-alpha %g must be >= 0", (double)sim->fl.alpha);
+  PetscCheck(sim->fl.delta >= 0 && sim->fl.delta <= 1, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-delta %g must be in [0, 1]", (double)sim->fl.delta);
+  PetscCheck(sim->start_jitter >= 0 && sim->start_jitter <= 0.25, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-start_jitter %g must be in [0, 0.25] (a fraction of dx)", (double)sim->start_jitter);
+  PetscCheck(sim->fl.xsph >= 0 && sim->fl.xsph <= 1, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-xsph %g must be in [0, 1]", (double)sim->fl.xsph);
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode SimTotalMass(Sim sim, PetscReal *M)
+{
+  PetscReal s = 0, *m = PField(sim->P, FIELD_M);
+  PetscFunctionBeginUser;
+  for (PetscInt a = 0; a < sim->P->n; a++)
+    if (KindIsFluid(sim->P->kind[a]) || sim->P->kind[a] == KIND_SOLID) s += m[a];
+  PetscCall(MPIU_Allreduce(&s, M, 1, MPIU_REAL, MPI_SUM, sim->comm));
+  *M += sim->nbhd.mass_out;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* -help: the options of the modules this run does not build as well (the other fluid scheme and
+ * its pressure solver, -ppe_*), and of the neighbour list, with their values.  The run stops after
+ * listing them (main.c), so what these set up is never used. */
+/* W is read in few places (wall state, ISPH's density and wall normals, XSPH), F in all: the list
+ * keeps F, and W is recomputed where read (the same bits; docs/performance.md item 15) */
+static PetscErrorCode NeighbourListOptions(Sim sim, PetscBool *store)
+{
+  PetscFunctionBeginUser;
+  *store = PETSC_FALSE;
+  PetscOptionsBegin(sim->comm, NULL, "Neighbour list", "Sim");
+  PetscCall(OptBool("-neighbour_store_w", "Keep each pair's kernel value W in the neighbour list (8 B a pair more) instead of recomputing it where it is read; the same results bit for bit", "", *store, store, NULL));
+  PetscOptionsEnd();
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+static PetscErrorCode HelpOtherModules(Sim sim)
+{
+  PetscBool store;
+  PetscFunctionBeginUser;
+  if (sim->has_fluid && sim->fluid == FLUID_ISPH) PetscCall(WCSPHSetUp(sim));
+  else if (sim->has_fluid) {
+    PetscCall(ISPHSetUp(sim));
+    PetscCall(ISPHDestroy(&sim->isph));
+  }
+  PetscCall(NeighbourListOptions(sim, &store));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode SimSetUp(Sim sim)
+{
+  PetscFunctionBeginUser;
+  PetscCall(sim->scene->create(sim));
+  PetscCheck(sim->dx > 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dx %g must be > 0", (double)sim->dx);
+  PetscCheck(sim->dim == 2 || sim->dim == 3, sim->comm, PETSC_ERR_PLIB, "Scene %s set dimension %" PetscInt_FMT, sim->scene->name, sim->dim);
+  { /* a -dx so fine that the lattice counts overflow would leave an empty scene: say so first */
+    PetscReal lattice = 1;
+    char      box[128] = "";
+    for (PetscInt d = 0; d < sim->dim; d++) {
+      lattice *= (sim->dom_hi[d] - sim->dom_lo[d]) / sim->dx;
+      PetscCall(PetscSNPrintf(box + strlen(box), sizeof(box) - strlen(box), "%s%g", d ? " x " : "", (double)(sim->dom_hi[d] - sim->dom_lo[d])));
+    }
+    PetscCheck(lattice < 1e12, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dx %g would make more than 1e12 particles in the %s m domain: choose a larger -dx", (double)sim->dx, box);
+  }
+  PetscCheck(sim->t_end > 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-t_end %g must be > 0", (double)sim->t_end);
+  PetscCheck(sim->has_fluid || sim->has_solid, sim->comm, PETSC_ERR_PLIB, "Scene %s has neither fluid nor solid", sim->scene->name);
+  PetscOptionsBegin(sim->comm, NULL, "Body force", "Sim");
+  {
+    PetscReal g[3] = {sim->g[0], sim->g[1], sim->g[2]};
+    PetscInt  ng   = 3;
+    PetscBool set;
+    PetscCall(PetscOptionsRealArray("-gravity", "Gravity vector gx,gy (2D) or gx,gy,gz (3D) (m/s^2)", "", g, &ng, &set));
+    PetscCheck(!set || ng == sim->dim, sim->comm, PETSC_ERR_ARG_WRONG, "-gravity takes %" PetscInt_FMT " components in this %" PetscInt_FMT "D scene (%s), %" PetscInt_FMT " given", sim->dim, sim->dim, sim->dim == 3 ? "gx,gy,gz" : "gx,gy", ng);
+    if (set) PetscCall(PetscArraycpy(sim->g, g, sim->dim));
+  }
+  PetscOptionsEnd();
+  for (PetscInt d = 0; d < sim->dim; d++) PetscCheck(!PetscIsInfOrNanReal(sim->g[d]), sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-gravity: component %" PetscInt_FMT " is not finite", d + 1);
+  KernelInit(&sim->kernel, sim->kernel.type, sim->dim, sim->kernel.h_factor); /* the normalisation of the scene's dimension */
+  PetscCall(ParticlesSetDimension(sim->P, sim->dim));
+  if (sim->has_fluid) PetscCall(FluidOptions(sim));
+  if (sim->has_solid) {
+    PetscCall(SolidSetUp(sim)); /* before ISPH: the coupling decides the PPE's symmetry */
+    PetscCall(ParticlesEnableField(sim->P, FIELD_XREB, PETSC_FALSE)); /* solids move after a rebuild */
+  }
+  if (sim->has_fluid) {
+    if (sim->fluid == FLUID_ISPH) PetscCall(ISPHSetUp(sim));
+    else PetscCall(WCSPHSetUp(sim));
+  }
+  if (sim->help) PetscCall(HelpOtherModules(sim));
+  PetscCall(ParticlesSetUp(sim->P));
+  if (sim->help) PetscFunctionReturn(PETSC_SUCCESS); /* listed: no particles, no output */
+  PetscCall(SizeGuardCheck(sim)); /* before the particles: a run too large for the memory stops here */
+  PetscCall(OutDirOpen(sim));
+  PetscCall(GuardCheckSetUp(sim, "before the particles were made"));
+  if (sim->guard->state) PetscFunctionReturn(PETSC_SUCCESS);
+  PetscCall(sim->scene->populate(sim));
+  PetscCall(GuardCheckSetUp(sim, "after the particles were made"));
+  if (sim->guard->state) PetscFunctionReturn(PETSC_SUCCESS);
+  PetscCall(ParticlesGlobalCount(sim->P, &sim->nbhd.nparticles));
+  if (sim->solid) { /* the solids' extent as built (a restart reads its state after this) */
+    PetscReal dt_transit;
+    PetscCall(SolidTransitLimit(sim, &dt_transit));
+  }
+  { /* the largest smoothing length sets the cells (scenes may mix particle sizes) */
+    const PetscReal *h = PField(sim->P, FIELD_H);
+    sim->h_max = sim->kernel.h_factor * sim->dx;
+    for (PetscInt a = 0; a < sim->P->n; a++) sim->h_max = PetscMax(sim->h_max, h[a]);
+    PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &sim->h_max, 1, MPIU_REAL, MPIU_MAX, sim->comm));
+  }
+  if (sim->has_fluid) {
+    PetscInt nfluid = 0;
+    for (PetscInt a = 0; a < sim->P->n; a++) nfluid += KindIsFluid(sim->P->kind[a]);
+    PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &nfluid, 1, MPIU_INT, MPI_SUM, sim->comm));
+    PetscCheck(nfluid > 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "The geometry leaves no fluid particle at -dx %g: the water region is thinner than one -dx; choose a smaller -dx or a larger water region", (double)sim->dx);
+  }
+  /* a periodic length holds three cells: a skin that does not fit is made smaller (a short
+   * periodic channel), down to none, rather than refuse a run that fits without it */
+  /* solids keep their neighbour lists over sub-steps, and WCSPH its main list over steps: cells
+   * wide enough for both skins, since the solids' list is built from bins up to half the fluid's
+   * skin old (SolidPrepare after every fluid step) */
+  {
+    const PetscReal reach = 2.0 * sim->h_max + (sim->solid ? sim->solid->skin * sim->dx : 0); /* the cell without the fluid's skin */
+    for (PetscInt d = 0; d < sim->dim && sim->nbhd.skin > 0; d++)
+      if (sim->periodic[d]) sim->nbhd.skin = PetscMin(sim->nbhd.skin, PetscMax(0, (1 - 1e-9) * (sim->dom_hi[d] - sim->dom_lo[d]) / 3 - reach));
+    PetscCall(GridSetUp(&sim->grid, sim->dim, sim->dom_lo, sim->dom_hi, reach + sim->nbhd.skin, sim->periodic));
+  }
+  sim->decomp->split_solids = (PetscBool)(sim->decomp->split_solids && sim->has_fluid && sim->has_solid);
+  PetscCall(DecompSetUp(sim->decomp, &sim->grid));
+  PetscCall(CellsCreate(&sim->grid, &sim->kernel, &sim->cells));
+  sim->cells->skin = sim->nbhd.skin;
+  PetscCall(NeighbourhoodWire(&sim->nbhd, sim->comm, sim->P, &sim->grid, sim->decomp, sim->halo, sim->cells, sim->periodic, sim->outflow, sim->stage[STAGE_HALO], sim->stage[STAGE_NEIGHBOUR]));
+  {
+    PetscBool store;
+    PetscCall(NeighbourListOptions(sim, &store));
+    sim->cells->drop_w = (PetscBool)!store;
+  }
+  sim->next_probe = sim->next_out = 0;
+  sim->next_ckpt  = sim->ckpt_interval;
+  PetscCall(GuardCheckSetUp(sim, "before the neighbour lists were built"));
+  if (sim->guard->state) PetscFunctionReturn(PETSC_SUCCESS);
+  if (sim->restart[0]) PetscCall(CheckpointRestart(sim)); /* the particles and state of the checkpoint */
+  else {
+    PetscCall(DecompPartition(sim->decomp, sim->P)); /* from the scene's round-robin spread, so no rank ever holds them all */
+    PetscCall(DecompMigrate(sim->decomp, sim->P));   /* wraps and checks every particle is inside */
+    PetscCall(NeighbourhoodRebuild(&sim->nbhd, sim->step));
+    PetscCall(SimTotalMass(sim, &sim->mass0));
+    if (sim->has_fluid && sim->fluid == FLUID_ISPH) PetscCall(ISPHInitialize(sim));
+    else if (sim->has_fluid) PetscCall(WCSPHRates(sim));
+    if (sim->has_solid) {
+      PetscCall(SolidPrepare(sim));
+      PetscCall(SolidRates(sim));
+    }
+  }
+  if (sim->restart[0]) PetscCall(OutDirTidyRestart(sim)); /* the snapshots past the checkpoint */
+  PetscCall(IOSetUp(sim));
+  sim->ready = PETSC_TRUE;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+static PetscErrorCode Progress(Sim sim)
+{
+  PetscLogDouble now;
+  PetscFunctionBeginUser;
+  PetscCall(PetscTime(&now));
+  {
+    PetscReal el = now - sim->wall_start, done = sim->t - sim->t_start, left = done > 0 ? el * (sim->t_end - sim->t) / done : 0;
+    char its[64] = "";
+    if (sim->isph) PetscCall(PetscSNPrintf(its, sizeof(its), "  PPE its %" PetscInt_FMT " (free surface %" PetscInt_FMT ")", sim->isph->ppe->its_last, sim->isph->nfree));
+    if (sim->has_fluid && sim->solid) PetscCall(PetscSNPrintf(its + strlen(its), sizeof(its) - strlen(its), "  solid sub-steps %" PetscInt_FMT, sim->solid->nsub_last));
+    PetscCall(PetscPrintf(sim->comm, "step %7" PetscInt_FMT "  t %.5e / %.4g s  dt %.3e  particles %" PetscInt_FMT "%s  wall %.1f s  left ~%.0f s\n", sim->step, (double)sim->t, (double)sim->t_end, (double)sim->dt, sim->nbhd.nparticles, its, (double)el, (double)left));
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* One step of the fluid, then the solid sub-cycled with its own step inside it (multi-rate). */
+static PetscErrorCode Step(Sim sim)
+{
+  PetscReal dts = PETSC_MAX_REAL;
+  PetscInt  nsub = 1;
+
+  PetscFunctionBeginUser;
+  if (sim->has_solid && (sim->has_fluid || !sim->dt_fixed)) PetscCall(SolidTimeStep(sim, &dts)); /* with a fluid, -dt is the fluid's: the solid sub-steps in it */
+  if (sim->dt_fixed > 0) sim->dt = sim->dt_fixed;
+  else if (sim->isph) PetscCall(ISPHTimeStep(sim, &sim->dt));
+  else if (sim->has_fluid) PetscCall(WCSPHTimeStep(sim, &sim->dt));
+  else sim->dt = dts;
+  if (sim->has_solid && !sim->solid->subcycle) sim->dt = PetscMin(sim->dt, dts); /* one step for all (the paper's way) */
+  /* a collapsing step is a blow-up: stop before the state changes */
+  if (sim->has_fluid && !sim->dt_fixed) PetscCall(GuardCheckDt(sim, 0, sim->dt));
+  if (dts < PETSC_MAX_REAL && !sim->guard->state) PetscCall(GuardCheckDt(sim, 1, dts));
+  if (sim->guard->state) PetscFunctionReturn(PETSC_SUCCESS);
+  { /* end on t_end with two halves of what is left, not a full step and a sliver: ISPH's pressure
+     * grows as its step shrinks (SPHERIC Test 2: a 0.6 ms last step after 4 ms ones put 22.6 kPa on
+     * P1, against 2 kPa the step before) */
+    const PetscReal left = sim->t_end - sim->t;
+    if (left < sim->dt * (1 + 1e-6)) sim->dt = left;
+    else if (left < 2 * sim->dt) sim->dt = 0.5 * left;
+  }
+  if (sim->has_fluid) {
+    if (sim->isph) PetscCall(ISPHStep(sim));
+    else PetscCall(WCSPHStep(sim));
+  }
+  if (sim->has_solid) {
+    if (dts < sim->dt) nsub = (PetscInt)PetscCeilReal(sim->dt / dts * (1 - 1e-12));
+    if (sim->has_fluid) { /* the fluid moved and everything was rebuilt: new loads on the solid */
+      PetscCall(SolidPrepare(sim));
+      PetscCall(SolidRates(sim));
+    }
+    PetscCall(SolidBeginSubsteps(sim));
+    for (PetscInt k = 0; k < nsub; k++) PetscCall(SolidStep(sim, sim->dt / nsub));
+    if (sim->has_fluid) { /* the last half kick left the solids' ghosts a half kick behind their owners,
+                            and the next fluid step reads them (ISPH's predictor before any refresh) */
+      const FieldId vel[] = {FIELD_V};
+      PetscCall(PetscLogStagePush(sim->stage[STAGE_HALO]));
+      PetscCall(HaloRefresh(sim->halo, sim->P, 1, vel));
+      PetscCall(PetscLogStagePop());
+    }
+    sim->solid->nsub_last = nsub;
+    sim->solid->nsub_max  = PetscMax(sim->solid->nsub_max, nsub);
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* A checkpoint unless the last one holds this step already. */
+static PetscErrorCode Checkpoint(Sim sim)
+{
+  PetscFunctionBeginUser;
+  if (sim->ckpt_step == sim->step) PetscFunctionReturn(PETSC_SUCCESS);
+  PetscCall(CheckpointSave(sim));
+  PetscCall(GuardCheckIO(sim));
+  if (sim->guard->state == GUARD_IO) PetscFunctionReturn(PETSC_SUCCESS);
+  sim->ckpt_step = sim->step;
+  sim->ckpt_t    = sim->t;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode SimRun(Sim sim)
+{
+  PetscLogDouble  last, t1;
+  const PetscReal eps = 1e-12 * sim->t_end, ps0 = sim->particle_steps;
+  const PetscInt  step0 = sim->step;
+  Guard           g = sim->guard;
+  PetscBool       shown;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscViewerASCIIPrintf(PETSC_VIEWER_STDOUT_(sim->comm), "sphfsi: case %s, fluid %s, kernel %s at h = %g dx, %d rank(s), dx %g, t_end %g, c0 %g\n", sim->scene->name, sim->has_fluid ? FluidSchemes[sim->fluid] : "none", KernelTypes[sim->kernel.type], (double)sim->kernel.h_factor, sim->size, (double)sim->dx, (double)sim->t_end, (double)(sim->has_fluid ? sim->fl.c0 : sim->sl.c0)));
+  PetscCall(ParticlesView(sim->P, PETSC_VIEWER_STDOUT_(sim->comm)));
+  PetscCall(DecompView(sim->decomp, PETSC_VIEWER_STDOUT_(sim->comm)));
+  if (sim->isph) PetscCall(ISPHView(sim, PETSC_VIEWER_STDOUT_(sim->comm)));
+  else if (sim->has_fluid) PetscCall(WCSPHView(sim, PETSC_VIEWER_STDOUT_(sim->comm)));
+  if (sim->solid) PetscCall(SolidView(sim, PETSC_VIEWER_STDOUT_(sim->comm)));
+  PetscCall(PetscTime(&sim->wall_start));
+  sim->t_start = sim->t;
+  last         = sim->wall_start;
+  if (!sim->restart[0]) { /* a restart has the first probe row and snapshot already */
+    PetscCall(IOProbes(sim));
+    if (sim->out_interval > 0) PetscCall(IOSnapshot(sim));
+  }
+  PetscCall(GuardCheckInitial(sim));
+  PetscCall(GuardCheckIO(sim));
+  while (!g->state && sim->t < sim->t_end - eps && sim->step < sim->max_steps) {
+    PetscCall(GuardStepBegin(sim));
+    PetscCall(GuardStep(sim, Step));
+    if (g->state) break; /* a fault inside the step: time does not advance */
+    sim->t += sim->dt;
+    sim->step++;
+    sim->particle_steps += (PetscReal)sim->nbhd.nparticles;
+    PetscCall(PetscTime(&t1));
+    shown = (PetscBool)(sim->progress_every && t1 - last >= sim->progress_every);
+    PetscCall(GuardStepEnd(sim, &shown)); /* NaN/Inf, signals, wall time, progress: agreed */
+    if (g->state == GUARD_FAULT) break;
+    if (g->state == GUARD_STOP) PetscCall(GuardAnnounceStop(sim));
+    if (sim->t >= sim->next_probe - eps) PetscCall(IOProbes(sim));
+    if (g->state == GUARD_STOP) { /* what a launcher's kill may not leave time for: probes and summary first */
+      PetscCall(PetscTime(&t1));
+      sim->wall_loop = t1 - sim->wall_start;
+      PetscCall(IOWriteProbes(sim));
+      PetscCall(SimTotalMass(sim, &sim->mass));
+      PetscCall(IOSummary(sim));
+    }
+    PetscCall(OutDirBeat(sim));
+    if (sim->out_interval > 0 && sim->t >= sim->next_out - eps) {
+      PetscCall(IOSnapshot(sim));
+      PetscCall(IOWriteProbes(sim));
+    }
+    if (sim->ckpt_interval > 0 && sim->t >= sim->next_ckpt - eps) {
+      PetscCall(Checkpoint(sim));
+      PetscCall(IOWriteProbes(sim));
+    }
+    PetscCall(GuardCheckIO(sim)); /* output that could not be written ends the run */
+    if (g->state == GUARD_STOP || g->state == GUARD_IO) break;
+    if (shown) {
+      last = t1;
+      PetscCall(Progress(sim));
+      PetscCall(IOWriteProbes(sim)); /* probes.csv is at most a progress interval old */
+      PetscCall(GuardCheckIO(sim));
+    }
+  }
+  PetscCall(PetscTime(&t1));
+  sim->wall_loop = t1 - sim->wall_start;
+  if (sim->progress_every) PetscCall(Progress(sim));
+  if (g->state == GUARD_STOP && getenv("SPHFSI_TEST_STOP_DELAY")) PetscCall(PetscSleep(atof(getenv("SPHFSI_TEST_STOP_DELAY")))); /* tests: a stop as slow as a large checkpoint's (tests/check_stop.sh) */
+  if (g->state == GUARD_STOP || (!g->state && sim->ckpt_interval > 0)) PetscCall(Checkpoint(sim));
+  PetscCall(GuardFinish(sim));
+  if (sim->exit_status == SIM_EXIT_FAULT && sim->isph) PetscCall(PPEFaultHint(sim->isph->ppe));
+  PetscCall(IOWriteProbes(sim));
+  PetscCall(SimTotalMass(sim, &sim->mass));
+  PetscCall(IOSummary(sim));
+  if (sim->decomp->log_stats) PetscCall(DecompWriteStats(sim->decomp, sim->outdir));
+  PetscCall(PetscPrintf(sim->comm, "sphfsi: %" PetscInt_FMT " steps in %.2f s (%.3g particle-steps/s); output in %s\n", sim->step - step0, (double)sim->wall_loop, (double)((sim->particle_steps - ps0) / PetscMax(sim->wall_loop, 1e-9)), sim->outdir));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}

@@ -1,0 +1,107 @@
+/* The simulation: owns the particles and every module, and is the only place that knows the order
+ * of a time step. */
+#pragma once
+#include "particles/grid.h"
+#include "particles/particles.h"
+#include "particles/cells.h"
+#include "particles/decomp.h"
+#include "particles/halo.h"
+#include "particles/neighbourhood.h"
+#include "base/material.h"
+#include "base/kernel.h"
+#include "base/dim.h"
+#include <petscviewer.h>
+
+typedef enum { FLUID_WCSPH = 0, FLUID_ISPH } FluidScheme;
+extern const char *const FluidSchemes[];
+
+typedef enum { STAGE_NEIGHBOUR, STAGE_HALO, STAGE_PHYSICS, STAGE_PPE_ASSEMBLY, STAGE_PPE_SOLVE, STAGE_SOLID, STAGE_OUTPUT, STAGE_GUARD, STAGE_COUNT } SimStage;
+
+typedef struct _p_Sim *Sim;
+typedef struct _SceneOps SceneOps;
+typedef struct _p_ISPH *ISPH;
+typedef struct _p_Solid *Solid;
+typedef struct _p_Guard *Guard;     /* guard.h */
+typedef struct _n_Series Series;    /* refdata.h */
+typedef struct _n_SizeGuard *SizeGuard; /* size_guard.h */
+#define SIM_MAX_KEEP 16             /* scene histories and scalars a checkpoint carries (SceneKeep*) */
+
+struct _p_Sim {
+  MPI_Comm    comm;
+  PetscMPIInt rank, size;
+  /* scene and scheme */
+  const SceneOps *scene;
+  void           *scene_ctx;
+  FluidScheme     fluid;
+  /* machinery */
+  Grid      grid;
+  Particles P;
+  Cells     cells;
+  Decomp    decomp;
+  Halo      halo;
+  Neighbourhood nbhd; /* brings the machinery up to date after particles move; counts the particles */
+  /* physics: the scene says which media it has */
+  PetscInt      dim;       /* 2 or 3: set by the scene's create (default 2) */
+  PetscBool     has_fluid, has_solid;
+  PetscReal     g[3];
+  FluidMaterial fl;
+  ISPH          isph;  /* NULL unless -fluid isph */
+  SolidMaterial sl;
+  Solid         solid; /* NULL unless the scene has solids */
+  PetscReal     v_ref;      /* expected maximum speed: c0 = 10 v_ref when -c0 is not given */
+  SPHKernel     kernel;     /* -kernel, -h_factor: the smoothing kernel of every pair */
+  PetscReal     dx, h_max;  /* finest spacing, largest smoothing length */
+  PetscReal     dom_lo[3], dom_hi[3];
+  PetscBool     periodic[3];
+  PetscBool     outflow;    /* fluid leaving the domain box is removed (open boundary) */
+  PetscBool     confined;   /* the fluid has no free surface (Taylor-Green, Poiseuille) */
+  PetscReal     start_jitter; /* -start_jitter: random displacement of the fluid's start lattice (dx) */
+  struct { PetscInt n; PetscReal z0, dz; } extrude; /* a 3D slab built from a 2D layout (SceneExtrudeBegin) */
+  /* time */
+  PetscReal t, t_end, dt, dt_fixed, cfl;
+  PetscInt  step, max_steps;
+  /* output */
+  char      outdir[PETSC_MAX_PATH_LEN];
+  PetscBool overwrite;      /* -overwrite: a new run may replace an earlier run's output (outdir.h) */
+  PetscBool lock_held;      /* rank 0 holds OUTDIR/sphfsi.lock */
+  PetscLogDouble lock_beat; /* when the lock was last refreshed */
+  PetscBool help;           /* -help: list the options and stop before the particles are made */
+  PetscBool ready;          /* SimSetUp completed (a stop during set-up leaves it false) */
+  PetscReal out_interval, next_out, probe_interval, next_probe;
+  PetscInt  snap, progress_every;
+  PetscReal *snaps;     /* (t, particles) of each snapshot: the outflow removes particles */
+  PetscInt   snap_cap;
+  /* statistics */
+  PetscLogDouble wall_start, wall_loop;
+  PetscReal      t_start; /* simulated time when this run's loop began (after a restart, not 0) */
+  PetscReal      particle_steps, mass0, mass;
+  PetscLogStage  stage[STAGE_COUNT];
+  PetscInt       next_id; /* global ids handed out by the scene */
+  PetscReal      wall_used; /* time-loop wall time of the runs before a restart */
+  /* checkpoint, restart, early stops and faults (checkpoint.h, guard.h) */
+  char      restart[PETSC_MAX_PATH_LEN]; /* -restart FILE; empty: a fresh start */
+  char      refdata_dir[PETSC_MAX_PATH_LEN];
+  char     *refdata_missing;             /* rank 0: reference files not found, "a.csv", "b.csv" (refdata.h) */
+  PetscReal ckpt_interval, next_ckpt;    /* physical time between checkpoints; 0 = none */
+  PetscInt  nckpt, ckpt_step;            /* checkpoints written by this run, step of the last complete one */
+  PetscReal ckpt_t;                      /* time of the last complete checkpoint (-1: none) */
+  Guard     guard;
+  struct { PetscBool set; char msg[2 * PETSC_MAX_PATH_LEN]; } io_fault; /* output that could not be written (io_space.h: IOFault) */
+  SizeGuard size_guard;                  /* the memory estimate against the node's (size_guard.h) */
+  PetscInt  exit_status;                 /* 0, or SIM_EXIT_STOPPED / SIM_EXIT_FAULT (guard.h) */
+  /* every probe row so far (t and the scene's columns; rank 0), rewritten to probes.csv */
+  PetscReal *probe_rows;
+  PetscInt   nprobe_rows, cap_probe_rows;
+  /* scene state that changes during a run (probe histories, running extremes): SceneKeep* */
+  Series    *keep_series[SIM_MAX_KEEP];
+  PetscReal *keep_reals[SIM_MAX_KEEP];
+  PetscInt   nkeep_series, nkeep_reals;
+};
+
+PetscErrorCode SimCreate(MPI_Comm comm, Sim *sim);
+PetscErrorCode SimSetFromOptions(Sim sim);
+PetscErrorCode SimSetUp(Sim sim);
+PetscErrorCode SimRun(Sim sim);
+PetscErrorCode SimDestroy(Sim *sim);
+/* Total mass of owned fluid and solid particles, plus the fluid that left (collective). */
+PetscErrorCode SimTotalMass(Sim sim, PetscReal *M);

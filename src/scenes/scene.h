@@ -1,0 +1,124 @@
+/* Scenes: the geometry and physics of each case.  A scene reads its options, sets the domain and
+ * materials, and adds particles; sim does the rest. */
+#pragma once
+#include "run/sim.h"
+
+#define SCENE_MAX_PROBES 16
+
+struct _SceneOps {
+  const char *name;
+  const char *help;
+  /* Read the scene's options; set sim->dx, t_end (unless given), dom_lo/hi, periodic, g,
+   * material defaults and v_ref. */
+  PetscErrorCode (*create)(Sim sim);
+  /* Add the particles (fields are allocated by then). */
+  PetscErrorCode (*populate)(Sim sim);
+  /* Optional: overwrite the velocity of particles whose motion the scene prescribes (called in each
+   * solid step after the first half kick, so the drift and the strain rate see it). */
+  PetscErrorCode (*prescribe)(Sim sim);
+  PetscInt    nprobes;
+  const char *probe_names[SCENE_MAX_PROBES];
+  /* Probe values (collective; every rank gets them). */
+  PetscErrorCode (*probe)(Sim sim, PetscReal *vals);
+  /* Errors against the scene's reference, as JSON members ("name": value, ...) (rank 0 writes). */
+  PetscErrorCode (*errors)(Sim sim, FILE *json);
+  PetscErrorCode (*destroy)(Sim sim);
+};
+
+PetscErrorCode SceneFind(const char *name, const SceneOps **ops);
+/* In the scene's create: state of the scene that changes during a run, which checkpoints save and a
+ * restart restores (in the order registered): a probe history, or one running value. */
+PetscErrorCode SceneKeepSeries(Sim sim, Series *s);
+PetscErrorCode SceneKeepReal(Sim sim, PetscReal *r);
+PetscErrorCode SceneListNames(char *buf, size_t len);
+
+/* Helpers for scenes */
+/* A 3D scene from a 2D layout: between Begin and End, the builders below take x, y points and boxes
+ * of the 2D layout (as in a 2D scene) and each point becomes n points at z = z0 + (k + 1/2) dz (its
+ * mass rho0 dx^2 dz), in the order of the 2D layout, layer by layer. */
+PetscErrorCode SceneExtrudeBegin(Sim sim, PetscInt n, PetscReal z0, PetscReal dz);
+PetscErrorCode SceneExtrudeEnd(Sim sim);
+/* The dimension of the layout the builders take: 2 while extruding, else the scene's. */
+PetscInt SceneLayoutDim(Sim sim);
+/* Add a lattice of n[0] x n[1] (x n[2] in 3D) particles of spacing dx whose first centre is lo,
+ * ids from sim->next_id (x fastest); each rank keeps every size-th particle. */
+PetscErrorCode SceneAddBlock(Sim sim, ParticleKind kind, const PetscReal lo[], const PetscInt n[], PetscReal dx, PetscReal rho0);
+/* Add an nx x ny lattice of spacing dx starting at cell centre (x0, y0), ids from sim->next_id;
+ * each rank keeps every size-th particle (migration sorts them out later). */
+PetscErrorCode SceneAddLattice(Sim sim, ParticleKind kind, PetscReal x0, PetscReal y0, PetscInt nx, PetscInt ny, PetscReal dx, PetscReal rho0);
+/* Walls of `rows` rows (first row KIND_WALL, the rest KIND_DUMMY) around the rectangle
+ * [x0, x1] x [y0, ...): floor below y0, side walls left of x0 and right of x1 up to y1. */
+PetscErrorCode SceneAddTank(Sim sim, PetscReal x0, PetscReal x1, PetscReal y0, PetscReal y1, PetscReal dx, PetscInt rows, PetscBool left, PetscBool right);
+/* The spacing of n particles along a side of length extent at nominal spacing dx: n = extent / dx
+ * rounded, the spacing dx where the side is a multiple of dx, else extent / n, so that the lattice
+ * fills the side exactly (SPHERIC Test 2's 0.55 m column would stand 0.56 m high at dx = 0.02 m). */
+PetscReal SceneFitSpacing(PetscReal extent, PetscReal dx, PetscInt *n);
+/* A lattice of one kind filling the box b exactly (its low corner, then its high corner: x0,y0,x1,y1
+ * in 2D, x0,y0,z0,x1,y1,z1 in 3D) at spacing dx, each side with its whole number of particles
+ * (SceneFitSpacing), the first particle half a spacing inside the low corner; mass rho0 times the
+ * spacings' product, smoothing length from dx. */
+PetscErrorCode SceneAddBox(Sim sim, ParticleKind kind, const PetscReal b[], PetscReal dx, PetscReal rho0);
+/* An obstacle of wall particles filling the box b (as SceneAddBox) on a lattice of spacing dx: the
+ * particles within dx of the faces that meet water are walls, the others dummies; faces: the low
+ * faces, then the high faces (2D: left, bottom, right, top; 3D: x-, y-, z-, x+, y+, z+). */
+PetscErrorCode SceneAddWallBox(Sim sim, const PetscReal b[], PetscReal dx, const PetscBool faces[]);
+/* Walls of `rows` layers (the layer next to the water KIND_WALL, the rest KIND_DUMMY) around the
+ * water box [lo, hi] in any dimension: under its floor and beside it in every horizontal direction,
+ * the sides up to `top` (the vertical is the last direction); spaced horizontally as SceneAddBox
+ * fills the box, so that the walls stand on its faces, and dx upwards. */
+PetscErrorCode SceneAddTankBox(Sim sim, const PetscReal lo[], const PetscReal hi[], PetscReal top, PetscReal dx, PetscInt rows);
+/* Domain box (square in 3D) of a tank [0, L] with `rows` rows of wall particles under and beside it, up to y = top. */
+void SceneTankDomain(Sim sim, PetscReal L, PetscReal top, PetscInt rows);
+/* A dam break: a water column [0, w] x [0, hgt] at hydrostatic density against the upstream wall of a
+ * tank [0, L] whose walls reach top - dx (the domain box's top is top). */
+PetscErrorCode SceneAddDamBreak(Sim sim, PetscReal w, PetscReal hgt, PetscReal L, PetscReal top, PetscInt rows);
+/* Fluid at rest: pressure and density (WCSPH EOS, Eq. 20) of a hydrostatic column with its free
+ * surface at height y_surface (y in 2D, z in 3D), for this rank's fluid particles from index `first` on (0: all of them). */
+PetscErrorCode SceneHydrostaticDensity(Sim sim, PetscInt first, PetscReal y_surface);
+/* Mixed particle sizes (section 3.3): water [0, W] x [0, H] at the coarse spacing dc on [0, W - fine]
+ * and at sim->dx on [W - fine, W] (next to a gate).  SceneZonesSetUp checks dc and fine (option names
+ * -dx_coarse, -fine_width in its messages) and rounds W, fine and H so that the zones tile the water
+ * in whole columns and reach the same surface; dc == dx gives one zone (*fine = *W, W and H rounded
+ * to dx). */
+PetscErrorCode SceneZonesSetUp(Sim sim, PetscReal dc, PetscReal *W, PetscReal *fine, PetscReal *H);
+/* The zoned water with its tank: a left wall of height top and the floor up to x_end at each zone's
+ * spacing (the fine floor as deep as the coarse one, for coarse particles that drift over it), and a
+ * right wall of height top at x_end when right. */
+PetscErrorCode SceneAddZonedWater(Sim sim, PetscReal dc, PetscReal W, PetscReal fine, PetscReal H, PetscReal top, PetscInt rows, PetscReal x_end, PetscBool right);
+/* Shepard interpolation of the fluid pressure at a point, each neighbour's value carried to the
+ * point hydrostatically: p(x0) = sum (p_b + rho_b g.(x0 - x_b)) W / sum W, rho_b by SceneFluidDensity (collective). */
+PetscErrorCode SceneProbePressure(Sim sim, const PetscReal x0[], PetscReal *p);
+/* Level gauges: the water depth under a point, as the volume of fluid per unit length (2D) or area
+ * (3D) on the vertical line through it, sum_b V_b W_col(s), with W_col(s) = int W(sqrt(s^2 + t^2)) dt
+ * the kernel integrated along the vertical and s the horizontal distance (a still layer of depth d
+ * reads d; spray above the water counts with its volume, not as the surface).  The table is of the
+ * run's kernel: initialise it after the scene's create (SimSetUp gives the kernel its dimension). */
+#define SCENE_NCOLUMN 200
+typedef struct {
+  PetscReal w[SCENE_NCOLUMN + 1]; /* h^(d-1) W_col at s / h = 2 k / SCENE_NCOLUMN */
+  PetscInt  dim;
+} SceneColumnKernel;
+void SceneColumnKernelInit(Sim sim, SceneColumnKernel *ck);
+/* Depths at n gauges; xg holds each gauge's horizontal position (x in 2D, x,y in 3D) (collective). */
+PetscErrorCode SceneWaterDepth(Sim sim, const SceneColumnKernel *ck, PetscInt n, const PetscReal *xg, PetscReal *depth);
+/* A fluid particle's density and volume for the probes: rho and m / rho in WCSPH.  ISPH's rho is
+ * rho* by summation (Eq. 17), which falls short within 2h of a free surface (to ~0.6 rho0 in a thin
+ * sheet), while incompressible water keeps rho0 and the volume m / rho0. */
+static inline PetscReal SceneFluidDensity(Sim sim, PetscReal rho)
+{
+  return sim->fluid == FLUID_ISPH ? sim->fl.rho0 : rho;
+}
+static inline PetscReal SceneFluidVolume(Sim sim, PetscReal m, PetscReal rho)
+{
+  return m / SceneFluidDensity(sim, rho);
+}
+/* Water level at a wall: the fluid's volume in a strip of the given width along the wall over the
+ * width, each particle counted with this share of its volume, s its distance from the wall: its
+ * volume spread over a slab dx wide (cloud in cell), so that the level changes continuously as
+ * particles cross the strip's edge instead of by dx^2 / width (2D) at once. */
+static inline PetscReal SceneStripShare(PetscReal s, PetscReal width, PetscReal dx)
+{
+  return PetscClipInterval((width - s) / dx + 0.5, 0, 1);
+}
+/* Largest fluid speed (collective). */
+PetscErrorCode SceneMaxSpeed(Sim sim, PetscReal *vmax);

@@ -1,0 +1,174 @@
+/* The seed's hypo-elastic solid (-solid_formulation updated; sections 2.2 and 2.4): pressure from
+ * the equation of state Eq. 20, artificial stress Eqs. 25-34, momentum Eq. 23 with artificial
+ * viscosity Eq. 24, and the deviatoric stress by the Jaumann rate Eqs. 35-40, all in the current
+ * configuration, in 2D (plane strain) or 3D. */
+#include "solid/solid_impl.h"
+#include "solid/solid_terms.h"
+#include "base/kernel.h"
+#include "fluid/operators.h"
+#include "particles/halo.h"
+
+/* Pressure (Eq. 20) and artificial stress (Eqs. 25-34) of owned and ghost solids: both are
+ * functions of the particle's own density and stress, so ghosts compute theirs. */
+SPH_INLINE PetscErrorCode PressureAndArtificialStressD(Sim sim, const PetscInt D)
+{
+  Particles            P = sim->P;
+  Solid                s = sim->solid;
+  const SolidMaterial *m = &sim->sl;
+  const PetscReal     *rho = PField(P, FIELD_RHO), *S = PField(P, FIELD_S);
+  PetscReal           *p = PField(P, FIELD_P);
+  PetscInt             N = P->n + P->ng;
+  const PetscInt       NS = D * (D + 1) / 2;
+
+  PetscFunctionBeginUser;
+  if (m->eps > 0 && s->cap_R < N) {
+    PetscCall(PetscFree(s->R));
+    s->cap_R = P->cap;
+    PetscCall(PetscMalloc1(NS * s->cap_R, &s->R));
+  }
+  for (PetscInt a = 0; a < N; a++) {
+    if (!KindIsSolid(P->kind[a])) continue;
+    p[a] = SolidEOSPressure(m, rho[a]);
+    if (m->eps <= 0) continue;
+    if (D == 2) ArtificialStress(m->eps, S[3 * a] - p[a], S[3 * a + 1], S[3 * a + 2] - p[a], rho[a], s->R + 3 * a);
+    else {
+      const PetscReal *Sa = S + 6 * a;
+      PetscReal        sigma[6] = {Sa[0] - p[a], Sa[1], Sa[2], Sa[3] - p[a], Sa[4], Sa[5] - p[a]};
+      ArtificialStress3(m->eps, sigma, rho[a], s->R + 6 * a);
+    }
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* out = L g for the D x D row-major L, or g itself without correction */
+SPH_INLINE void Apply(const PetscReal *L, const PetscReal *g, PetscReal *out, const PetscInt D)
+{
+  for (PetscInt i = 0; i < D; i++) out[i] = L ? VDot(L + D * i, g, D) : g[i];
+}
+
+/* Row i of the symmetric tensor T (dim.h's order) of particle a minus c on the diagonal, times s. */
+SPH_INLINE void SymRow(const PetscReal *T, PetscInt i, PetscReal c, PetscReal s, PetscReal *row, const PetscInt D)
+{
+  for (PetscInt j = 0; j < D; j++) row[j] = (j == i ? T[SymIndex(i, j, D)] - c : T[SymIndex(i, j, D)]) * s;
+}
+
+/* Eq. 23 for owned solids over their solid neighbours: stress, artificial viscosity (Eq. 24) and
+ * artificial stress; the fluid's loads (FluidLoad); gravity.  Walls do not act; clamps do not
+ * accelerate: what would, the support takes (Solid.support).  With the corrected gradient each
+ * particle's stress acts through its own corrected kernel gradient, sigma_a L_a grad W +
+ * sigma_b L_b grad W (pair terms with the mean), which keeps the pair forces opposite. */
+SPH_INLINE PetscErrorCode MomentumD(Sim sim, const PetscInt D)
+{
+  Particles            P = sim->P;
+  Cells                C = sim->solid->nl;
+  const SolidMaterial *m = &sim->sl;
+  const PetscReal     *x = PField(P, FIELD_X), *v = PField(P, FIELD_V), *rho = PField(P, FIELD_RHO), *p = PField(P, FIELD_P);
+  const PetscReal     *mass = PField(P, FIELD_M), *h = PField(P, FIELD_H), *S = PField(P, FIELD_S), *R = sim->solid->R, *L = PField(P, FIELD_KCORR);
+  PetscReal           *acc = PField(P, FIELD_ACC), support[3] = {0, 0, 0}, load[3] = {0, 0, 0};
+  const PetscInt       NS = D * (D + 1) / 2;
+
+  PetscFunctionBeginUser;
+  for (PetscInt a = 0; a < P->n; a++) {
+    PetscReal ac[3] = {0, 0, 0}, ra = rho[a], ia = 1.0 / (ra * ra), wdx, fl[3] = {0, 0, 0}, sa[9];
+    if (!KindIsSolid(P->kind[a])) continue;
+    for (PetscInt i = 0; i < D; i++) SymRow(S + NS * a, i, p[a], ia, sa + D * i, D); /* sigma_a / rho_a^2 */
+    wdx = R ? KernelW(&sim->kernel, h[a] / sim->kernel.h_factor, h[a]) : 1;
+    for (PetscInt k = C->nstart[a]; k < C->nstart[a + 1]; k++) {
+      PetscInt  b = C->nbr[k];
+      PetscReal d[3], g[3], dv[3], r2, rb = rho[b], ib = 1.0 / (rb * rb), ga[3], gb[3], gm[3], pi;
+      if (C->f[k] == 0) continue; /* in the skin */
+      if (KindIsFluid(P->kind[b])) { FluidLoad(sim, a, b, C->f[k], fl, D); continue; }
+      if (!KindIsSolid(P->kind[b])) continue;
+      VSub(x + D * a, x + D * b, d, D);
+      VSub(v + D * a, v + D * b, dv, D);
+      r2 = VDot(d, d, D);
+      for (PetscInt i = 0; i < D; i++) g[i] = C->f[k] * d[i];
+      pi = ArtificialViscosity(m->alpha, m->c0, PairH(h[a], h[b]), 0.5 * (ra + rb), VDot(dv, d, D), r2);
+      Apply(L ? L + D * D * a : NULL, g, ga, D);
+      Apply(L ? L + D * D * b : NULL, g, gb, D);
+      for (PetscInt i = 0; i < D; i++) gm[i] = 0.5 * (ga[i] + gb[i]);
+      /* sigma_a / rho_a^2 through ga, sigma_b / rho_b^2 through gb, Pi (and R) through the mean */
+      for (PetscInt i = 0; i < D; i++) {
+        PetscReal sb[3];
+        SymRow(S + NS * b, i, p[b], 1.0, sb, D);
+        ac[i] += mass[b] * (VDot(sa + D * i, ga, D) + VDot(sb, gb, D) * ib - pi * gm[i]);
+      }
+      if (R) {
+        PetscReal fn = PetscPowReal(C->w[k] / wdx, m->n), t[6], row[3];
+        for (PetscInt q = 0; q < NS; q++) t[q] = fn * (R[NS * a + q] + R[NS * b + q]);
+        for (PetscInt i = 0; i < D; i++) {
+          SymRow(t, i, 0.0, 1.0, row, D);
+          ac[i] += mass[b] * VDot(row, gm, D);
+        }
+      }
+    }
+    SolidAccelerate(sim, a, ac, fl, acc, support, load, D);
+  }
+  for (PetscInt i = 0; i < D; i++) { sim->solid->support[i] = support[i]; sim->solid->load[i] = load[i]; }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode SolidUpdatedRates(Sim sim)
+{
+  PetscFunctionBeginUser;
+  PetscCall(SPH_DIM_DISPATCH(sim->dim, PressureAndArtificialStressD, sim));
+  if (sim->solid->gradient == SOLID_GRAD_CORRECTED) {
+    const FieldId kc[] = {FIELD_KCORR};
+    PetscCall(SPHGradientCorrection(sim->P, sim->solid->nl, SolidKeep, PField(sim->P, FIELD_KCORR)));
+    PetscCall(PetscLogStagePush(sim->stage[STAGE_HALO]));
+    PetscCall(HaloRefreshKinds(sim->halo, sim->P, SolidKeep, 1, kc));
+    PetscCall(PetscLogStagePop());
+  }
+  PetscCall(SPH_DIM_DISPATCH(sim->dim, MomentumD, sim));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* Velocity gradient g_ij = dv_i/dx_j (row-major) of owned solid a from its solid neighbours:
+ * Eqs. 35-38 use g = sum V_b (v_b - v_a) (x) grad_a W; corrected, grad_a W becomes L_a grad_a W. */
+SPH_INLINE void VelocityGradient(Sim sim, PetscInt a, PetscReal *g, const PetscInt D)
+{
+  Particles        P = sim->P;
+  Cells            C = sim->solid->nl;
+  const PetscReal *x = PField(P, FIELD_X), *v = PField(P, FIELD_V), *rho = PField(P, FIELD_RHO), *m = PField(P, FIELD_M), *L = PField(P, FIELD_KCORR);
+
+  for (PetscInt i = 0; i < D * D; i++) g[i] = 0;
+  for (PetscInt k = C->nstart[a]; k < C->nstart[a + 1]; k++) {
+    PetscInt  b = C->nbr[k];
+    PetscReal gw[3], fd[3], V, dv[3];
+    if (!KindIsSolid(P->kind[b]) || C->f[k] == 0) continue;
+    for (PetscInt i = 0; i < D; i++) fd[i] = C->f[k] * (x[D * a + i] - x[D * b + i]);
+    Apply(L ? L + D * D * a : NULL, fd, gw, D);
+    V = m[b] / rho[b];
+    for (PetscInt i = 0; i < D; i++) dv[i] = V * (v[D * b + i] - v[D * a + i]);
+    for (PetscInt i = 0; i < D; i++)
+      for (PetscInt j = 0; j < D; j++) g[D * i + j] += dv[i] * gw[j];
+  }
+}
+
+/* Density (continuity, Eq. 18 as -rho div v) and deviatoric stress (Eqs. 35-40) of owned solids
+ * and clamps over dt, from the current velocities at the positions of the last SolidRates.  The
+ * density changes after the loop: neighbours' volumes m/rho must be those of the step's start,
+ * owned or ghost alike, or the answer would depend on the decomposition. */
+SPH_INLINE PetscErrorCode DeformD(Sim sim, PetscReal dt, const PetscInt D)
+{
+  Particles  P = sim->P;
+  PetscReal *rho = PField(P, FIELD_RHO), *S = PField(P, FIELD_S), *drho = PField(P, FIELD_DRHO);
+
+  PetscFunctionBeginUser;
+  for (PetscInt a = 0; a < P->n; a++) {
+    PetscReal g[9], div;
+    if (!KindIsSolid(P->kind[a])) continue;
+    VelocityGradient(sim, a, g, D);
+    div = g[0] + g[D + 1];
+    if (D == 3) div += g[8];
+    drho[a] = -rho[a] * div;
+    /* D_xy = (du/dy + dv/dx) / 2, spin W_xy = (du/dy - dv/dx) / 2 (Eqs. 37-38) */
+    if (D == 2) JaumannUpdate(sim->sl.G, dt, g[0], 0.5 * (g[1] + g[2]), g[3], 0.5 * (g[1] - g[2]), S + 3 * a);
+    else JaumannUpdate3(sim->sl.G, dt, g, S + 6 * a);
+  }
+  for (PetscInt a = 0; a < P->n; a++)
+    if (KindIsSolid(P->kind[a])) rho[a] += dt * drho[a];
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode SolidUpdatedDeform(Sim sim, PetscReal dt) { return SPH_DIM_DISPATCH(sim->dim, DeformD, sim, dt); }

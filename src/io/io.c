@@ -93,6 +93,23 @@ static PetscErrorCode WriteInts(PetscViewer v, Sim sim, const char *name, PetscI
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* The attributes that make a snapshot the input of -case file (src/scenes/particles_file.c): the
+ * spacing dx and the computational box, domain = x0,y0[,z0],x1,y1[,z1]. */
+static PetscErrorCode WriteDomain(PetscViewer v, Sim sim)
+{
+  hid_t     file, space, attr;
+  hsize_t   n = 2 * sim->dim;
+  PetscReal dom[6];
+  PetscFunctionBeginUser;
+  PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "dx", PETSC_REAL, &sim->dx));
+  for (PetscInt d = 0; d < sim->dim; d++) { dom[d] = sim->dom_lo[d]; dom[sim->dim + d] = sim->dom_hi[d]; }
+  PetscCall(PetscViewerHDF5GetFileId(v, &file));
+  PetscCheck((space = H5Screate_simple(1, &n, NULL)) >= 0, PETSC_COMM_SELF, PETSC_ERR_LIB, "HDF5 could not make the domain attribute's space");
+  PetscCheck((attr = H5Acreate2(file, "domain", H5T_NATIVE_DOUBLE, space, H5P_DEFAULT, H5P_DEFAULT)) >= 0, PETSC_COMM_SELF, PETSC_ERR_LIB, "HDF5 could not create the domain attribute");
+  PetscCheck(H5Awrite(attr, H5T_NATIVE_DOUBLE, dom) >= 0 && H5Aclose(attr) >= 0 && H5Sclose(space) >= 0, PETSC_COMM_SELF, PETSC_ERR_LIB, "HDF5 could not write the domain attribute");
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 /* Collective: one file, every owned particle's id, kind and fields; written under a temporary
  * name and renamed when complete. */
 PetscErrorCode IOWriteParticles(Sim sim, const char *path)
@@ -122,6 +139,7 @@ PetscErrorCode IOWriteParticles(Sim sim, const char *path)
   }
   PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "time", PETSC_REAL, &sim->t));
   PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "step", PETSC_INT, &sim->step));
+  PetscCall(WriteDomain(v, sim));
   PetscCall(PetscViewerDestroy(&v));
   PetscCall(IORenameOnRoot(sim, tmp, path));
   PetscFunctionReturn(PETSC_SUCCESS);

@@ -3,8 +3,9 @@
 #include "run/size_guard.h"
 
 extern const SceneOps SceneHydrostatic, SceneDamBreak, SceneDamBreakLobovsky, SceneSluiceGate, SceneTaylorGreen, ScenePoiseuille, SceneOscillatingPlate, SceneSolidBlock, SceneElasticGate, SceneWaterOnPlate, SceneSphericTest2;
+extern const SceneOps SceneParticlesFile;
 extern SceneOps       SceneBoxes; /* its probes come from the options */
-static const SceneOps *const Scenes[] = {&SceneHydrostatic, &SceneDamBreak, &SceneDamBreakLobovsky, &SceneSluiceGate, &SceneTaylorGreen, &ScenePoiseuille, &SceneOscillatingPlate, &SceneSolidBlock, &SceneElasticGate, &SceneWaterOnPlate, &SceneSphericTest2, &SceneBoxes};
+static const SceneOps *const Scenes[] = {&SceneHydrostatic, &SceneDamBreak, &SceneDamBreakLobovsky, &SceneSluiceGate, &SceneTaylorGreen, &ScenePoiseuille, &SceneOscillatingPlate, &SceneSolidBlock, &SceneElasticGate, &SceneWaterOnPlate, &SceneSphericTest2, &SceneBoxes, &SceneParticlesFile};
 #define NSCENES ((PetscInt)(sizeof(Scenes) / sizeof(Scenes[0])))
 
 PetscErrorCode SceneFind(const char *name, const SceneOps **ops)
@@ -45,6 +46,15 @@ PetscErrorCode SceneListNames(char *buf, size_t len)
   }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
+
+PetscErrorCode SceneCount(Sim sim, ParticleKind kind, PetscInt64 n)
+{
+  PetscFunctionBeginUser;
+  PetscCall(SizeGuardAdd(sim, kind, n));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscBool SceneCounting(Sim sim) { return SizeGuardCounting(sim); }
 
 /* One particle at p (coordinates of the layout) spaced s[d] along each of its directions: mass rho0
  * times their product (and dz when extruding); smoothing length from the nominal spacing dx; the next id. */

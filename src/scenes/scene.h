@@ -33,6 +33,11 @@ PetscErrorCode SceneKeepReal(Sim sim, PetscReal *r);
 PetscErrorCode SceneListNames(char *buf, size_t len);
 
 /* Helpers for scenes */
+/* A scene that adds particles without the builders below: the scene's n particles of a kind (the
+ * whole scene's, on every rank) for the size guard, which first runs the scene's populate only to
+ * count (SceneCounting: then add nothing). */
+PetscErrorCode SceneCount(Sim sim, ParticleKind kind, PetscInt64 n);
+PetscBool      SceneCounting(Sim sim);
 /* A 3D scene from a 2D layout: between Begin and End, the builders below take x, y points and boxes
  * of the 2D layout (as in a 2D scene) and each point becomes n points at z = z0 + (k + 1/2) dz (its
  * mass rho0 dx^2 dz), in the order of the 2D layout, layer by layer. */

@@ -40,9 +40,10 @@ check "options_file"          -options_file cases/does_not_exist.opts
 check "output directory"      -case hydrostatic -dx 0.01 -output_dir /proc/forbidden
 check "-rebalance_threshold"  -case dam_break -rebalance_threshold 0.5
 check "-decomp_sparse_ranks"  -case dam_break -decomp_sparse_ranks 0
-check "-delta"                -case dam_break -delta 2
+check "-wcsph_delta"          -case dam_break -wcsph_delta 2
+check "-wcsph_delta"          -case dam_break -delta 2  # its name before 0.9.0: works on, the error names the new one
 check "-wcsph_skin"           -case dam_break -wcsph_skin 3
-check "-start_jitter"         -case dam_break -start_jitter 0.5
+check "-fluid_start_jitter"   -case dam_break -fluid_start_jitter 0.5
 check "-h_factor"             -case dam_break -h_factor 0.5
 check "-kernel"               -case dam_break -kernel gauss
 check "-isph_beta"            -case dam_break -fluid isph -isph_beta 1.5

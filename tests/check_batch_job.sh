@@ -97,7 +97,7 @@ grep -q '"status": "stopped"' "$OUT/setup/summary.json" || fail "SIGTERM during 
 
 # 6. -help
 timeout 60 $MPI $BIN -options_file cases/dam_break.opts -help -output_dir "$OUT/help" > "$OUT/help.log" 2>&1 || fail "-help: status $?"
-for o in -wcsph_shift -isph_shift -ppe_ksp_rtol -ppe_pc_type -alpha -column_width -overwrite; do grep -q "^  $o " "$OUT/help.log" || grep -q "^  $o:" "$OUT/help.log" || fail "-help does not list $o"; done
+for o in -wcsph_shift -isph_shift -ppe_ksp_rtol -ppe_pc_type -wcsph_alpha -column_width -overwrite; do grep -q "^  $o " "$OUT/help.log" || grep -q "^  $o:" "$OUT/help.log" || fail "-help does not list $o"; done
 ! grep -q "steps in" "$OUT/help.log" || fail "-help ran the simulation"
 [ ! -e "$OUT/help" ] || fail "-help created the output directory"
 timeout 60 $MPI $BIN -options_file cases/dam_break.opts -fluid isph --help -output_dir "$OUT/help" > "$OUT/help2.log" 2>&1 || fail "--help: status $?"

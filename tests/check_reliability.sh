@@ -2,7 +2,7 @@
 # Reliability on a cluster (issue 8), through the program as a batch job runs it:
 #  - SIGTERM to one rank mid-run: all ranks stop after the step, write a checkpoint, say so, exit 3;
 #    the restart completes (exit 0) and its probes.csv equals the uninterrupted run's, byte for byte;
-#    a restart with another physics option (-alpha) says so;
+#    a restart with another physics option (-wcsph_alpha) says so;
 #  - -max_wall_time: the same by itself, stopping within the limit;
 #  - faults exit 4 with what, where and when, and a finite, restartable last good state:
 #    a -dt far too large (particle leaves the domain), the pressure solve not converging (ISPH,
@@ -60,8 +60,8 @@ timeout 120 $MPI $RUN -t_end 1 -output_dir "$OUT/sig" -restart "$OUT/sig/checkpo
 cmp -s "$OUT/ref/probes.csv" "$OUT/sig/probes.csv" || fail "after SIGTERM and restart probes.csv differs from the uninterrupted run's"
 xmf_ok "$OUT/sig/particles.xmf" || fail "particles.xmf after the restart does not match the snapshots"
 ! grep -q "options differ" "$OUT/sig_restart.log" || fail "restart with the same options: $(grep -m1 'options differ' "$OUT/sig_restart.log")"
-timeout 60 $MPI $RUN -t_end 1 -alpha 0.3 -max_steps 1 -output_dir "$OUT/opts" -restart "$OUT/sig/checkpoint.h5" > "$OUT/opts.log" 2>&1 || fail "restart with another -alpha: status $?"
-grep -q "options differ from the checkpointed run's: -alpha (unset) -> 0.3;" "$OUT/opts.log" || fail "a changed -alpha at restart is not reported"
+timeout 60 $MPI $RUN -t_end 1 -wcsph_alpha 0.3 -max_steps 1 -output_dir "$OUT/opts" -restart "$OUT/sig/checkpoint.h5" > "$OUT/opts.log" 2>&1 || fail "restart with another -wcsph_alpha: status $?"
+grep -q "options differ from the checkpointed run's: -wcsph_alpha (unset) -> 0.3;" "$OUT/opts.log" || fail "a changed -wcsph_alpha at restart is not reported"
 
 # -max_wall_time by itself
 # (0.5 s: the stop must come before t = 1, the restart's end, on an idle machine too)
@@ -99,4 +99,4 @@ timeout 60 $mpirun -n 1 -wdir "$here" "$here/bin/sphfsi" $args : -n 1 -wdir "$he
 [ $rc -ne 0 ] && [ $rc -lt 124 ] || fail "a rank failing at start: status $rc (124 = hung until the timeout)"
 grep -q "Rank 1 cannot see the output directory" "$OUT/start.log" || fail "a rank failing at start: no message"
 
-echo "reliability: SIGTERM ($tsig) and -max_wall_time stop with status 3 and a checkpoint, restarts equal the uninterrupted run (probes.csv), a changed -alpha is reported; faults (dt too large, DIVERGED_ITS, dt floor) status 4 with a finite last good state and its XDMF, a hint when -ppe_ksp_rtol was looser than the default; a rank failing at start stops all"
+echo "reliability: SIGTERM ($tsig) and -max_wall_time stop with status 3 and a checkpoint, restarts equal the uninterrupted run (probes.csv), a changed -wcsph_alpha is reported; faults (dt too large, DIVERGED_ITS, dt floor) status 4 with a finite last good state and its XDMF, a hint when -ppe_ksp_rtol was looser than the default; a rank failing at start stops all"

@@ -44,9 +44,9 @@ run test_hdf5_wcsph_shift $MPI "${BINDIR:-bin}"/test_hdf5 -wcsph_shift 1
 # WCSPH with shifting (free-surface flags of the neighbours from the last step, through the halo): exact
 run test_rank_agreement_wcsph_shift $MPI "${BINDIR:-bin}"/test_rank_agreement -wcsph_shift 1
 # Another kernel and h / dx (-kernel, -h_factor: 4 wall rows for 2h = 4 dx) with shifting and the shifted
-# particles' velocity correction (-shift_correct): exact in WCSPH, to the solver tolerance in ISPH
-run test_rank_agreement_wendland $MPI "${BINDIR:-bin}"/test_rank_agreement -kernel wendland_c2 -h_factor 2 -wcsph_shift 1 -shift_correct
-run test_rank_agreement_wendland_isph $MPI "${BINDIR:-bin}"/test_rank_agreement -fluid isph -kernel wendland_c2 -h_factor 2 -isph_shift 5 -shift_correct -isph_wall_contact -ppe_ksp_rtol 1e-10 -tol 1e-8
+# particles' velocity correction (-fluid_shift_correct): exact in WCSPH, to the solver tolerance in ISPH
+run test_rank_agreement_wendland $MPI "${BINDIR:-bin}"/test_rank_agreement -kernel wendland_c2 -h_factor 2 -wcsph_shift 1 -fluid_shift_correct
+run test_rank_agreement_wendland_isph $MPI "${BINDIR:-bin}"/test_rank_agreement -fluid isph -kernel wendland_c2 -h_factor 2 -isph_shift 5 -fluid_shift_correct -isph_wall_contact -ppe_ksp_rtol 1e-10 -tol 1e-8
 # Migration and ghosts by the sparse exchange (the default from 9 ranks on): the same answers, also
 # through the forced repartitions of test_decomp
 run test_rank_agreement_sparse $MPI "${BINDIR:-bin}"/test_rank_agreement -decomp_sparse_ranks 1
@@ -89,7 +89,7 @@ run test_restart_fsi $MPI "${BINDIR:-bin}"/test_restart -case elastic_gate -flui
 # 1e-10 to 1e-12, so not the solver; bound 1e-6.  Same ranks: exact.)
 run test_restart_fsi_isph $MPI "${BINDIR:-bin}"/test_restart -case elastic_gate -fluid isph -dx 0.00125 -t_end 0.002 -ppe_ksp_rtol 1e-10 -tol 1e-6
 run test_restart_isph $MPI "${BINDIR:-bin}"/test_restart -fluid isph -ppe_ksp_rtol 1e-10 -tol 1e-8
-run test_restart_wendland $MPI "${BINDIR:-bin}"/test_restart -kernel wendland_c2 -h_factor 2 -wcsph_shift 1 -shift_correct
+run test_restart_wendland $MPI "${BINDIR:-bin}"/test_restart -kernel wendland_c2 -h_factor 2 -wcsph_shift 1 -fluid_shift_correct
 run test_restart_solid $MPI "${BINDIR:-bin}"/test_restart -case oscillating_plate -plate_ny 6 -t_end 0.01
 run test_restart_solid_updated $MPI "${BINDIR:-bin}"/test_restart -case oscillating_plate -plate_ny 6 -t_end 0.01 -solid_formulation updated
 run test_restart_fsi_updated $MPI "${BINDIR:-bin}"/test_restart -case elastic_gate -fluid wcsph -dx 0.00125 -t_end 0.0015 -solid_formulation updated
@@ -140,6 +140,9 @@ if [ "${1:-}" != "--unit-only" ]; then
   run size_guard bash tests/check_size_guard.sh "$MPI" "$OUT/size_guard"
   # A user's path: quiet case files, options_used repeats a run, -version, the -ppe_ prefix
   run user_path bash tests/check_user_path.sh "$MPI" "$OUT/user_path"
+  # The option names before the modules' prefixes (0.9.0): the old name works on with a deprecation
+  # line and gives the new name's run; a checkpoint holding old names restarts
+  run old_names bash tests/check_old_names.sh "$MPI" "$OUT/old_names"
   # Reference data found from any current directory; a missing one warned about and listed in summary.json
   run refdata bash tests/check_refdata.sh "$MPI" "$OUT/refdata"
   # A case without C: the built-in dam break and tank written as data (-case boxes) run bit for bit alike

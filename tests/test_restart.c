@@ -139,9 +139,9 @@ int main(int argc, char **argv)
     PetscCall(PetscOptionsSetValue(NULL, "-case", "dam_break"));
     PetscCall(PetscOptionsSetValue(NULL, "-dx", "0.004"));
     PetscCall(PetscOptionsSetValue(NULL, "-t_end", "0.03"));
-    PetscCall(PetscOptionsSetValue(NULL, "-delta", "0.1"));
-    PetscCall(PetscOptionsSetValue(NULL, "-alpha", "0.1"));
-    PetscCall(PetscOptionsSetValue(NULL, "-xsph", "0.5"));
+    PetscCall(PetscOptionsSetValue(NULL, "-wcsph_delta", "0.1"));
+    PetscCall(PetscOptionsSetValue(NULL, "-wcsph_alpha", "0.1"));
+    PetscCall(PetscOptionsSetValue(NULL, "-fluid_xsph", "0.5"));
   }
   PetscCall(PetscOptionsSetValue(NULL, "-progress_every", "0"));
   PetscCall(PetscOptionsSetValue(NULL, "-output_interval", "0"));

@@ -4,8 +4,11 @@
 # of ranks in NPS (default "1 2") with BIN_A and with BIN_B; probes.csv must be byte-equal (cmp) and
 # every dataset of every snapshot equal (h5py, numpy.array_equal, NaN equal to NaN).
 #   tools/bitcheck.sh BIN_A BIN_B OUTDIR        e.g. tools/bitcheck.sh /work/baseline/sphfsi bin/sphfsi out/bitcheck
-# Environment: ARGS (options for both runs), ARGS_B (for BIN_B only, e.g. "-size_guard_count 1"),
-# STEPS (20), NPS ("1 2"), CASES (case files), TIMEOUT (s per run, 600), MPIEXEC, MPIEXEC_FLAGS.
+# Environment: ARGS (options for both runs), ARGS_A / ARGS_B (for BIN_A / BIN_B only, e.g.
+# ARGS_B="-size_guard_count 1"), CASEDIR_A (BIN_A reads its case files from this copy of the tree's
+# cases/, e.g. an older version's, whose option names BIN_A knows: `git archive db9434c cases | tar -x
+# -C /tmp/old`, CASEDIR_A=/tmp/old), STEPS (20), NPS ("1 2"), CASES (case files), TIMEOUT (s per run,
+# 600), MPIEXEC, MPIEXEC_FLAGS.
 # Prints one line per case and rank count (same / DIFFERENT / FAILED with why) and ends with
 # "# bitcheck: N same, N different"; exit status 1 when any differs or fails.
 A=$1; B=$2; OUT=$3
@@ -20,8 +23,8 @@ for c in $CASES; do
     d=$OUT/$name/np$np; rm -rf "$d"; mkdir -p "$d"
     why=""
     for v in a b; do
-      bin=$A; extra=""; [ $v = b ] && { bin=$B; extra=${ARGS_B:-}; }
-      timeout "${TIMEOUT:-600}" ${MPIEXEC:-mpiexec} $FLAGS -n "$np" "$bin" -options_file "$c" ${ARGS:-} $extra -max_steps "${STEPS:-20}" -output_interval 1e-9 -progress_every 0 -output_dir "$d/$v" > "$d/$v.log" 2>&1
+      bin=$A; extra=${ARGS_A:-}; file=${CASEDIR_A:+$CASEDIR_A/}$c; [ $v = b ] && { bin=$B; extra=${ARGS_B:-}; file=$c; }
+      timeout "${TIMEOUT:-600}" ${MPIEXEC:-mpiexec} $FLAGS -n "$np" "$bin" -options_file "$file" ${ARGS:-} $extra -max_steps "${STEPS:-20}" -output_interval 1e-9 -progress_every 0 -output_dir "$d/$v" > "$d/$v.log" 2>&1
       rc=$?
       [ $rc -eq 0 ] || why="$why run $v exited $rc ($d/$v.log);"
     done
@@ -64,5 +67,5 @@ PY
     fi
   done
 done
-echo "# bitcheck: $same same, $diff different or failed ($A vs $B${ARGS_B:+ with $ARGS_B})"
+echo "# bitcheck: $same same, $diff different or failed ($A${ARGS_A:+ with $ARGS_A}${CASEDIR_A:+ (case files of $CASEDIR_A)} vs $B${ARGS_B:+ with $ARGS_B})"
 [ $diff -eq 0 ]

@@ -131,7 +131,7 @@ atleast() {
 has() { [[ " $CHECKS " == *" $1 "* ]]; }
 
 # the WCSPH dam break of tests/test_rank_agreement.c (every WCSPH option on), through the collapse
-DBW="-case dam_break -dx 0.004 -delta 0.1 -alpha 0.1 -xsph 0.5 -output_interval 0.025 -checkpoint_interval 1e9"
+DBW="-case dam_break -dx 0.004 -wcsph_delta 0.1 -wcsph_alpha 0.1 -fluid_xsph 0.5 -output_interval 0.025 -checkpoint_interval 1e9"
 DBI="-options_file cases/dam_break.opts -fluid isph -dx 0.004 -output_interval 0.025 -checkpoint_interval 1e9"
 if has db_wcsph; then
   run db_wcsph_1 1 $DBW -t_end 0.2
@@ -159,7 +159,7 @@ if has db_isph; then
   atleast db_isph_8_drain_empty 8 db_isph_8_drain ranks_empty_max 1 "ranks that lost all their particles at one balance check (partition of the column at rest kept)"
 fi
 if has d3; then
-  D3="-case boxes -dim 3 -dx 0.01 -tank_1 0,0.24,0,0.05,0,0.2 -fluid_box_1 0,0,0,0.06,0.05,0.12 -alpha 0.1 -delta 0.1 -t_end 0.05 -output_interval 0.025 -checkpoint_interval 1e9"
+  D3="-case boxes -dim 3 -dx 0.01 -tank_1 0,0.24,0,0.05,0,0.2 -fluid_box_1 0,0,0,0.06,0.05,0.12 -wcsph_alpha 0.1 -wcsph_delta 0.1 -t_end 0.05 -output_interval 0.025 -checkpoint_interval 1e9"
   AMG3="-ppe_pc_hypre_boomeramg_coarsen_type HMIS -ppe_pc_hypre_boomeramg_interp_type ext+i -ppe_pc_hypre_boomeramg_P_max 4 -ppe_pc_hypre_boomeramg_agg_nl 1 -ppe_pc_hypre_boomeramg_strong_threshold 0.5"
   run d3_wcsph_1 1 $D3
   run d3_isph_1 1 $D3 -fluid isph -ppe_ksp_rtol 1e-10 $AMG3

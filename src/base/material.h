@@ -2,13 +2,14 @@
 #pragma once
 #include "base/base.h"
 #include "base/dim.h"
+#include "base/kernel.h"
 
 typedef struct {
   PetscReal rho0;     /* reference density */
   PetscReal c0;       /* artificial sound speed, Eq. 20 (WCSPH) */
   PetscReal mu;       /* dynamic viscosity, Eq. 16 */
-  PetscReal eta;      /* regularisation of Eqs. 16 and 22 over h (-eta) */
-  PetscReal lap_kappa; /* normalisation of Eqs. 16 and 22: exact on the lattice (-lap_normalise) */
+  PetscReal eta;      /* regularisation of Eqs. 16 and 22 over h (-fluid_eta) */
+  PetscReal lap_kappa; /* normalisation of Eqs. 16 and 22: exact on the lattice (-fluid_lap_normalise) */
   PetscReal alpha;    /* artificial viscosity, Eq. 24 (WCSPH) */
   PetscReal delta;    /* density diffusion (delta-SPH), 0 = off */
   PetscReal xsph;     /* XSPH epsilon, Eq. 44, 0 = off */
@@ -26,6 +27,13 @@ typedef struct {
   PetscReal eps;   /* artificial stress e, Eqs. 25-31 (0 = off) */
   PetscReal n;     /* exponent of f = W_ab / W(dx, h) in Eq. 23 */
 } SolidMaterial;
+
+/* The fluid material's options, both schemes', under the prefix -fluid_ (one PetscOptionsBegin block):
+ * -fluid_rho0, -fluid_mu, -fluid_eta, -fluid_lap_normalise (sets lap_kappa for `kernel` in `dim`
+ * dimensions), -fluid_c0 (default 10 v_ref), -fluid_xsph, -fluid_shift_correct into *fl, and
+ * -fluid_start_jitter into *start_jitter; called after the scene has set its defaults.  The names
+ * without the prefix work on for this version with a deprecation note. */
+PetscErrorCode FluidMaterialSetFromOptions(MPI_Comm comm, const SPHKernel *kernel, PetscInt dim, PetscReal v_ref, FluidMaterial *fl, PetscReal *start_jitter);
 
 /* EOS, Eq. 20 */
 static inline PetscReal EOSPressure(const FluidMaterial *m, PetscReal rho) { return m->c0 * m->c0 * (rho - m->rho0); }

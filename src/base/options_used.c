@@ -14,19 +14,21 @@ static PetscErrorCode RecordedDestroy(void)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode OptionsRecord(const char *name, const char *value, const void *set)
+PetscErrorCode OptionsRecord(const char *prefix, const char *name, const char *value, const void *set)
 {
+  char full[256];
   PetscFunctionBeginUser;
   if (set) PetscFunctionReturn(PETSC_SUCCESS);
   if (!recorded) {
     PetscCall(PetscOptionsCreate(&recorded));
     PetscCall(PetscRegisterFinalize(RecordedDestroy));
   }
-  PetscCall(PetscOptionsSetValue(recorded, name, value));
+  PetscCall(PetscSNPrintf(full, sizeof(full), "-%s%s", prefix ? prefix : "", name + 1));
+  PetscCall(PetscOptionsSetValue(recorded, full, value));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode OptionsRecordReal(const char *name, PetscReal v, const void *set)
+PetscErrorCode OptionsRecordReal(const char *prefix, const char *name, PetscReal v, const void *set)
 {
   char buf[64];
   PetscFunctionBeginUser;
@@ -35,17 +37,67 @@ PetscErrorCode OptionsRecordReal(const char *name, PetscReal v, const void *set)
     PetscCall(PetscSNPrintf(buf, sizeof(buf), "%.*g", digits, (double)v));
     if (strtod(buf, NULL) == (double)v) break;
   }
-  PetscCall(OptionsRecord(name, buf, NULL));
+  PetscCall(OptionsRecord(prefix, name, buf, NULL));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode OptionsRecordInt(const char *name, PetscInt v, const void *set)
+PetscErrorCode OptionsRecordInt(const char *prefix, const char *name, PetscInt v, const void *set)
 {
   char buf[32];
   PetscFunctionBeginUser;
   if (set || v < 0) PetscFunctionReturn(PETSC_SUCCESS);
   PetscCall(PetscSNPrintf(buf, sizeof(buf), "%" PetscInt_FMT, v));
-  PetscCall(OptionsRecord(name, buf, NULL));
+  PetscCall(OptionsRecord(prefix, name, buf, NULL));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* The renamed options the modules declared (OptDeprecated): old and new name. */
+static struct {
+  const char *old, *now;
+} renamed[32];
+static int nrenamed = 0;
+
+PetscErrorCode OptionsDeprecated(PetscOptionItems *PetscOptionsObject, const char *old, const char *now)
+{
+  char          *prefix = PetscOptionsObject->prefix, value[PETSC_MAX_PATH_LEN] = "";
+  PetscBool      given_old, given_now;
+  PetscErrorCode ierr;
+  int            k;
+  PetscFunctionBeginUser;
+  for (k = 0; k < nrenamed && strcmp(renamed[k].old, old); k++) {}
+  if (k == nrenamed) {
+    PetscCheck(nrenamed < (int)(sizeof(renamed) / sizeof(renamed[0])), PETSC_COMM_SELF, PETSC_ERR_PLIB, "More than %d renamed options", nrenamed);
+    renamed[nrenamed].old   = old; /* string literals */
+    renamed[nrenamed++].now = now;
+  }
+  PetscCall(PetscOptionsHasName(PetscOptionsObject->options, NULL, old, &given_old));
+  if (!given_old) PetscFunctionReturn(PETSC_SUCCESS);
+  PetscCall(PetscOptionsGetString(PetscOptionsObject->options, NULL, now, value, sizeof(value), &given_now));
+  PetscOptionsObject->prefix = NULL; /* both names are full */
+  ierr                       = PetscOptionsDeprecated(old, now, OPT_RENAMED_IN, NULL);
+  PetscOptionsObject->prefix = prefix;
+  PetscCall(ierr);
+  if (given_now) PetscCall(PetscOptionsSetValue(PetscOptionsObject->options, now, value[0] ? value : NULL)); /* the new name wins */
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode OptionsRenameAll(const char *all, char **out)
+{
+  size_t len = strlen(all), longest = 0;
+  char  *copy, *tok, *rest;
+  PetscFunctionBeginUser;
+  for (int k = 0; k < nrenamed; k++) longest = PetscMax(longest, strlen(renamed[k].now));
+  PetscCall(PetscCalloc1(len + (len / 2 + 1) * longest + 1, out)); /* every name replaced by the longest */
+  PetscCall(PetscStrallocpy(all, &copy));
+  for (rest = copy; (tok = strsep(&rest, " "));) {
+    const char *name = tok;
+    if (!*tok) continue;
+    for (int k = 0; k < nrenamed; k++)
+      if (!strcmp(tok, renamed[k].old)) name = renamed[k].now;
+    if ((*out)[0]) strcat(*out, " ");
+    strcat(*out, name);
+  }
+  PetscCall(PetscFree(copy));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

@@ -11,7 +11,7 @@ static inline PetscReal ArtificialViscosity(PetscReal alpha, PetscReal c, PetscR
 }
 
 /* Eq. 16: laminar viscosity, the coefficient of (v_a - v_b); rgw = r_ab . grad_a W_ab; the
- * regularisation eta h (-eta; the paper 0.1) keeps r -> 0 finite; kappa normalises the operator to
+ * regularisation eta h (-fluid_eta; the paper 0.1) keeps r -> 0 finite; kappa normalises the operator to
  * be exact on the lattice (kernel.h, KernelLatticeSum, LATTICE_LAPLACIAN) */
 static inline PetscReal LaminarViscosity(PetscReal mb, PetscReal mu, PetscReal rhoa, PetscReal rhob, PetscReal rgw, PetscReal r2, PetscReal h, PetscReal eta, PetscReal kappa)
 {

@@ -11,7 +11,7 @@ const char *const ISPHFreeSurfaces[] = {"density", "divr", "ISPHFreeSurface", "I
 const char *const ISPHSources[]      = {"divergence", "density", "blend", "ISPHSource", "ISPH_SOURCE_", NULL};
 const char *const ISPHGradients[]    = {"eq14", "corrected", "hybrid", "ISPHGradient", "ISPH_GRAD_", NULL};
 
-PetscErrorCode ISPHSetUp(Sim sim)
+PetscErrorCode ISPHSetFromOptions(Sim sim)
 {
   ISPH      s;
   PetscInt  fs, src, grad;
@@ -32,18 +32,18 @@ PetscErrorCode ISPHSetUp(Sim sim)
    * flung at 16 m/s and over walls (docs/convergence.md, -isph_gradient_cond) */
   s->grad_cond  = 0.25;
   fs = s->fs; src = s->source; grad = s->gradient;
-  PetscOptionsBegin(sim->comm, NULL, "ISPH fluid (section 2.8)", "ISPH");
-  PetscCall(OptEList("-isph_free_surface", "Free-surface criterion: density (rho* < beta rho0, section 2.5) or divr (divergence of position)", "", ISPHFreeSurfaces, 2, ISPHFreeSurfaces[fs], &fs, NULL));
-  PetscCall(OptReal("-isph_beta", "Free surface where rho* < beta rho0 (paper: 0.8 < beta < 0.99)", "", s->beta, &s->beta, NULL));
-  PetscCall(OptReal("-isph_divr", "Free surface where div r < this (2 in the bulk in 2D)", "", s->divr_min, &s->divr_min, NULL));
-  PetscCall(OptEList("-isph_source", "PPE source: divergence (Eq. 13, 48), density ((rho0 - rho*)/(rho0 dt^2)) or blend", "", ISPHSources, 3, ISPHSources[src], &src, NULL));
-  PetscCall(OptReal("-isph_blend", "Weight of the density source in -isph_source blend", "", s->blend, &s->blend, NULL));
-  PetscCall(OptEList("-isph_gradient", "Pressure gradient of the corrector: eq14 (symmetric, Eq. 14), corrected (Bonet-Lok), hybrid (corrected on and next to the free surface)", "", ISPHGradients, 3, ISPHGradients[grad], &grad, NULL));
-  PetscCall(OptReal("-isph_gradient_cond", "The corrected gradient only where its correction matrix is well conditioned: smallest over largest eigenvalue above this (1 on a full or half support; small across a thin jet; 0: wherever it is invertible); elsewhere the uncorrected difference form", "", s->grad_cond, &s->grad_cond, NULL));
-  PetscCall(OptBool("-isph_solid_eq14", "Fluid particles next to a solid body (and not at the free surface) take Eq. 14, whose pair forces are those the body receives: the momentum exchange is exact", "", s->solid_eq14, &s->solid_eq14, NULL));
-  PetscCall(OptReal("-isph_alpha", "Artificial viscosity (Eq. 24, velocity scale c0) in the predictor; damps the free-surface noise of the projection", "", s->alpha, &s->alpha, NULL));
-  PetscCall(OptBool("-isph_wall_contact", "A free-surface particle (P = 0, so no pressure stops it) that approaches a wall within dx of its first row loses its velocity towards the wall", "", s->wall_contact, &s->wall_contact, NULL));
-  PetscCall(OptReal("-isph_shift", "Particle shifting coefficient A (D = A h |v| dt, Skillen et al. 2013); 0 = off", "", s->shift, &s->shift, NULL));
+  PetscOptionsBegin(sim->comm, "isph_", "ISPH fluid (section 2.8)", "ISPH");
+  PetscCall(OptEList("-free_surface", "Free-surface criterion: density (rho* < beta rho0, section 2.5) or divr (divergence of position)", "", ISPHFreeSurfaces, 2, ISPHFreeSurfaces[fs], &fs, NULL));
+  PetscCall(OptReal("-beta", "Free surface where rho* < beta rho0 (paper: 0.8 < beta < 0.99)", "", s->beta, &s->beta, NULL));
+  PetscCall(OptReal("-divr", "Free surface where div r < this (2 in the bulk in 2D)", "", s->divr_min, &s->divr_min, NULL));
+  PetscCall(OptEList("-source", "PPE source: divergence (Eq. 13, 48), density ((rho0 - rho*)/(rho0 dt^2)) or blend", "", ISPHSources, 3, ISPHSources[src], &src, NULL));
+  PetscCall(OptReal("-blend", "Weight of the density source in -isph_source blend", "", s->blend, &s->blend, NULL));
+  PetscCall(OptEList("-gradient", "Pressure gradient of the corrector: eq14 (symmetric, Eq. 14), corrected (Bonet-Lok), hybrid (corrected on and next to the free surface)", "", ISPHGradients, 3, ISPHGradients[grad], &grad, NULL));
+  PetscCall(OptReal("-gradient_cond", "The corrected gradient only where its correction matrix is well conditioned: smallest over largest eigenvalue above this (1 on a full or half support; small across a thin jet; 0: wherever it is invertible); elsewhere the uncorrected difference form", "", s->grad_cond, &s->grad_cond, NULL));
+  PetscCall(OptBool("-solid_eq14", "Fluid particles next to a solid body (and not at the free surface) take Eq. 14, whose pair forces are those the body receives: the momentum exchange is exact", "", s->solid_eq14, &s->solid_eq14, NULL));
+  PetscCall(OptReal("-alpha", "Artificial viscosity (Eq. 24, velocity scale c0) in the predictor; damps the free-surface noise of the projection", "", s->alpha, &s->alpha, NULL));
+  PetscCall(OptBool("-wall_contact", "A free-surface particle (P = 0, so no pressure stops it) that approaches a wall within dx of its first row loses its velocity towards the wall", "", s->wall_contact, &s->wall_contact, NULL));
+  PetscCall(OptReal("-shift", "Particle shifting coefficient A (D = A h |v| dt, Skillen et al. 2013); 0 = off", "", s->shift, &s->shift, NULL));
   PetscOptionsEnd();
   s->fs = (ISPHFreeSurface)fs; s->source = (ISPHSource)src; s->gradient = (ISPHGradient)grad;
   PetscCheck(s->beta > 0 && s->beta < 1, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-isph_beta %g must be in (0, 1); the paper uses 0.8 .. 0.99", (double)s->beta);
@@ -54,6 +54,13 @@ PetscErrorCode ISPHSetUp(Sim sim)
   PetscCheck(s->grad_cond >= 0 && s->grad_cond < 1, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-isph_gradient_cond %g must be in [0, 1): the smallest over the largest eigenvalue of the correction matrix (0.25 the default)", (double)s->grad_cond);
   if (s->source == ISPH_SOURCE_DIVERGENCE) s->blend = 0;
   if (s->source == ISPH_SOURCE_DENSITY) s->blend = 1;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode ISPHSetUp(Sim sim)
+{
+  ISPH s = sim->isph;
+  PetscFunctionBeginUser;
   s->lat_w    = KernelLatticeSum(&sim->kernel, LATTICE_W, 0);
   s->lat_divr = KernelLatticeSum(&sim->kernel, LATTICE_DIVR, 0);
   PetscCall(PPECreate(sim->comm, &s->ppe));

@@ -30,7 +30,10 @@ struct _p_ISPH {
   PPE             ppe;
 };
 
-/* Options and fields (before ParticlesSetUp). */
+/* Creates sim->isph and reads its options, under the prefix -isph_, after
+ * FluidMaterialSetFromOptions; then the set-up (the pressure equation, fields), before
+ * ParticlesSetUp. */
+PetscErrorCode ISPHSetFromOptions(Sim sim);
 PetscErrorCode ISPHSetUp(Sim sim);
 /* State of walls after the first rebuild. */
 PetscErrorCode ISPHInitialize(Sim sim);

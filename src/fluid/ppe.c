@@ -33,11 +33,11 @@ PetscErrorCode PPESetFromOptions(PPE ppe, PetscBool symmetric)
   ppe->mat_hypre     = PETSC_TRUE;
   ppe->wall_approach = PETSC_TRUE;
   ppe->wall_clip     = PETSC_TRUE; /* a wall never pulls fluid; a clipped one leaves the corrected gradient's fit (isph.c) */
-  PetscOptionsBegin(ppe->comm, NULL, "Pressure Poisson equation", "PPE");
-  PetscCall(OptReal("-ppe_pc_qmax", "Build the preconditioner from the PPE without the pairs beyond r = q h (their weight goes to the diagonal); 0: from the PPE itself", "", ppe->pc_qmax, &ppe->pc_qmax, NULL));
-  PetscCall(OptBool("-ppe_wall_approach", "Fixed walls stop the fluid that approaches them: their pressure rows take the projection's Neumann condition dP/dn = rho (v* - v*_wall) . n / dt for approaching fluid neighbours (not only rho g . n)", "", ppe->wall_approach, &ppe->wall_approach, NULL));
-  PetscCall(OptBool("-ppe_wall_clip", "Clip a wall's pressure above the water line (its hydrostatic extrapolation is negative there) at min(0, its fluid's mean pressure), so that a wall never pulls fluid; a clipped wall particle is left out of the corrected gradient's plane fit; solids are always clipped", "", ppe->wall_clip, &ppe->wall_clip, NULL));
-  PetscCall(OptBool("-ppe_mat_hypre", "With a hypre preconditioner: build the matrix it reads (the PPE, or the sparser one of -ppe_pc_qmax) in hypre's ParCSR format, sharing our arrays, instead of a PETSc AIJ matrix that hypre copies at every set-up", "", ppe->mat_hypre, &ppe->mat_hypre, NULL));
+  PetscOptionsBegin(ppe->comm, "ppe_", "Pressure Poisson equation", "PPE");
+  PetscCall(OptReal("-pc_qmax", "Build the preconditioner from the PPE without the pairs beyond r = q h (their weight goes to the diagonal); 0: from the PPE itself", "", ppe->pc_qmax, &ppe->pc_qmax, NULL));
+  PetscCall(OptBool("-wall_approach", "Fixed walls stop the fluid that approaches them: their pressure rows take the projection's Neumann condition dP/dn = rho (v* - v*_wall) . n / dt for approaching fluid neighbours (not only rho g . n)", "", ppe->wall_approach, &ppe->wall_approach, NULL));
+  PetscCall(OptBool("-wall_clip", "Clip a wall's pressure above the water line (its hydrostatic extrapolation is negative there) at min(0, its fluid's mean pressure), so that a wall never pulls fluid; a clipped wall particle is left out of the corrected gradient's plane fit; solids are always clipped", "", ppe->wall_clip, &ppe->wall_clip, NULL));
+  PetscCall(OptBool("-mat_hypre", "With a hypre preconditioner: build the matrix it reads (the PPE, or the sparser one of -ppe_pc_qmax) in hypre's ParCSR format, sharing our arrays, instead of a PETSc AIJ matrix that hypre copies at every set-up", "", ppe->mat_hypre, &ppe->mat_hypre, NULL));
   PetscOptionsEnd();
   PetscCheck(ppe->pc_qmax >= 0, ppe->comm, PETSC_ERR_ARG_OUTOFRANGE, "-ppe_pc_qmax %g must be >= 0 (0: the preconditioner sees the whole matrix)", (double)ppe->pc_qmax);
   PetscCall(KSPSetFromOptions(ppe->ksp));

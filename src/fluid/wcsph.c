@@ -7,19 +7,32 @@
 #include "fluid/shifting.h"
 #include "base/dim.h"
 
-PetscErrorCode WCSPHSetUp(Sim sim)
+PetscErrorCode WCSPHSetFromOptions(Sim sim)
 {
   FluidMaterial *fl   = &sim->fl;
   PetscReal      skin = WCSPH_SKIN_DEFAULT;
   PetscFunctionBeginUser;
-  PetscOptionsBegin(sim->comm, NULL, "WCSPH fluid", "WCSPH");
-  PetscCall(OptReal("-wcsph_shift", "Particle shifting coefficient A (D = A h |v| dt, Skillen et al. 2013; none on the free surface, div r < 1.5, and next to it); 0 = off", "", fl->shift, &fl->shift, NULL));
-  PetscCall(OptBool("-wcsph_wall_clip", "Clip the wall pressure (Adami extrapolation) at 0: fluid in tension next to a wall is not held on it", "", fl->wall_clip, &fl->wall_clip, NULL));
-  PetscCall(OptReal("-wcsph_skin", "Verlet skin of the neighbour list, in particle spacings: the pairs within 2h + skin are kept and the list is rebuilt only once some particle has moved half the skin; 0 rebuilds at every step", "", skin, &skin, NULL));
+  PetscOptionsBegin(sim->comm, "wcsph_", "WCSPH fluid", "WCSPH");
+  PetscCall(OptDeprecated("-alpha", "-wcsph_alpha"));
+  PetscCall(OptDeprecated("-delta", "-wcsph_delta"));
+  PetscCall(OptReal("-alpha", "Artificial viscosity coefficient, Eq. 24", "", fl->alpha, &fl->alpha, NULL));
+  PetscCall(OptReal("-delta", "Density diffusion coefficient (delta-SPH); 0 = off", "", fl->delta, &fl->delta, NULL));
+  PetscCall(OptReal("-shift", "Particle shifting coefficient A (D = A h |v| dt, Skillen et al. 2013; none on the free surface, div r < 1.5, and next to it); 0 = off", "", fl->shift, &fl->shift, NULL));
+  PetscCall(OptBool("-wall_clip", "Clip the wall pressure (Adami extrapolation) at 0: fluid in tension next to a wall is not held on it", "", fl->wall_clip, &fl->wall_clip, NULL));
+  PetscCall(OptReal("-skin", "Verlet skin of the neighbour list, in particle spacings: the pairs within 2h + skin are kept and the list is rebuilt only once some particle has moved half the skin; 0 rebuilds at every step", "", skin, &skin, NULL));
   PetscOptionsEnd();
+  PetscCheck(fl->alpha >= 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-wcsph_alpha %g must be >= 0", (double)fl->alpha);
+  PetscCheck(fl->delta >= 0 && fl->delta <= 1, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-wcsph_delta %g must be in [0, 1]", (double)fl->delta);
   PetscCheck(fl->shift >= 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-wcsph_shift %g must be >= 0", (double)fl->shift);
   PetscCheck(skin >= 0 && skin <= 2, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-wcsph_skin %g must be in [0, 2] particle spacings", (double)skin);
   sim->nbhd.skin = skin * sim->dx;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode WCSPHSetUp(Sim sim)
+{
+  FluidMaterial *fl = &sim->fl;
+  PetscFunctionBeginUser;
   if (sim->nbhd.skin > 0) PetscCall(ParticlesEnableField(sim->P, FIELD_XREB, PETSC_FALSE)); /* the positions at the last rebuild */
   /* the solids' sub-steps move them after the list's pairs are computed, and their own list is made
    * then (SolidPrepare): a restart needs those positions too */

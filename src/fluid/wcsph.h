@@ -5,6 +5,10 @@
 
 /* -wcsph_skin default (particle spacings): the measured choice, docs/performance.md */
 #define WCSPH_SKIN_DEFAULT 0.3
+/* Its options, under the prefix -wcsph_ (-wcsph_alpha, -wcsph_delta, -wcsph_shift, -wcsph_wall_clip,
+ * -wcsph_skin; -alpha and -delta work on for this version with a deprecation note), after
+ * FluidMaterialSetFromOptions; then the set-up (fields), before ParticlesSetUp. */
+PetscErrorCode WCSPHSetFromOptions(Sim sim);
 PetscErrorCode WCSPHSetUp(Sim sim);
 /* One line of the run's header: the WCSPH fluid's settings. */
 PetscErrorCode WCSPHView(Sim sim, PetscViewer v);

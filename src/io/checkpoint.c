@@ -1,4 +1,5 @@
 #include "io/checkpoint.h"
+#include "base/options_used.h"
 #include "run/guard.h"
 #include "io/io.h"
 #include "io/io_space.h"
@@ -308,7 +309,7 @@ static PetscErrorCode CheckHeader(Sim sim, PetscViewer v, PetscInt *ranks, Petsc
   PetscCheck(PetscAbsReal(dx - sim->dx) <= 1e-12 * dx, sim->comm, PETSC_ERR_USER_INPUT, "-restart %s was written with -dx %g, this run has -dx %g: a restart keeps the resolution (drop -dx or give %g)", path, (double)dx, (double)sim->dx, (double)dx);
   PetscCall(ReadString(v, "fields", buf, sizeof(buf)));
   PetscCall(FieldList(sim->P, fields, sizeof(fields)));
-  PetscCheck(!strcmp(buf, fields), sim->comm, PETSC_ERR_USER_INPUT, "-restart %s holds the particle fields {%s}, this run allocates {%s}: restart with the options the checkpoint was written with (e.g. -xsph, -isph_shift, -wcsph_shift, -solid_gradient, -fsi_*)", path, buf, fields);
+  PetscCheck(!strcmp(buf, fields), sim->comm, PETSC_ERR_USER_INPUT, "-restart %s holds the particle fields {%s}, this run allocates {%s}: restart with the options the checkpoint was written with (e.g. -fluid_xsph, -isph_shift, -wcsph_shift, -solid_gradient, -fsi_*)", path, buf, fields);
   PetscCall(PetscViewerHDF5ReadAttribute(v, "/", "cells", PETSC_INT, NULL, ncell));
   PetscCheck(*ncell == GridNumCells(&sim->grid), sim->comm, PETSC_ERR_USER_INPUT, "-restart %s has a grid of %d cells, this run %d: the scene's geometry options differ from the checkpointed run's", path, (int)*ncell, (int)GridNumCells(&sim->grid));
   PetscCall(PetscViewerHDF5ReadAttribute(v, "/", "probe_columns", PETSC_INT, NULL, &k));
@@ -350,7 +351,8 @@ static const char *ValueIn(char *all, const char *name, char *buf, size_t len)
 }
 
 /* Physics options that differ from the checkpointed run's: a warning (the run goes on, e.g. with a
- * changed -alpha, but it is then no continuation of the same run). */
+ * changed -wcsph_alpha, but it is then no continuation of the same run).  A checkpoint of an earlier
+ * version may hold options by their old names: compared by their new ones. */
 static PetscErrorCode CompareOptions(Sim sim, PetscViewer v)
 {
   char     *then = NULL, *now = NULL, diff[2048] = "", a[256], b[256];
@@ -359,6 +361,12 @@ static PetscErrorCode CompareOptions(Sim sim, PetscViewer v)
   PetscCall(PetscViewerHDF5HasAttribute(v, "/", "options", &has));
   if (!has) PetscFunctionReturn(PETSC_SUCCESS);
   PetscCall(PetscViewerHDF5ReadAttribute(v, "/", "options", PETSC_STRING, NULL, &then));
+  {
+    char *renamed;
+    PetscCall(OptionsRenameAll(then, &renamed));
+    PetscCall(PetscFree(then));
+    then = renamed;
+  }
   PetscCall(PetscOptionsGetAll(NULL, &now));
   for (int pass = 0; pass < 2; pass++) { /* options of the checkpointed run, then this run's */
     char *list = pass ? now : then;

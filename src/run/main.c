@@ -90,7 +90,8 @@ static PetscErrorCode SetUpErrorHandler(MPI_Comm comm, int line, const char *fun
 
 /* Options nobody read are an error: a misspelt -t_ned would otherwise pass silently.  Exceptions:
  * - the other fluid scheme's families (-isph_*, -ppe_*, -fsi_implicit, -fsi_dt_transit in a WCSPH
- *   run; -wcsph_* in an ISPH run) pass silently: a case file carries both schemes' settings;
+ *   run; -wcsph_*, and -alpha, -delta, their old names, in an ISPH run) pass silently: a case file
+ *   carries both schemes' settings;
  * - this scheme's families and PETSc's own (-log_*, -mat_*, ...) warn: some are read only in some
  *   set-ups (e.g. -isph_blend with -isph_source blend);
  * - unprefixed -ksp_* / -pc_* are an error with a hint: the pressure solver reads -ppe_ksp_*, -ppe_pc_*.
@@ -102,6 +103,7 @@ static PetscErrorCode CheckUnusedOptions(MPI_Comm comm, FluidScheme fluid)
     int         owner; /* -1: PETSc's own; else the FluidScheme that reads it */
   } families[] = {
     {"isph_", FLUID_ISPH}, {"ppe_", FLUID_ISPH}, {"fsi_implicit", FLUID_ISPH}, {"fsi_dt_transit", FLUID_ISPH}, {"wcsph_", FLUID_WCSPH},
+    {"alpha", FLUID_WCSPH}, {"delta", FLUID_WCSPH}, /* the old names of -wcsph_alpha, -wcsph_delta (deprecated in 0.9.0) */
     {"mat_", -1}, {"vec_", -1}, {"sf_", -1}, {"log", -1}, {"info", -1}, {"malloc", -1}, {"options_", -1}, {"viewer", -1}, {"history", -1}, {"on_error", -1}, {"no_signal_handler", -1}, {"fp_trap", -1}, {"check_pointer_intensity", -1}, {"memory_view", -1}, {"error_output", -1}, {"help", -1}, {"nox", -1}, {"use_gpu_aware_mpi", -1}, {"unused_options", -1},
   };
   const char *modes[] = {"error", "warn", "UnusedMode", "UNUSED_", NULL};
@@ -208,11 +210,11 @@ int main(int argc, char **argv)
   if (!ierr) { /* OUTDIR/options_used: -options_file it to repeat the run */
     char header[256], chosen[512];
     PetscCall(PetscSNPrintf(header, sizeof(header), "sphfsi %s (commit %s): the options of this run, given, chosen and defaulted; -options_file this file repeats it (PETSc's own solver options not listed keep this PETSc version's defaults)", SphfsiVersion(), SphfsiCommit()));
-    /* the scene's values and -c0 (10x its speed) at full precision */
+    /* the scene's values and -fluid_c0 (10x its speed) at full precision */
     PetscCall(PetscSNPrintf(chosen, sizeof(chosen), "-t_end %.17g\n-gravity %.17g,%.17g", (double)sim->t_end, (double)sim->g[0], (double)sim->g[1]));
     if (sim->dim == 3) PetscCall(PetscSNPrintf(chosen + strlen(chosen), sizeof(chosen) - strlen(chosen), ",%.17g", (double)sim->g[2]));
     PetscCall(PetscSNPrintf(chosen + strlen(chosen), sizeof(chosen) - strlen(chosen), "\n# -dx %.17g (from the scene's options)\n", (double)sim->dx));
-    if (sim->has_fluid) PetscCall(PetscSNPrintf(chosen + strlen(chosen), sizeof(chosen) - strlen(chosen), "-c0 %.17g\n", (double)sim->fl.c0));
+    if (sim->has_fluid) PetscCall(PetscSNPrintf(chosen + strlen(chosen), sizeof(chosen) - strlen(chosen), "-fluid_c0 %.17g\n", (double)sim->fl.c0));
     PetscCall(OptionsUsedWrite(PETSC_COMM_WORLD, sim->outdir, header, chosen));
   }
   if (ierr && bad_input.quiet) { /* every rank has it: one line from rank 0, then a clean exit */

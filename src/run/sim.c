@@ -147,36 +147,6 @@ PetscErrorCode SimSetFromOptions(Sim sim)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-/* Fluid material options; defaults from the scene (c0 = 10 v_ref). */
-static PetscErrorCode FluidOptions(Sim sim)
-{
-  PetscBool norm = PETSC_TRUE;
-  PetscFunctionBeginUser;
-  if (sim->fl.c0 <= 0) sim->fl.c0 = 10.0 * sim->v_ref;
-  PetscOptionsBegin(sim->comm, NULL, "Fluid", "Sim");
-  PetscCall(OptReal("-rho0", "Fluid reference density (kg/m^3)", "", sim->fl.rho0, &sim->fl.rho0, NULL));
-  PetscCall(OptReal("-mu", "Fluid dynamic viscosity (Pa s), Eq. 16", "", sim->fl.mu, &sim->fl.mu, NULL));
-  PetscCall(OptReal("-eta", "Regularisation eta / h of the laminar viscosity (Eq. 16) and the pressure Laplacian (Eq. 22), r^2 / (r^2 + eta^2 h^2); the paper 0.1, which weakens the nearest pairs by 4 % at h = 2 dx (-lap_normalise restores the operator's lattice sum)", "", sim->fl.eta, &sim->fl.eta, NULL));
-  PetscCall(OptBool("-lap_normalise", "Scale the laminar viscosity (Eq. 16) and the pressure Laplacian (Eq. 22) so that they are exact on the lattice for the run's kernel, h / dx and -eta (kernel.h)", "", norm, &norm, NULL));
-  PetscCall(OptReal("-c0", "Artificial sound speed (m/s), Eq. 20; default 10x the scene's expected maximum speed", "", sim->fl.c0, &sim->fl.c0, NULL));
-  PetscCall(OptReal("-alpha", "Artificial viscosity coefficient, Eq. 24", "", sim->fl.alpha, &sim->fl.alpha, NULL));
-  PetscCall(OptReal("-delta", "Density diffusion coefficient (delta-SPH); 0 = off", "", sim->fl.delta, &sim->fl.delta, NULL));
-  PetscCall(OptReal("-xsph", "XSPH epsilon, Eq. 44; 0 = off", "", sim->fl.xsph, &sim->fl.xsph, NULL));
-  PetscCall(OptReal("-start_jitter", "Displace each particle of the fluid's start lattice at random by up to this fraction of dx in x and y (by its id: the same on any number of ranks); a perfect lattice gives way all at once where the flow squeezes it (Taylor-Green's stagnation points); 0 = the lattice", "", sim->start_jitter, &sim->start_jitter, NULL));
-  PetscCall(OptBool("-shift_correct", "With particle shifting (-wcsph_shift, -isph_shift): correct a shifted particle's velocity to its new place, v += dr . grad v", "", sim->fl.shift_correct, &sim->fl.shift_correct, NULL));
-  PetscOptionsEnd();
-  PetscCheck(sim->fl.rho0 > 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-rho0 %g must be > 0", (double)sim->fl.rho0);
-  PetscCheck(sim->fl.mu >= 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-mu %g must be >= 0", (double)sim->fl.mu);
-  PetscCheck(sim->fl.eta > 0 && sim->fl.eta <= 1, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-eta %g must be in (0, 1] (eta / h; the paper 0.1)", (double)sim->fl.eta);
-  sim->fl.lap_kappa = norm ? (PetscReal)sim->dim / KernelLatticeSum(&sim->kernel, LATTICE_LAPLACIAN, sim->fl.eta) : 1.0;
-  PetscCheck(sim->fl.c0 > 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-c0 %g must be > 0", (double)sim->fl.c0);
-  PetscCheck(sim->fl.alpha >= 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-alpha %g must be >= 0", (double)sim->fl.alpha);
-  PetscCheck(sim->fl.delta >= 0 && sim->fl.delta <= 1, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-delta %g must be in [0, 1]", (double)sim->fl.delta);
-  PetscCheck(sim->start_jitter >= 0 && sim->start_jitter <= 0.25, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-start_jitter %g must be in [0, 0.25] (a fraction of dx)", (double)sim->start_jitter);
-  PetscCheck(sim->fl.xsph >= 0 && sim->fl.xsph <= 1, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-xsph %g must be in [0, 1]", (double)sim->fl.xsph);
-  PetscFunctionReturn(PETSC_SUCCESS);
-}
-
 PetscErrorCode SimTotalMass(Sim sim, PetscReal *M)
 {
   PetscReal s = 0, *m = PField(sim->P, FIELD_M);
@@ -207,8 +177,11 @@ static PetscErrorCode HelpOtherModules(Sim sim)
 {
   PetscBool store;
   PetscFunctionBeginUser;
-  if (sim->has_fluid && sim->fluid == FLUID_ISPH) PetscCall(WCSPHSetUp(sim));
-  else if (sim->has_fluid) {
+  if (sim->has_fluid && sim->fluid == FLUID_ISPH) {
+    PetscCall(WCSPHSetFromOptions(sim));
+    PetscCall(WCSPHSetUp(sim));
+  } else if (sim->has_fluid) {
+    PetscCall(ISPHSetFromOptions(sim));
     PetscCall(ISPHSetUp(sim));
     PetscCall(ISPHDestroy(&sim->isph));
   }
@@ -246,14 +219,18 @@ PetscErrorCode SimSetUp(Sim sim)
   for (PetscInt d = 0; d < sim->dim; d++) PetscCheck(!PetscIsInfOrNanReal(sim->g[d]), sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-gravity: component %" PetscInt_FMT " is not finite", d + 1);
   KernelInit(&sim->kernel, sim->kernel.type, sim->dim, sim->kernel.h_factor); /* the normalisation of the scene's dimension */
   PetscCall(ParticlesSetDimension(sim->P, sim->dim));
-  if (sim->has_fluid) PetscCall(FluidOptions(sim));
+  if (sim->has_fluid) PetscCall(FluidMaterialSetFromOptions(sim->comm, &sim->kernel, sim->dim, sim->v_ref, &sim->fl, &sim->start_jitter)); /* after the scene's defaults */
   if (sim->has_solid) {
+    PetscCall(SolidSetFromOptions(sim));
     PetscCall(SolidSetUp(sim)); /* before ISPH: the coupling decides the PPE's symmetry */
     PetscCall(ParticlesEnableField(sim->P, FIELD_XREB, PETSC_FALSE)); /* solids move after a rebuild */
   }
-  if (sim->has_fluid) {
-    if (sim->fluid == FLUID_ISPH) PetscCall(ISPHSetUp(sim));
-    else PetscCall(WCSPHSetUp(sim));
+  if (sim->has_fluid && sim->fluid == FLUID_ISPH) {
+    PetscCall(ISPHSetFromOptions(sim));
+    PetscCall(ISPHSetUp(sim));
+  } else if (sim->has_fluid) {
+    PetscCall(WCSPHSetFromOptions(sim));
+    PetscCall(WCSPHSetUp(sim));
   }
   if (sim->help) PetscCall(HelpOtherModules(sim));
   PetscCall(ParticlesSetUp(sim->P));

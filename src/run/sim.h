@@ -48,14 +48,14 @@ struct _p_Sim {
   ISPH          isph;  /* NULL unless -fluid isph */
   SolidMaterial sl;
   Solid         solid; /* NULL unless the scene has solids */
-  PetscReal     v_ref;      /* expected maximum speed: c0 = 10 v_ref when -c0 is not given */
+  PetscReal     v_ref;      /* expected maximum speed: c0 = 10 v_ref when -fluid_c0 is not given */
   SPHKernel     kernel;     /* -kernel, -h_factor: the smoothing kernel of every pair */
   PetscReal     dx, h_max;  /* finest spacing, largest smoothing length */
   PetscReal     dom_lo[3], dom_hi[3];
   PetscBool     periodic[3];
   PetscBool     outflow;    /* fluid leaving the domain box is removed (open boundary) */
   PetscBool     confined;   /* the fluid has no free surface (Taylor-Green, Poiseuille) */
-  PetscReal     start_jitter; /* -start_jitter: random displacement of the fluid's start lattice (dx) */
+  PetscReal     start_jitter; /* -fluid_start_jitter: random displacement of the fluid's start lattice (dx) */
   struct { PetscInt n; PetscReal z0, dz; } extrude; /* a 3D slab built from a 2D layout (SceneExtrudeBegin) */
   /* time */
   PetscReal t, t_end, dt, dt_fixed, cfl;

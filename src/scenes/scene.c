@@ -134,7 +134,7 @@ static PetscReal IdUniform(PetscInt id, unsigned salt)
   return 2.0 * (PetscReal)(z >> 11) / 9007199254740992.0 - 1.0;
 }
 
-/* A lattice spaced s[d] along each direction of the layout; fluid lattices take -start_jitter: each
+/* A lattice spaced s[d] along each direction of the layout; fluid lattices take -fluid_start_jitter: each
  * particle displaced by up to that fraction of dx in every direction. */
 static PetscErrorCode AddBlockSpaced(Sim sim, ParticleKind kind, const PetscReal lo[], const PetscInt n[], const PetscReal s[], PetscReal dx, PetscReal rho0)
 {

@@ -28,7 +28,7 @@ static PetscErrorCode Create(Sim sim)
   PetscCall(SceneKeepReal(sim, &c->t_last));
   c->L = 1.0; c->U = 1.0; c->Re = 100;
   PetscOptionsBegin(sim->comm, NULL, "Scene taylor_green: decaying vortices in a periodic unit square (L = 1 m, U = 1 m/s)", "");
-  PetscCall(OptReal("-re", "Reynolds number U L / nu; sets mu = rho0 U L / Re (a later -mu overrides)", "", c->Re, &c->Re, NULL));
+  PetscCall(OptReal("-re", "Reynolds number U L / nu; sets mu = rho0 U L / Re (a later -fluid_mu overrides)", "", c->Re, &c->Re, NULL));
   PetscCall(OptInt("-dim", "Dimension: 2, or 3 for the same vortices in a periodic cube (uniform in z)", "", sim->dim, &sim->dim, NULL));
   PetscOptionsEnd();
   PetscCheck(sim->dim == 2 || sim->dim == 3, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dim %" PetscInt_FMT " must be 2 or 3", sim->dim);

@@ -13,7 +13,23 @@
 const char *const SolidGradients[]    = {"standard", "corrected", "SolidGradient", "SOLID_GRAD_", NULL};
 const char *const SolidFormulations[] = {"updated", "total", "SolidFormulation", "SOLID_", NULL};
 
-PetscErrorCode SolidSetUp(Sim sim)
+/* The coupling's options (-fsi_), with a fluid: in the solid, which carries them. */
+static PetscErrorCode FSISetFromOptions(Sim sim)
+{
+  Solid s = sim->solid;
+  PetscFunctionBeginUser;
+  s->implicit = (PetscBool)(sim->fluid == FLUID_ISPH);
+  s->transit  = sim->fluid == FLUID_ISPH ? 0.85 : 0.0; /* K, G x 5 gate: 1.0 swings the load -138..360 N/m, 0.85 runs clean */
+  PetscOptionsBegin(sim->comm, "fsi_", "Fluid-structure coupling", "Solid");
+  if (sim->fluid == FLUID_ISPH) PetscCall(OptBool("-implicit", "ISPH + solid: the solid rows of the pressure equation answer the solid's acceleration under that pressure (implicit interface; off = the solid seen as a wall at rest during the solve, unstable for light solids)", "", s->implicit, &s->implicit, NULL));
+  if (sim->fluid == FLUID_ISPH) PetscCall(OptReal("-dt_transit", "ISPH + solid: the fluid step is at most this many times the time an elastic wave (c0 of the solid) takes to cross the solid's largest extent, since the pressure is frozen over the solid sub-steps (0 = no limit); a gate 5x stiffer than the rubber needs it", "", s->transit, &s->transit, NULL));
+  PetscCall(OptBool("-repulsion", "Repulsive force Eq. 41 between fluid and solid particles (default: on with -fluid wcsph, off with isph)", "", s->repulsion, &s->repulsion, NULL));
+  PetscOptionsEnd();
+  PetscCheck(s->transit >= 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-fsi_dt_transit %g must be >= 0", (double)s->transit);
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode SolidSetFromOptions(Sim sim)
 {
   SolidMaterial *m = &sim->sl;
   Solid          s;
@@ -30,39 +46,34 @@ PetscErrorCode SolidSetUp(Sim sim)
   s->order     = 2;
   s->quadrature = PETSC_TRUE;
   s->clamp_face = PETSC_TRUE;
-  PetscOptionsBegin(sim->comm, NULL, "Elastic solid: hypo-elastic updated-Lagrangian (Eqs. 20, 23-40) or total-Lagrangian", "Solid");
-  PetscCall(OptEList("-solid_formulation", "total (default): total-Lagrangian neo-Hookean with a second-order reference gradient (converges in bending); updated: the paper's hypo-elastic scheme (Jaumann rate, artificial stress)", "", SolidFormulations, 2, SolidFormulations[form], &form, NULL));
+  PetscOptionsBegin(sim->comm, "solid_", "Elastic solid: hypo-elastic updated-Lagrangian (Eqs. 20, 23-40) or total-Lagrangian", "Solid");
+  PetscCall(OptEList("-formulation", "total (default): total-Lagrangian neo-Hookean with a second-order reference gradient (converges in bending); updated: the paper's hypo-elastic scheme (Jaumann rate, artificial stress)", "", SolidFormulations, 2, SolidFormulations[form], &form, NULL));
   s->formulation = (SolidFormulation)form;
-  PetscCall(OptReal("-solid_damping", "Mass-proportional damping rate zeta (1/s): acc -= zeta v, to reach a static solution by dynamic relaxation (about twice the lowest angular frequency damps it critically); 0 = off", "", s->damping, &s->damping, NULL));
-  if (s->formulation == SOLID_TOTAL) PetscCall(OptInt("-solid_order", "Total-Lagrangian: the reference gradient is exact for displacements of this polynomial order (1: kernel-gradient correction; 2: also exact for the bending field at a free surface or clamp)", "", s->order, &s->order, NULL));
-  if (s->formulation == SOLID_TOTAL && s->order == 2) PetscCall(OptBool("-solid_cell_quadrature", "Total-Lagrangian, order 2: integrate each particle's cell to second order with the strain gradient of the fit (one point per particle leaves a plate n across (1 - 1/n^2) of its bending stiffness)", "", s->quadrature, &s->quadrature, NULL));
+  PetscCall(OptReal("-damping", "Mass-proportional damping rate zeta (1/s): acc -= zeta v, to reach a static solution by dynamic relaxation (about twice the lowest angular frequency damps it critically); 0 = off", "", s->damping, &s->damping, NULL));
+  if (s->formulation == SOLID_TOTAL) PetscCall(OptInt("-order", "Total-Lagrangian: the reference gradient is exact for displacements of this polynomial order (1: kernel-gradient correction; 2: also exact for the bending field at a free surface or clamp)", "", s->order, &s->order, NULL));
+  if (s->formulation == SOLID_TOTAL && s->order == 2) PetscCall(OptBool("-cell_quadrature", "Total-Lagrangian, order 2: integrate each particle's cell to second order with the strain gradient of the fit (one point per particle leaves a plate n across (1 - 1/n^2) of its bending stiffness)", "", s->quadrature, &s->quadrature, NULL));
   if (s->order != 2) s->quadrature = PETSC_FALSE;
   if (s->order != 2) s->clamp_face = PETSC_FALSE; /* with the first-order fit the face points, dx/2 from the first column, made the root unstable (the cantilever at 5 across lost pairs at t = 0.08 s) */
-  if (s->formulation == SOLID_TOTAL && s->order == 2) PetscCall(OptBool("-solid_clamp_face", "Total-Lagrangian, order 2: a clamp is a boundary, its particles next to the body stand for the face midway to it in the fits, and it stores no energy (off: the clamp is material held still)", "", s->clamp_face, &s->clamp_face, NULL));
-  if (s->formulation == SOLID_TOTAL) PetscCall(OptReal("-solid_hourglass", "Total-Lagrangian: hourglass-control coefficient zeta, the energy zeta G / 2 of the bonds' deviation from the affine fit (solid_terms.h); 0 = off", "", s->hourglass, &s->hourglass, NULL));
-  PetscCall(OptReal("-solid_rho", "Solid reference density (kg/m^3)", "", m->rho0, &m->rho0, NULL));
-  PetscCall(OptReal("-solid_K", "Solid bulk modulus K (Pa); c0^2 = K / rho0, Eq. 20", "", m->K, &m->K, NULL));
-  PetscCall(OptReal("-solid_G", "Solid shear modulus mu_s (Pa), Eq. 40", "", m->G, &m->G, NULL));
-  PetscCall(OptReal("-solid_alpha", "Solid artificial viscosity coefficient, Eq. 24", "", m->alpha, &m->alpha, NULL));
-  PetscCall(OptReal("-solid_art_stress", "Artificial stress coefficient e, Eqs. 25-31; 0 = off", "", m->eps, &m->eps, NULL));
-  PetscCall(OptReal("-solid_art_stress_n", "Exponent n of f = W_ab / W(dx, h) in the artificial stress, Eq. 23", "", m->n, &m->n, NULL));
-  PetscCall(OptEList("-solid_gradient", "Velocity gradient of the strain rate: standard (Eqs. 35-38) or corrected (Bonet-Lok, exact for linear fields)", "", SolidGradients, 2, SolidGradients[grad], &grad, NULL));
-  if (fluid) PetscCall(OptBool("-solid_subcycle", "Multi-rate: sub-cycle the solid with its own step inside each fluid step (off: one step, the smaller, for both)", "", s->subcycle, &s->subcycle, NULL));
+  if (s->formulation == SOLID_TOTAL && s->order == 2) PetscCall(OptBool("-clamp_face", "Total-Lagrangian, order 2: a clamp is a boundary, its particles next to the body stand for the face midway to it in the fits, and it stores no energy (off: the clamp is material held still)", "", s->clamp_face, &s->clamp_face, NULL));
+  if (s->formulation == SOLID_TOTAL) PetscCall(OptReal("-hourglass", "Total-Lagrangian: hourglass-control coefficient zeta, the energy zeta G / 2 of the bonds' deviation from the affine fit (solid_terms.h); 0 = off", "", s->hourglass, &s->hourglass, NULL));
+  PetscCall(OptReal("-rho", "Solid reference density (kg/m^3)", "", m->rho0, &m->rho0, NULL));
+  PetscCall(OptReal("-K", "Solid bulk modulus K (Pa); c0^2 = K / rho0, Eq. 20", "", m->K, &m->K, NULL));
+  PetscCall(OptReal("-G", "Solid shear modulus mu_s (Pa), Eq. 40", "", m->G, &m->G, NULL));
+  PetscCall(OptReal("-alpha", "Solid artificial viscosity coefficient, Eq. 24", "", m->alpha, &m->alpha, NULL));
+  PetscCall(OptReal("-art_stress", "Artificial stress coefficient e, Eqs. 25-31; 0 = off", "", m->eps, &m->eps, NULL));
+  PetscCall(OptReal("-art_stress_n", "Exponent n of f = W_ab / W(dx, h) in the artificial stress, Eq. 23", "", m->n, &m->n, NULL));
+  PetscCall(OptEList("-gradient", "Velocity gradient of the strain rate: standard (Eqs. 35-38) or corrected (Bonet-Lok, exact for linear fields)", "", SolidGradients, 2, SolidGradients[grad], &grad, NULL));
+  if (fluid) PetscCall(OptBool("-subcycle", "Multi-rate: sub-cycle the solid with its own step inside each fluid step (off: one step, the smaller, for both)", "", s->subcycle, &s->subcycle, NULL));
   s->cfl = sim->cfl;
-  PetscCall(OptReal("-solid_cfl", "Courant number of the solid's step, cfl min(h, 1.3 dx) / (c0 + |v|) (default: -cfl)", "", s->cfl, &s->cfl, NULL));
-  PetscCall(OptReal("-solid_skin", "Neighbour-list skin of the solid sub-steps, in particle spacings", "", s->skin, &s->skin, NULL));
-  s->implicit = (PetscBool)(fluid && sim->fluid == FLUID_ISPH);
-  if (fluid && sim->fluid == FLUID_ISPH) PetscCall(OptBool("-fsi_implicit", "ISPH + solid: the solid rows of the pressure equation answer the solid's acceleration under that pressure (implicit interface; off = the solid seen as a wall at rest during the solve, unstable for light solids)", "", s->implicit, &s->implicit, NULL));
-  s->transit = fluid && sim->fluid == FLUID_ISPH ? 0.85 : 0.0; /* K, G x 5 gate: 1.0 swings the load -138..360 N/m, 0.85 runs clean */
-  if (fluid && sim->fluid == FLUID_ISPH) PetscCall(OptReal("-fsi_dt_transit", "ISPH + solid: the fluid step is at most this many times the time an elastic wave (c0 of the solid) takes to cross the solid's largest extent, since the pressure is frozen over the solid sub-steps (0 = no limit); a gate 5x stiffer than the rubber needs it", "", s->transit, &s->transit, NULL));
-  if (fluid) PetscCall(OptBool("-fsi_repulsion", "Repulsive force Eq. 41 between fluid and solid particles (default: on with -fluid wcsph, off with isph)", "", s->repulsion, &s->repulsion, NULL));
+  PetscCall(OptReal("-cfl", "Courant number of the solid's step, cfl min(h, 1.3 dx) / (c0 + |v|) (default: -cfl)", "", s->cfl, &s->cfl, NULL));
+  PetscCall(OptReal("-skin", "Neighbour-list skin of the solid sub-steps, in particle spacings", "", s->skin, &s->skin, NULL));
   PetscOptionsEnd();
   s->gradient = (SolidGradient)grad;
+  if (fluid) PetscCall(FSISetFromOptions(sim));
   PetscCheck(s->damping >= 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-solid_damping %g must be >= 0", (double)s->damping);
   PetscCheck(s->order == 1 || s->order == 2, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-solid_order %" PetscInt_FMT " must be 1 or 2", s->order);
   PetscCheck(s->hourglass >= 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-solid_hourglass %g must be >= 0", (double)s->hourglass);
   PetscCheck(s->skin >= 0 && s->skin <= 2, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-solid_skin %g must be in [0, 2] particle spacings", (double)s->skin);
-  PetscCheck(s->transit >= 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-fsi_dt_transit %g must be >= 0", (double)s->transit);
   PetscCheck(s->cfl > 0 && s->cfl <= 1, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-solid_cfl %g must be in (0, 1]", (double)s->cfl);
   /* the one-sided fits at a surface are stiffer than the bulk: measured on the oscillating plate
    * (6 across) the total-Lagrangian solid is stable at 0.35 and not at 0.4 */
@@ -73,6 +84,16 @@ PetscErrorCode SolidSetUp(Sim sim)
   PetscCheck(m->alpha >= 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-solid_alpha %g must be >= 0", (double)m->alpha);
   PetscCheck(m->eps >= 0 && m->eps < 1, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-solid_art_stress %g must be in [0, 1)", (double)m->eps);
   PetscCheck(m->n > 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-solid_art_stress_n %g must be > 0", (double)m->n);
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode SolidSetUp(Sim sim)
+{
+  SolidMaterial *m = &sim->sl;
+  Solid          s = sim->solid;
+  PetscBool      fluid = sim->has_fluid;
+
+  PetscFunctionBeginUser;
   m->c0 = PetscSqrtReal(m->K / m->rho0);
   PetscCall(ParticlesEnableField(sim->P, FIELD_S, PETSC_TRUE));
   PetscCall(ParticlesEnableField(sim->P, FIELD_ACC, PETSC_FALSE));

@@ -58,8 +58,10 @@ struct _p_Solid {
   PetscInt      nsub_last, nsub_max; /* solid sub-steps in the last / any fluid step (progress line, summary) */
 };
 
-/* Options (-solid_*; the scene's material defaults are in sim->sl) and fields (before
- * ParticlesSetUp). */
+/* Creates sim->solid and reads its options under the prefix -solid_ (the scene's material defaults
+ * are in sim->sl), and with a fluid the coupling's under -fsi_; then the set-up (fields, neighbour
+ * list), before ParticlesSetUp. */
+PetscErrorCode SolidSetFromOptions(Sim sim);
 PetscErrorCode SolidSetUp(Sim sim);
 PetscErrorCode SolidDestroy(Solid *s);
 /* Neighbour list of the solids after a rebuild (SimRebuild): the sub-steps move the solids

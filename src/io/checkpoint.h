@@ -1,10 +1,11 @@
 /* Checkpoint and restart.  A checkpoint is the whole state of a run at the end of a step, in one
  * HDF5 file written collectively by all ranks under a temporary name and renamed when complete:
- * every owned particle with its id, kind and every field the scene allocates; the time loop's
- * counters (t, step, dt, next output/probe/checkpoint times, first adaptive steps); the cell
- * partition; every probe row so far; the snapshots' times and sizes; the scene's kept histories
- * and values (SceneKeep*); solver and outflow counters.  Its snapshot datasets (id, kind, x, v, p,
- * rho, m, h, stress) have the names and shapes of a snapshot's.
+ * every owned particle with its id, kind and every allocated field that the field table has
+ * checkpoints carry (particles.h; all of them today); the time loop's counters (t, step, dt, next
+ * output/probe/checkpoint times, first adaptive steps); the cell partition; every probe row so far;
+ * the snapshots' times and sizes; the scene's kept histories and values (SceneKeep*); solver and
+ * outflow counters.  Its datasets of a snapshot's fields (id, kind and the table's snapshot
+ * fields) have the names and shapes of a snapshot's (datasets: h5.h).
  *
  * A restart on the same number of ranks continues bit for bit: it restores the partition and
  * repeats the run's last rebuild at the positions it had then (FIELD_XREB: solids move after it,
@@ -23,7 +24,7 @@ typedef struct {
   PetscBool    copy;
   PetscInt     n, cap;             /* owned particles, capacity of a copy */
   PetscInt    *id, *kind;
-  PetscReal   *f[FIELD_COUNT];     /* owned part of every allocated field */
+  PetscReal   *f[FIELD_COUNT];     /* owned part of every field checkpoints carry (else NULL) */
   PetscInt     ncell;
   PetscMPIInt *owner;              /* cell partition */
   PetscReal    r[STATE_NREAL];     /* scalars, named in checkpoint.c */

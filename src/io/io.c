@@ -5,6 +5,7 @@
 #include "solid/solid.h"
 #include "run/guard.h"
 #include "io/io_space.h"
+#include "io/h5.h"
 #include <unistd.h>
 #include <petscviewerhdf5.h>
 #include <sys/stat.h>
@@ -71,28 +72,6 @@ PetscErrorCode IOFinalize(Sim sim)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-static PetscErrorCode WriteField(PetscViewer v, Sim sim, const char *name, PetscReal *a, PetscInt width)
-{
-  Vec vec;
-  PetscFunctionBeginUser;
-  PetscCall(VecCreateMPIWithArray(sim->comm, width, width * sim->P->n, PETSC_DECIDE, a, &vec));
-  PetscCall(PetscObjectSetName((PetscObject)vec, name));
-  PetscCall(VecView(vec, v));
-  PetscCall(VecDestroy(&vec));
-  PetscFunctionReturn(PETSC_SUCCESS);
-}
-
-static PetscErrorCode WriteInts(PetscViewer v, Sim sim, const char *name, PetscInt *a)
-{
-  IS is;
-  PetscFunctionBeginUser;
-  PetscCall(ISCreateGeneral(sim->comm, sim->P->n, a, PETSC_USE_POINTER, &is));
-  PetscCall(PetscObjectSetName((PetscObject)is, name));
-  PetscCall(ISView(is, v));
-  PetscCall(ISDestroy(&is));
-  PetscFunctionReturn(PETSC_SUCCESS);
-}
-
 /* The attributes that make a snapshot the input of -case file (src/scenes/particles_file.c): the
  * spacing dx and the computational box, domain = x0,y0[,z0],x1,y1[,z1]. */
 static PetscErrorCode WriteDomain(PetscViewer v, Sim sim)
@@ -110,33 +89,31 @@ static PetscErrorCode WriteDomain(PetscViewer v, Sim sim)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-/* Collective: one file, every owned particle's id, kind and fields; written under a temporary
- * name and renamed when complete. */
+/* Collective: one file, every owned particle's id, kind and the snapshot's fields (the field table,
+ * particles.h); written under a temporary name and renamed when complete. */
 PetscErrorCode IOWriteParticles(Sim sim, const char *path)
 {
   PetscViewer v;
   char        tmp[PETSC_MAX_PATH_LEN];
   Particles   P = sim->P;
+  FieldId     out[FIELD_COUNT];
+  PetscInt    nout = ParticlesSnapshotFields(P, out);
 
   PetscFunctionBeginUser;
   PetscCall(PetscSNPrintf(tmp, sizeof(tmp), "%s.part", path));
   PetscCall(PetscViewerHDF5Open(sim->comm, tmp, FILE_MODE_WRITE, &v));
-  PetscCall(WriteInts(v, sim, "id", P->id));
-  PetscCall(WriteInts(v, sim, "kind", P->kind));
+  PetscCall(DatasetWriteInts(v, sim->comm, "id", P->n, P->id));
+  PetscCall(DatasetWriteInts(v, sim->comm, "kind", P->n, P->kind));
   if (sim->nbhd.nparticles != sim->next_id) { /* ids no longer 0..N-1 (outflow): the points' indices for the XDMF's topology */
     PetscInt *vertex, first = 0, n = P->n;
     PetscCallMPI(MPI_Exscan(&n, &first, 1, MPIU_INT, MPI_SUM, sim->comm));
     if (!sim->rank) first = 0;
     PetscCall(PetscMalloc1(n, &vertex));
     for (PetscInt i = 0; i < n; i++) vertex[i] = first + i;
-    PetscCall(WriteInts(v, sim, "vertex", vertex));
+    PetscCall(DatasetWriteInts(v, sim->comm, "vertex", n, vertex));
     PetscCall(PetscFree(vertex));
   }
-  {
-    const FieldId out[] = {FIELD_X, FIELD_V, FIELD_P, FIELD_RHO, FIELD_M, FIELD_H, FIELD_S, FIELD_FS};
-    for (size_t k = 0; k < sizeof(out) / sizeof(out[0]); k++)
-      if (P->f[out[k]].on) PetscCall(WriteField(v, sim, P->f[out[k]].name, P->f[out[k]].a, P->f[out[k]].width));
-  }
+  for (PetscInt k = 0; k < nout; k++) PetscCall(DatasetWriteReals(v, sim->comm, P->f[out[k]].name, P->n, P->f[out[k]].width, P->f[out[k]].a));
   PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "time", PETSC_REAL, &sim->t));
   PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "step", PETSC_INT, &sim->step));
   PetscCall(WriteDomain(v, sim));
@@ -163,6 +140,21 @@ static void WriteVertices(Sim sim, FILE *f, PetscInt N, const char *h5, PetscBoo
   fprintf(f, "    </Topology>\n");
 }
 
+/* Field fid of the HDF5 file h5 as an attribute of its N points, by the field table's XDMF type
+ * (particles.h); nothing for XDMF_NONE (x: the geometry). */
+static void WriteAttribute(FILE *f, Particles P, FieldId fid, PetscInt N, const char *h5)
+{
+  const char *name = P->f[fid].name, *type = NULL;
+  switch (FieldTable[fid].xdmf) {
+  case XDMF_NONE: return;
+  case XDMF_SCALAR: break;
+  case XDMF_VECTOR: type = "Vector"; break;
+  case XDMF_SYM: type = P->dim == 3 ? "Tensor6" : "Vector"; break; /* 2D: xx, xy, yy as a 3-vector */
+  }
+  if (!type) fprintf(f, "    <Attribute Name=\"%s\" Center=\"Node\"><DataItem Dimensions=\"%d\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s:/%s</DataItem></Attribute>\n", name, (int)N, h5, name);
+  else fprintf(f, "    <Attribute Name=\"%s\" AttributeType=\"%s\" Center=\"Node\"><DataItem Dimensions=\"%d %d\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s:/%s</DataItem></Attribute>\n", name, type, (int)N, (int)P->f[fid].width, h5, name);
+}
+
 /* OUTDIR/xmf: a temporal collection over n HDF5 files in OUTDIR (rewritten each time): the
  * snapshots particles_NNNNN.h5 (one = NULL), or the one file `one`; tN: (t, particles) per file. */
 static PetscErrorCode WriteXDMF(Sim sim, const char *xmf, PetscInt n, const char *one, const PetscReal *tN)
@@ -170,6 +162,8 @@ static PetscErrorCode WriteXDMF(Sim sim, const char *xmf, PetscInt n, const char
   char           path[PETSC_MAX_PATH_LEN], tmp[PETSC_MAX_PATH_LEN];
   FILE          *f;
   const PetscInt D = sim->dim;
+  FieldId        out[FIELD_COUNT];
+  const PetscInt nout = ParticlesSnapshotFields(sim->P, out);
 
   PetscFunctionBeginUser;
   int err = 0;
@@ -189,16 +183,7 @@ static PetscErrorCode WriteXDMF(Sim sim, const char *xmf, PetscInt n, const char
     fprintf(f, "    <Geometry GeometryType=\"%s\">\n     <DataItem Dimensions=\"%d %d\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s:/x</DataItem>\n    </Geometry>\n", D == 3 ? "XYZ" : "XY", (int)N, (int)D, h5);
     fprintf(f, "    <Attribute Name=\"id\" Center=\"Node\"><DataItem Dimensions=\"%d\" NumberType=\"Int\" Precision=\"%d\" Format=\"HDF\">%s:/id</DataItem></Attribute>\n", (int)N, (int)sizeof(PetscInt), h5);
     fprintf(f, "    <Attribute Name=\"kind\" Center=\"Node\"><DataItem Dimensions=\"%d\" NumberType=\"Int\" Precision=\"%d\" Format=\"HDF\">%s:/kind</DataItem></Attribute>\n", (int)N, (int)sizeof(PetscInt), h5);
-    fprintf(f, "    <Attribute Name=\"v\" AttributeType=\"Vector\" Center=\"Node\"><DataItem Dimensions=\"%d %d\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s:/v</DataItem></Attribute>\n", (int)N, (int)D, h5);
-    {
-      const char *scal[] = {"p", "rho", "m", "h"};
-      for (int k = 0; k < 4; k++)
-        fprintf(f, "    <Attribute Name=\"%s\" Center=\"Node\"><DataItem Dimensions=\"%d\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s:/%s</DataItem></Attribute>\n", scal[k], (int)N, h5, scal[k]);
-    }
-    if (sim->P->f[FIELD_FS].on) /* ISPH, WCSPH with shifting: 1 on the free surface found in the last step */
-      fprintf(f, "    <Attribute Name=\"free_surface\" Center=\"Node\"><DataItem Dimensions=\"%d\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s:/free_surface</DataItem></Attribute>\n", (int)N, h5);
-    if (sim->P->f[FIELD_S].on) /* 2D: xx, xy, yy as a 3-vector; 3D: the six components as Tensor6 */
-      fprintf(f, "    <Attribute Name=\"stress\" AttributeType=\"%s\" Center=\"Node\"><DataItem Dimensions=\"%d %d\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s:/stress</DataItem></Attribute>\n", D == 3 ? "Tensor6" : "Vector", (int)N, (int)sim->P->f[FIELD_S].width, h5);
+    for (PetscInt k = 0; k < nout; k++) WriteAttribute(f, sim->P, out[k], N, h5);
     fprintf(f, "   </Grid>\n");
   }
   fprintf(f, "  </Grid>\n </Domain>\n</Xdmf>\n");

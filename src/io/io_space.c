@@ -35,14 +35,17 @@ PetscErrorCode IOSpaceReserve(Sim sim, const char *file, PetscReal bytes, PetscB
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-/* Bytes per particle of the listed fields, id and kind included. */
+/* Bytes per particle of a snapshot's or a checkpoint's fields (the field table), id and kind included. */
 static PetscReal FieldBytes(Particles P, PetscBool snapshot)
 {
-  const FieldId out[] = {FIELD_X, FIELD_V, FIELD_P, FIELD_RHO, FIELD_M, FIELD_H, FIELD_S, FIELD_FS}; /* a snapshot's (io.c) */
-  PetscReal     b = 2 * sizeof(PetscInt);
-  if (!snapshot) return (PetscReal)ParticlesBytesPerParticle(P);
-  for (size_t k = 0; k < sizeof(out) / sizeof(out[0]); k++)
-    if (P->f[out[k]].on) b += P->f[out[k]].width * sizeof(PetscReal);
+  FieldId   out[FIELD_COUNT];
+  PetscInt  n = 0;
+  PetscReal b = 2 * sizeof(PetscInt);
+  if (snapshot) n = ParticlesSnapshotFields(P, out);
+  else
+    for (PetscInt f = 0; f < FIELD_COUNT; f++)
+      if (ParticlesCheckpointField(P, (FieldId)f)) out[n++] = (FieldId)f;
+  for (PetscInt k = 0; k < n; k++) b += P->f[out[k]].width * sizeof(PetscReal);
   return b;
 }
 

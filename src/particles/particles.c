@@ -2,21 +2,29 @@
 
 const char *const ParticleKindNames[] = {"fluid", "wall", "dummy", "solid", "clamp"};
 
-/* A field's width: a fixed number of reals, or one that follows the dimension d (WIDTH_VECTOR: d,
- * WIDTH_SYM: the d (d + 1) / 2 components of a symmetric tensor, WIDTH_TENSOR: d x d; the
- * total-Lagrangian solid's fit operators are its own arrays over solid particles, solid.h). */
-enum { WIDTH_VECTOR = -1, WIDTH_SYM = -2, WIDTH_TENSOR = -3 };
-static const struct { const char *name; PetscInt width; } FieldInfo[FIELD_COUNT] = {
-  [FIELD_X] = {"x", WIDTH_VECTOR},         [FIELD_V] = {"v", WIDTH_VECTOR},         [FIELD_RHO] = {"rho", 1},
-  [FIELD_P] = {"p", 1},                    [FIELD_M] = {"m", 1},                    [FIELD_H] = {"h", 1},
-  [FIELD_X0] = {"x0", WIDTH_VECTOR},       [FIELD_ACC] = {"acc", WIDTH_VECTOR},     [FIELD_DRHO] = {"drho", 1},
-  [FIELD_XSPH] = {"xsph", WIDTH_VECTOR},   [FIELD_VWALL] = {"vwall", WIDTH_VECTOR}, [FIELD_VSTAR] = {"vstar", WIDTH_VECTOR},
-  [FIELD_FS] = {"free_surface", 1},        [FIELD_S] = {"stress", WIDTH_SYM},
-  [FIELD_NORMAL] = {"normal", WIDTH_VECTOR}, [FIELD_ROW] = {"row", 1},
-  [FIELD_KCORR] = {"kernel_correction", WIDTH_TENSOR}, [FIELD_FVIEW] = {"fluid_view", 3},
-  [FIELD_AMEAN] = {"mean_acc", WIDTH_VECTOR},         [FIELD_XREB] = {"x_rebuild", WIDTH_VECTOR},
-  [FIELD_XLIST] = {"x_list", WIDTH_VECTOR},
+/* The field table (particles.h), indexed by FieldId. */
+const FieldDesc FieldTable[FIELD_COUNT] = {
+#define PARTICLE_FIELD_DESC(id, name, width, snapshot, checkpoint, xdmf) [id] = {name, width, snapshot, checkpoint, xdmf},
+  PARTICLE_FIELDS(PARTICLE_FIELD_DESC)
+#undef PARTICLE_FIELD_DESC
 };
+
+/* The table's rules that the compiler cannot check: each snapshot place once, a snapshot field
+ * carried by checkpoints and shown in the XDMF as something (x: the geometry). */
+static PetscErrorCode CheckTable(MPI_Comm comm)
+{
+  PetscBool placed[FIELD_COUNT + 1] = {PETSC_FALSE};
+  PetscFunctionBeginUser;
+  for (PetscInt f = 0; f < FIELD_COUNT; f++) {
+    const FieldDesc *d = &FieldTable[f];
+    if (!d->snapshot) continue;
+    PetscCheck(d->snapshot > 0 && d->snapshot <= FIELD_COUNT && !placed[d->snapshot], comm, PETSC_ERR_PLIB, "Field table (particles.h): field %s has snapshot place %d, which is out of 1..%d or taken: give it the next free one", d->name, (int)d->snapshot, (int)FIELD_COUNT);
+    PetscCheck(d->checkpoint, comm, PETSC_ERR_PLIB, "Field table (particles.h): field %s is in snapshots but not in checkpoints: last_good.xmf reads it from a checkpoint, so carry it", d->name);
+    PetscCheck(d->xdmf != XDMF_NONE || f == FIELD_X, comm, PETSC_ERR_PLIB, "Field table (particles.h): field %s is in snapshots without an XDMF type: give it XDMF_SCALAR, XDMF_VECTOR or XDMF_SYM", d->name);
+    placed[d->snapshot] = PETSC_TRUE;
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
 
 static PetscInt FieldWidth(PetscInt w, PetscInt dim)
 {
@@ -33,7 +41,8 @@ PetscErrorCode ParticlesCreate(MPI_Comm comm, Particles *P)
   PetscFunctionBeginUser;
   PetscCall(PetscNew(P));
   (*P)->comm = comm;
-  for (PetscInt f = 0; f < FIELD_COUNT; f++) (*P)->f[f].name = FieldInfo[f].name;
+  PetscCall(CheckTable(comm));
+  for (PetscInt f = 0; f < FIELD_COUNT; f++) (*P)->f[f].name = FieldTable[f].name;
   PetscCall(ParticlesSetDimension(*P, 2));
   /* every scene needs these */
   PetscCall(ParticlesEnableField(*P, FIELD_X, PETSC_TRUE));
@@ -70,7 +79,7 @@ PetscErrorCode ParticlesSetDimension(Particles P, PetscInt dim)
   PetscCheck(!P->setup, P->comm, PETSC_ERR_ARG_WRONGSTATE, "The dimension is set before ParticlesSetUp");
   PetscCheck(dim == 2 || dim == 3, P->comm, PETSC_ERR_ARG_OUTOFRANGE, "Dimension %" PetscInt_FMT " must be 2 or 3", dim);
   P->dim = dim;
-  for (PetscInt f = 0; f < FIELD_COUNT; f++) P->f[f].width = FieldWidth(FieldInfo[f].width, dim);
+  for (PetscInt f = 0; f < FIELD_COUNT; f++) P->f[f].width = FieldWidth(FieldTable[f].width, dim);
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -171,6 +180,15 @@ PetscInt ParticlesBytesPerParticle(Particles P)
   for (PetscInt f = 0; f < FIELD_COUNT; f++)
     if (P->f[f].on) b += P->f[f].width * (PetscInt)sizeof(PetscReal);
   return b;
+}
+
+PetscInt ParticlesSnapshotFields(Particles P, FieldId out[FIELD_COUNT])
+{
+  PetscInt n = 0;
+  for (PetscInt k = 1; k <= FIELD_COUNT; k++)
+    for (PetscInt f = 0; f < FIELD_COUNT; f++)
+      if (FieldTable[f].snapshot == k && P->f[f].on) out[n++] = (FieldId)f;
+  return n;
 }
 
 PetscErrorCode ParticlesGlobalCount(Particles P, PetscInt *N)

@@ -11,32 +11,72 @@ static inline PetscBool KindIsFluid(PetscInt k) { return (PetscBool)(k == KIND_F
 static inline PetscBool KindIsWall(PetscInt k) { return (PetscBool)(k == KIND_WALL || k == KIND_DUMMY); }
 static inline PetscBool KindIsSolid(PetscInt k) { return (PetscBool)(k == KIND_SOLID || k == KIND_CLAMP); }
 
+/* A field's width: a fixed number of reals (1: a scalar), or one that follows the dimension d. */
+enum { WIDTH_VECTOR = -1 /* d */, WIDTH_SYM = -2 /* d (d + 1) / 2: a symmetric tensor's xx, xy, yy (3D: six) */, WIDTH_TENSOR = -3 /* d x d, row-major */ };
+/* How particles.xmf describes a snapshot field (io.c): an attribute of type Scalar, Vector, or Tensor6
+ * (3D; in 2D the three components as a Vector); XDMF_NONE: not an attribute (x is the geometry). */
+typedef enum { XDMF_NONE = 0, XDMF_SCALAR, XDMF_VECTOR, XDMF_SYM } FieldXdmf;
+
+/* The field table: one entry F(id, name, width, snapshot, checkpoint, xdmf) a field.
+ *   id          its FieldId (PField(P, id)); the entries' order is that of memory, checkpoints and
+ *               summary.json
+ *   name        its dataset in snapshots and checkpoints, its name in summary.json and messages
+ *   width       reals per particle: a number, or WIDTH_VECTOR, WIDTH_SYM, WIDTH_TENSOR (above)
+ *   snapshot    0: not in snapshots; k = 1, 2, ... (each k once): in every snapshot
+ *               (particles_NNNNN.h5), k-th in particles.xmf (and io_space.c counts its bytes)
+ *   checkpoint  PETSC_TRUE: checkpoints carry it and a restart reads it back (its allocation is then
+ *               part of what a restart must match); PETSC_FALSE only for a field that every step
+ *               computes before reading it (a restart zeroes it).  A snapshot field is carried:
+ *               last_good.xmf shows a checkpoint as a snapshot.
+ *   xdmf        its type in particles.xmf (FieldXdmf; XDMF_NONE for a field not in snapshots)
+ * A field exists in a run only when a module enables it (ParticlesEnableField); migration, the halo,
+ * snapshots, particles.xmf, checkpoints, restarts and summary.json take it from here.  Adding a field
+ * is one entry, e.g. a vorticity in snapshots and checkpoints, shown as a scalar:
+ *   F(FIELD_VORT, "vorticity", 1, 9, PETSC_TRUE, XDMF_SCALAR)
+ * and enabling it where a module computes it.  Output that is not a field as it is stored (id, kind,
+ * the XDMF's geometry and topology, WCSPH's pressure from the equation of state) is written
+ * explicitly in io.c. */
+#define PARTICLE_FIELDS(F) \
+  /*id             name                  width       snap   ckpt         xdmf */ \
+  F(FIELD_X,       "x",                  WIDTH_VECTOR,  1,  PETSC_TRUE,  XDMF_NONE)   /* position; the XDMF's geometry */ \
+  F(FIELD_V,       "v",                  WIDTH_VECTOR,  2,  PETSC_TRUE,  XDMF_VECTOR) /* velocity */ \
+  F(FIELD_RHO,     "rho",                1,             4,  PETSC_TRUE,  XDMF_SCALAR) /* density */ \
+  F(FIELD_P,       "p",                  1,             3,  PETSC_TRUE,  XDMF_SCALAR) /* pressure */ \
+  F(FIELD_M,       "m",                  1,             5,  PETSC_TRUE,  XDMF_SCALAR) /* mass */ \
+  F(FIELD_H,       "h",                  1,             6,  PETSC_TRUE,  XDMF_SCALAR) /* smoothing length */ \
+  F(FIELD_X0,      "x0",                 WIDTH_VECTOR,  0,  PETSC_TRUE,  XDMF_NONE)   /* initial position: displacement probes */ \
+  F(FIELD_ACC,     "acc",                WIDTH_VECTOR,  0,  PETSC_TRUE,  XDMF_NONE)   /* acceleration */ \
+  F(FIELD_DRHO,    "drho",               1,             0,  PETSC_TRUE,  XDMF_NONE)   /* density rate */ \
+  F(FIELD_XSPH,    "xsph",               WIDTH_VECTOR,  0,  PETSC_TRUE,  XDMF_NONE)   /* XSPH velocity correction, Eq. 44 */ \
+  F(FIELD_VWALL,   "vwall",              WIDTH_VECTOR,  0,  PETSC_TRUE,  XDMF_NONE)   /* wall velocity seen by the viscous term */ \
+  F(FIELD_VSTAR,   "vstar",              WIDTH_VECTOR,  0,  PETSC_TRUE,  XDMF_NONE)   /* ISPH: intermediate velocity */ \
+  F(FIELD_FS,      "free_surface",       1,             7,  PETSC_TRUE,  XDMF_SCALAR) /* free-surface flag (0/1) */ \
+  F(FIELD_S,       "stress",             WIDTH_SYM,     8,  PETSC_TRUE,  XDMF_SYM)    /* solid deviatoric stress */ \
+  F(FIELD_NORMAL,  "normal",             WIDTH_VECTOR,  0,  PETSC_TRUE,  XDMF_NONE)   /* interface normal */ \
+  F(FIELD_ROW,     "row",                1,             0,  PETSC_TRUE,  XDMF_NONE)   /* ISPH: global row of the pressure equation (-1: none) */ \
+  F(FIELD_KCORR,   "kernel_correction",  WIDTH_TENSOR,  0,  PETSC_TRUE,  XDMF_NONE)   /* solid: kernel-gradient correction matrix */ \
+  F(FIELD_FVIEW,   "fluid_view",         3,             0,  PETSC_TRUE,  XDMF_NONE)   /* solid next to fluid: the fluid's view of it (pressure, density, mass; boundary.h) */ \
+  F(FIELD_AMEAN,   "mean_acc",           WIDTH_VECTOR,  0,  PETSC_TRUE,  XDMF_NONE)   /* solid with ISPH: mean acceleration over the last fluid step (ppe.c) */ \
+  F(FIELD_XREB,    "x_rebuild",          WIDTH_VECTOR,  0,  PETSC_TRUE,  XDMF_NONE)   /* scenes with solids: position at the last rebuild; solids move after it, \
+                                                                                      and a restart rebuilds the neighbour lists there to continue exactly (checkpoint.h) */ \
+  F(FIELD_XLIST,   "x_list",             WIDTH_VECTOR,  0,  PETSC_TRUE,  XDMF_NONE)   /* WCSPH's Verlet skin with solids: position when the main list's pairs were last \
+                                                                                      computed (a refresh or a rebuild); the solids move after it, and a restart computes them there (checkpoint.h) */
+
 typedef enum {
-  FIELD_X = 0, /* position (dim) */
-  FIELD_V,     /* velocity (dim) */
-  FIELD_RHO,   /* density */
-  FIELD_P,     /* pressure */
-  FIELD_M,     /* mass */
-  FIELD_H,     /* smoothing length */
-  FIELD_X0,    /* initial position (dim): displacement probes */
-  FIELD_ACC,   /* acceleration (dim) */
-  FIELD_DRHO,  /* density rate */
-  FIELD_XSPH,  /* XSPH velocity correction (dim), Eq. 44 */
-  FIELD_VWALL, /* wall velocity seen by the viscous term (dim) */
-  FIELD_VSTAR, /* ISPH: intermediate velocity (dim) */
-  FIELD_FS,    /* free-surface flag (0/1) */
-  FIELD_S,     /* solid deviatoric stress (2D: xx, xy, yy; 3D: six components) */
-  FIELD_NORMAL,  /* interface normal (dim) */
-  FIELD_ROW,   /* ISPH: global row of the pressure equation (-1: none) */
-  FIELD_KCORR, /* solid: kernel-gradient correction matrix (dim x dim, row-major) */
-  FIELD_FVIEW, /* solid next to fluid: the fluid's view of it (3: pressure, density, mass; boundary.h) */
-  FIELD_AMEAN, /* solid with ISPH: mean acceleration over the last fluid step (2; ppe.c) */
-  FIELD_XREB,  /* scenes with solids: position at the last rebuild (dim); solids move after it, and a
-                  restart rebuilds the neighbour lists there to continue exactly (checkpoint.h) */
-  FIELD_XLIST,   /* WCSPH's Verlet skin with solids: position when the main list's pairs were last computed (a
-                    refresh or a rebuild); the solids move after it, and a restart computes them there (checkpoint.h) */
+#define PARTICLE_FIELD_ID(id, ...) id,
+  PARTICLE_FIELDS(PARTICLE_FIELD_ID)
+#undef PARTICLE_FIELD_ID
   FIELD_COUNT
 } FieldId;
+
+typedef struct {
+  const char *name;
+  PetscInt    width; /* as in the table: a number or WIDTH_* */
+  PetscInt    snapshot;
+  PetscBool   checkpoint;
+  FieldXdmf   xdmf;
+} FieldDesc;
+extern const FieldDesc FieldTable[FIELD_COUNT];
 
 typedef struct {
   const char *name;
@@ -76,5 +116,10 @@ PetscErrorCode ParticlesPermute(Particles P, const PetscInt *perm);
 PetscInt ParticlesBytesPerParticle(Particles P);
 PetscErrorCode ParticlesGlobalCount(Particles P, PetscInt *N);
 PetscErrorCode ParticlesView(Particles P, PetscViewer v);
+/* The allocated fields a snapshot holds, in their order (the table's `snapshot`); returns how many. */
+PetscInt ParticlesSnapshotFields(Particles P, FieldId out[FIELD_COUNT]);
 
 static inline PetscReal *PField(Particles P, FieldId f) { return P->f[f].a; }
+/* Whether checkpoints carry field f of this run (allocated, and so in the table). */
+static inline PetscBool ParticlesCheckpointField(Particles P, FieldId f) { return (PetscBool)(P->f[f].on && FieldTable[f].checkpoint); }
+

@@ -1,7 +1,9 @@
 /* Kernels (Eq. 12, Wendland C2 and C4): normalisation in 2D and 3D, interior lattice sums (2D and
- * 3D), compact support, gradient antisymmetry; the neighbour lists of a random cloud in 2D and 3D
- * (one smoothing length, and two) equal a brute-force search; the corrected SPH gradient
- * of a linear field is exact to round-off on an irregular particle cloud. */
+ * 3D), compact support, gradient antisymmetry; kernel.h's two groupings of the same kernel
+ * (KernelShape, KernelShapeList) within a few ulp of each other; the neighbour lists of a random
+ * cloud in 2D and 3D (one smoothing length, and two) equal a brute-force search, their kernel values
+ * are kernel.h's bit for bit (no copy of the kernel elsewhere) and KernelW/KernelF's to round-off;
+ * the corrected SPH gradient of a linear field is exact to round-off on an irregular particle cloud. */
 #include "base/kernel.h"
 #include "particles/cells.h"
 #include "fluid/operators.h"
@@ -16,6 +18,46 @@ static PetscErrorCode CheckLattice(const SPHKernel *K)
   PetscCall(PetscPrintf(PETSC_COMM_WORLD, "kernel %s %dD at h = %g dx: lattice sum of W %.5f, div r %.5f\n", KernelTypes[K->type], (int)K->dim, (double)K->h_factor, (double)lw, (double)ld));
   PetscCheck(PetscAbsReal(lw - 1) < 0.03 && PetscAbsReal(ld - K->dim) < 0.03 * K->dim, PETSC_COMM_SELF, PETSC_ERR_PLIB, "Lattice sums %g, %g far from 1, %d", (double)lw, (double)ld, (int)K->dim);
   PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* KernelShape (the terms') and KernelShapeList (the neighbour list's, without branches) group the
+ * products differently (kernel.h): at the same R they may differ in the last bits, by at most 8 eps
+ * relative (measured: 2.1 for the cubic spline, 2.5-3.4 for the Wendland kernels). */
+static PetscErrorCode CheckForms(const SPHKernel *K)
+{
+  const PetscInt n = 200000;
+  PetscReal      h = 0.013, sw = KernelSigma(K, h), sf = sw / (h * h), worst = 0;
+  PetscInt       differ = 0;
+  PetscFunctionBeginUser;
+  for (PetscInt k = 0; k <= n; k++) {
+    PetscReal R = 2.0 * k / n, v[2], u[2];
+    KernelShape(K->type, R, sw, sf, &v[0], &v[1]);
+    KernelShapeList(K->type, R, sw, sf, &u[0], &u[1]);
+    for (PetscInt i = 0; i < 2; i++) {
+      PetscReal e = v[i] == u[i] ? 0 : PetscAbsReal(v[i] - u[i]) / (PETSC_MACHINE_EPSILON * PetscAbsReal(v[i]));
+      differ += e > 0;
+      worst = PetscMax(worst, e);
+    }
+  }
+  PetscCall(PetscPrintf(PETSC_COMM_WORLD, "kernel %s %dD: KernelShape and KernelShapeList differ in %.1f %% of W and F at R in [0, 2], by at most %.1f eps (relative)\n", KernelTypes[K->type], (int)K->dim, 100.0 * differ / (2.0 * (n + 1)), (double)worst));
+  PetscCheck(worst <= 8, PETSC_COMM_SELF, PETSC_ERR_PLIB, "KernelShape and KernelShapeList differ by %g eps", (double)worst);
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* W and F of the list's pair (a, b) as cells.c evaluates them with kernel.h: r^2 as the list's
+ * (PairDistance2), R = r (1 / h), the pairs of another h and all pairs of a particle that has one by
+ * KernelShapePair, the others by KernelShapeList (the loop cells.c vectorises). */
+static void ListPairKernel(const SPHKernel *K, const PetscReal *x, const PetscReal *h, PetscInt D, PetscInt a, PetscInt b, PetscBool mixed, PetscReal *w, PetscReal *f)
+{
+  PetscReal dx = x[D * a] - x[D * b], dy = x[D * a + 1] - x[D * b + 1], r2 = fma(dy, dy, dx * dx), hab = PairH(h[a], h[b]), sw, R;
+  if (D == 3) {
+    PetscReal dz = x[D * a + 2] - x[D * b + 2];
+    r2 = fma(dz, dz, r2);
+  }
+  sw = KernelSigma(K, hab);
+  R  = PetscSqrtReal(r2) * (1.0 / hab);
+  if (mixed) KernelShapePair(K->type, R, sw, sw / (hab * hab), w, f);
+  else KernelShapeList(K->type, R, sw, sw / (hab * hab), w, f);
 }
 
 static PetscErrorCode CheckKernel(const SPHKernel *K)
@@ -76,7 +118,7 @@ static PetscErrorCode CheckNeighbours(const SPHKernel *K, PetscBool mixed, Petsc
   PetscReal   dx = 0.01, h0 = K->h_factor * dx, lo[3] = {0, 0, 0}, hi[3] = {0.2, 0.15, 0.12};
   PetscBool   per[3] = {PETSC_FALSE, PETSC_FALSE, PETSC_FALSE};
   PetscRandom rnd;
-  PetscInt    n = D == 3 ? 1500 : 300, pairs = 0, *mark;
+  PetscInt    n = D == 3 ? 1500 : 300, pairs = 0, *mark, notbits = 0;
   PetscReal   errw = 0, errf = 0;
 
   PetscFunctionBeginUser;
@@ -119,11 +161,15 @@ static PetscErrorCode CheckNeighbours(const SPHKernel *K, PetscBool mixed, Petsc
   for (PetscInt a = 0; a < n; a++) {
     const PetscReal *x = PField(P, FIELD_X), *h = PField(P, FIELD_H);
     PetscInt         found = 0;
+    PetscBool        other = PETSC_FALSE; /* a has a pair of another h */
+    for (PetscInt k = C->nstart[a]; k < C->nstart[a + 1]; k++) other = (PetscBool)(other || h[C->nbr[k]] != h[a]);
     for (PetscInt k = C->nstart[a]; k < C->nstart[a + 1]; k++) {
       PetscInt  b = C->nbr[k];
-      PetscReal r = PetscSqrtReal(Dist2(x, D, a, b)), hab = PairH(h[a], h[b]);
+      PetscReal r = PetscSqrtReal(Dist2(x, D, a, b)), hab = PairH(h[a], h[b]), wf[2];
       PetscCheck(b != a && !mark[b], PETSC_COMM_SELF, PETSC_ERR_PLIB, "Neighbour list of %d holds %d twice or itself", (int)a, (int)b);
       mark[b] = 1;
+      ListPairKernel(K, x, h, D, a, b, other, &wf[0], &wf[1]);
+      notbits += memcmp(&wf[0], &C->w[k], sizeof(PetscReal)) || memcmp(&wf[1], &C->f[k], sizeof(PetscReal));
       errw    = PetscMax(errw, PetscAbsReal(C->w[k] - KernelW(K, r, hab)) / KernelW(K, 0, hab));
       errf    = PetscMax(errf, PetscAbsReal(C->f[k] - KernelF(K, r, hab)) / PetscAbsReal(KernelF(K, hab, hab)));
     }
@@ -137,8 +183,9 @@ static PetscErrorCode CheckNeighbours(const SPHKernel *K, PetscBool mixed, Petsc
     PetscCheck(found == C->nstart[a + 1] - C->nstart[a], PETSC_COMM_SELF, PETSC_ERR_PLIB, "Neighbour count of %d wrong", (int)a);
     pairs += found;
   }
-  PetscCall(PetscPrintf(PETSC_COMM_WORLD, "neighbours (%dD, %s, %s%s): %d particles, %d pairs as by brute force, max error of W %.1e, of F %.1e (relative)\n", (int)D, KernelTypes[K->type], mixed ? "two smoothing lengths" : "one smoothing length", skin > 0 ? ", refreshed after moves of half the skin" : "", (int)n, (int)pairs, (double)errw, (double)errf));
+  PetscCall(PetscPrintf(PETSC_COMM_WORLD, "neighbours (%dD, %s, %s%s): %d particles, %d pairs as by brute force, %d of them not kernel.h's values bit for bit, against KernelW/KernelF max error of W %.1e, of F %.1e (relative)\n", (int)D, KernelTypes[K->type], mixed ? "two smoothing lengths" : "one smoothing length", skin > 0 ? ", refreshed after moves of half the skin" : "", (int)n, (int)pairs, (int)notbits, (double)errw, (double)errf));
   PetscCheck(errw < 1e-12 && errf < 1e-12, PETSC_COMM_SELF, PETSC_ERR_PLIB, "Kernel values of the list differ from KernelW/KernelF");
+  PetscCheck(!notbits, PETSC_COMM_SELF, PETSC_ERR_PLIB, "%d pairs' kernel values of the list are not kernel.h's KernelShapeList/KernelShapePair bit for bit", (int)notbits);
   for (PetscInt pass = 0; pass < 2; pass++) { /* the list without W; pass 1: the particles moved on since it was made */
     PetscCheck(!memcmp(C->nstart, Cd->nstart, (n + 1) * sizeof(PetscInt)) && !memcmp(C->nbr, Cd->nbr, pairs * sizeof(PetscInt)) && !memcmp(C->f, Cd->f, pairs * sizeof(PetscReal)), PETSC_COMM_SELF, PETSC_ERR_PLIB, "The list without W has other pairs or F");
     for (PetscInt a = 0; a < n; a++) {
@@ -212,6 +259,10 @@ int main(int argc, char **argv)
       KernelInit(&K3, (KernelType)t, 3, k ? 2.0 : SPH_H_FACTOR);
       PetscCall(CheckKernel(&K));
       PetscCall(CheckLattice(&K3));
+      if (!k) {
+        PetscCall(CheckForms(&K));
+        PetscCall(CheckForms(&K3));
+      }
       for (PetscInt k = 0; k < 2; k++) { /* without a skin, and with WCSPH's default skin of 0.3 dx */
         PetscReal skin = k ? 0.3 : 0;
         PetscCall(CheckNeighbours(&K, PETSC_FALSE, skin));

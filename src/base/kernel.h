@@ -9,6 +9,7 @@
  * held by the simulation and handed to the modules that evaluate W. */
 #pragma once
 #include "base/base.h"
+#include "base/dim.h" /* SPH_INLINE */
 
 typedef enum { KERNEL_CUBIC = 0, KERNEL_WENDLAND_C2, KERNEL_WENDLAND_C4 } KernelType;
 extern const char *const KernelTypes[];
@@ -36,35 +37,94 @@ static inline PetscReal KernelDefaultHFactor(KernelType t) { return t == KERNEL_
 /* The normalisation sigma(h); for the cubic spline in 2D the paper's 10 / (7 pi h^2) */
 static inline PetscReal KernelSigma(const SPHKernel *K, PetscReal h) { return K->dim == 3 ? K->num / (K->den * PETSC_PI * h * h * h) : K->num / (K->den * PETSC_PI * h * h); }
 
+/* The kernels, written once: W and F = (dW/dr) / r at R = r / h from the normalisations sw = sigma(h)
+ * and sf = sw / h^2 (zero for R >= 2; F finite at R -> 0).  For the Wendland kernels, with q = R / 2,
+ * dW/dq = -20 q (1-q)^3 sigma and -56/3 q (1 + 5q) (1-q)^5 sigma.  The terms evaluate it through
+ * KernelW and KernelF (R = r / h); the neighbour list with R = r (1 / h) and the normalisations of
+ * each particle computed once (cells.c), through KernelShapeList and KernelShapePair below. */
+SPH_INLINE void KernelShape(const KernelType t, PetscReal R, PetscReal sw, PetscReal sf, PetscReal *w, PetscReal *f)
+{
+  *w = *f = 0.0;
+  if (R >= 2.0) return;
+  switch (t) {
+  case KERNEL_CUBIC:
+    if (R < 1.0) {
+      *w = sw * (1.0 - 1.5 * R * R + 0.75 * R * R * R);
+      *f = sf * (-3.0 + 2.25 * R);
+    } else {
+      PetscReal u = 2.0 - R;
+      *w = sw * 0.25 * u * u * u;
+      *f = -0.75 * sf * u * u / R;
+    }
+    break;
+  case KERNEL_WENDLAND_C2: {
+    PetscReal q = 0.5 * R, u = 1.0 - q, u2 = u * u;
+    *w = sw * u2 * u2 * (1.0 + 4.0 * q);
+    *f = -5.0 * sf * u * u * u;
+  } break;
+  case KERNEL_WENDLAND_C4: {
+    PetscReal q = 0.5 * R, u = 1.0 - q, u2 = u * u, u3 = u * u * u;
+    *w = sw * u3 * u3 * (1.0 + 6.0 * q + 35.0 / 3.0 * q * q);
+    *f = -14.0 / 3.0 * sf * (1.0 + 5.0 * q) * u2 * u2 * u;
+  } break;
+  }
+}
+
+/* The same kernel without branches, for the neighbour list's loop over a particle's pairs (with t a
+ * constant there, the loop vectorises: cells.c).  Its products are grouped as the list's have always
+ * been, not as in KernelShape: the cubic's outer ring (2 - R)^2 first, the Wendland kernels' powers of
+ * (1 - q) as u^3 u and u^5 u.  The two differ in the last bits (same R: the cubic's outer ring in 15 %
+ * of the values, the Wendland kernels' in about half, by at most 3.4 eps relative; test_kernel
+ * bounds it), and one grouping for both would change every run's results at round-off, so both are kept
+ * (docs/performance.md). */
+SPH_INLINE void KernelShapeList(const KernelType t, PetscReal R, PetscReal sw, PetscReal sf, PetscReal *w, PetscReal *f)
+{
+  switch (t) {
+  case KERNEL_CUBIC: {
+    PetscReal u = 2.0 - R, uu = u * u;
+    PetscReal win = sw * (1.0 - 1.5 * R * R + 0.75 * R * R * R), fin = sf * (-3.0 + 2.25 * R);
+    PetscReal wout = sw * 0.25 * uu * u, fout = -0.75 * sf * uu / (R > 0 ? R : 1.0);
+    *w = R < 1.0 ? win : (R < 2.0 ? wout : 0.0);
+    *f = R < 1.0 ? fin : (R < 2.0 ? fout : 0.0);
+  } break;
+  case KERNEL_WENDLAND_C2: {
+    PetscReal q = 0.5 * R, u = q < 1.0 ? 1.0 - q : 0.0, u3 = u * u * u;
+    *w = sw * u3 * u * (1.0 + 4.0 * q);
+    *f = -5.0 * sf * u3;
+  } break;
+  case KERNEL_WENDLAND_C4: {
+    PetscReal q = 0.5 * R, u = q < 1.0 ? 1.0 - q : 0.0, u2 = u * u, u5 = u2 * u2 * u;
+    *w = sw * u5 * u * (1.0 + 6.0 * q + 35.0 / 3.0 * q * q);
+    *f = -14.0 / 3.0 * sf * (1.0 + 5.0 * q) * u5;
+  } break;
+  default: *w = *f = 0.0;
+  }
+}
+
+/* One pair of the neighbour list evaluated on its own (a pair of two smoothing lengths, or of a
+ * particle that has one): the grouping these pairs have always had, KernelShape's for the cubic
+ * spline and KernelShapeList's for the Wendland kernels, zero from R = 2. */
+SPH_INLINE void KernelShapePair(const KernelType t, PetscReal R, PetscReal sw, PetscReal sf, PetscReal *w, PetscReal *f)
+{
+  if (R >= 2.0) *w = *f = 0.0;
+  else if (t == KERNEL_CUBIC) KernelShape(t, R, sw, sf, w, f);
+  else KernelShapeList(t, R, sw, sf, w, f);
+}
+
 /* W(r, h) */
 static inline PetscReal KernelW(const SPHKernel *K, PetscReal r, PetscReal h)
 {
-  PetscReal R = r / h, s = KernelSigma(K, h);
-  if (R >= 2.0) return 0.0;
-  switch (K->type) {
-  case KERNEL_CUBIC:
-    if (R < 1.0) return s * (1.0 - 1.5 * R * R + 0.75 * R * R * R);
-    else { PetscReal t = 2.0 - R; return s * 0.25 * t * t * t; }
-  case KERNEL_WENDLAND_C2: { PetscReal q = 0.5 * R, u = 1.0 - q, u2 = u * u; return s * u2 * u2 * (1.0 + 4.0 * q); }
-  case KERNEL_WENDLAND_C4: { PetscReal q = 0.5 * R, u = 1.0 - q, u3 = u * u * u; return s * u3 * u3 * (1.0 + 6.0 * q + 35.0 / 3.0 * q * q); }
-  }
-  return 0.0;
+  PetscReal s = KernelSigma(K, h), w, f;
+  KernelShape(K->type, r / h, s, s / (h * h), &w, &f);
+  return w;
 }
 
-/* F_ab = (dW/dr) / r, so that grad_a W_ab = F_ab (x_a - x_b); finite at r -> 0.  For the Wendland
- * kernels dW/dq = -20 q (1-q)^3 sigma and -56/3 q (1 + 5q) (1-q)^5 sigma, with r = 2 h q. */
+/* F_ab = (dW/dr) / r, so that grad_a W_ab = F_ab (x_a - x_b) */
 static inline PetscReal KernelF(const SPHKernel *K, PetscReal r, PetscReal h)
 {
-  PetscReal R = r / h, s = KernelSigma(K, h) / (h * h);
-  if (R >= 2.0) return 0.0;
-  switch (K->type) {
-  case KERNEL_CUBIC:
-    if (R < 1.0) return s * (-3.0 + 2.25 * R);
-    else { PetscReal t = 2.0 - R; return -0.75 * s * t * t / R; }
-  case KERNEL_WENDLAND_C2: { PetscReal u = 1.0 - 0.5 * R; return -5.0 * s * u * u * u; }
-  case KERNEL_WENDLAND_C4: { PetscReal q = 0.5 * R, u = 1.0 - q, u2 = u * u; return -14.0 / 3.0 * s * (1.0 + 5.0 * q) * u2 * u2 * u; }
-  }
-  return 0.0;
+  PetscReal s = KernelSigma(K, h), w, f;
+  KernelShape(K->type, r / h, s, s / (h * h), &w, &f);
+  return f;
 }
 
 /* dW/dr(r, h); the gradient is grad_a W_ab = dW/dr * (x_a - x_b) / r, Eq. 15 */

@@ -17,7 +17,6 @@ SPH_INLINE PetscErrorCode WallStateD(Sim sim, PetscBool pressure, const PetscInt
   const FieldId    refresh[] = {FIELD_VWALL, FIELD_P, FIELD_RHO, FIELD_FVIEW};
 
   PetscFunctionBeginUser;
-  PetscCall(PetscLogStagePush(sim->stage[STAGE_PHYSICS]));
   for (PetscInt a = 0; a < P->n; a++) {
     PetscReal sw = 0, sp = 0, sg[3] = {0, 0, 0}, sv[3] = {0, 0, 0}, pg;
     PetscBool solid = KindIsSolid(P->kind[a]);
@@ -48,11 +47,8 @@ SPH_INLINE PetscErrorCode WallStateD(Sim sim, PetscBool pressure, const PetscInt
       rho[a] = EOSDensity(&sim->fl, p[a]);
     }
   }
-  PetscCall(PetscLogStagePop());
-  PetscCall(PetscLogStagePush(sim->stage[STAGE_HALO]));
   if (fv) PetscCall(HaloRefresh(sim->halo, P, 1, refresh + 3));
   PetscCall(HaloRefresh(sim->halo, P, pressure ? 3 : 1, refresh));
-  PetscCall(PetscLogStagePop());
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

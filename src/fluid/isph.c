@@ -223,9 +223,7 @@ SPH_INLINE PetscErrorCode DensityFreeSurfaceSourceD(Sim sim, const PetscInt D)
     s->src[a] = (1 - w) * div / (rho[a] * dt) + w * (rho0 - rho[a]) / (rho0 * dt * dt);
   }
   PetscCall(MPIU_Allreduce(&nfree, &s->nfree, 1, MPIU_INT, MPI_SUM, sim->comm));
-  PetscCall(PetscLogStagePush(sim->stage[STAGE_HALO]));
   PetscCall(HaloRefresh(sim->halo, P, 2, refresh));
-  PetscCall(PetscLogStagePop());
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -339,11 +337,7 @@ SPH_INLINE PetscErrorCode DriftD(Sim sim, const PetscInt D)
 
   PetscFunctionBeginUser;
   if (s->shift > 0 && sim->fl.shift_correct) PetscCall(PetscCalloc1(D * P->n, &dv));
-  if (eps != 0 || dv) { /* only XSPH and the shift's velocity correction read the neighbours' v */
-    PetscCall(PetscLogStagePush(sim->stage[STAGE_HALO]));
-    PetscCall(HaloRefresh(sim->halo, P, 1, vel));
-    PetscCall(PetscLogStagePop());
-  }
+  if (eps != 0 || dv) PetscCall(HaloRefresh(sim->halo, P, 1, vel)); /* only XSPH and the shift's velocity correction read the neighbours' v */
   for (PetscInt a = 0; a < P->n; a++) {
     PetscReal sx[3] = {0, 0, 0}, c[3] = {0, 0, 0};
     PetscBool near_fs = PETSC_FALSE;
@@ -403,34 +397,46 @@ SPH_INLINE PetscErrorCode MoveToEndD(Sim sim, const PetscInt D)
 
 static PetscErrorCode MoveToEnd(Sim sim) { return SPH_DIM_DISPATCH(sim->dim, MoveToEndD, sim); }
 
-PetscErrorCode ISPHPressureEquation(Sim sim)
+PetscErrorCode ISPHAssemble(Sim sim)
 {
   ISPH s = sim->isph;
   PetscFunctionBeginUser;
-  PetscCall(PetscLogStagePush(sim->stage[STAGE_PHYSICS]));
-  PetscCall(DensityFreeSurfaceSource(sim));
-  PetscCall(PetscLogStagePop());
   PetscCall(PPENumber(s->ppe, sim));
   PetscCall(PPEAssemble(s->ppe, sim, s->src));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode ISPHStep(Sim sim)
+PetscErrorCode ISPHPressureEquation(Sim sim)
 {
-  ISPH s = sim->isph;
+  PetscFunctionBeginUser;
+  PetscCall(DensityFreeSurfaceSource(sim));
+  PetscCall(ISPHAssemble(sim));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode ISPHPredict(Sim sim)
+{
   PetscFunctionBeginUser;
   if (sim->has_solid) PetscCall(BoundaryWallVelocity(sim)); /* the solids moved (and may have rebuilt) since the last step */
-  PetscCall(PetscLogStagePush(sim->stage[STAGE_PHYSICS]));
   PetscCall(Predictor(sim));
-  PetscCall(PetscLogStagePop());
   PetscCall(NeighbourhoodRebuild(&sim->nbhd, sim->step)); /* neighbours at r* */
-  PetscCall(ISPHPressureEquation(sim));
-  PetscCall(PPESolve(s->ppe, sim));
-  PetscCall(PetscLogStagePush(sim->stage[STAGE_PHYSICS]));
+  PetscCall(DensityFreeSurfaceSource(sim));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode ISPHSolve(Sim sim)
+{
+  PetscFunctionBeginUser;
+  PetscCall(PPESolve(sim->isph->ppe, sim));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode ISPHCorrect(Sim sim)
+{
+  PetscFunctionBeginUser;
   PetscCall(Corrector(sim));
   if (PField(sim->P, FIELD_XSPH)) PetscCall(Drift(sim));
   PetscCall(MoveToEnd(sim));
-  PetscCall(PetscLogStagePop());
   PetscCall(NeighbourhoodRebuild(&sim->nbhd, sim->step));
   PetscCall(BoundaryWallVelocity(sim));
   PetscFunctionReturn(PETSC_SUCCESS);

@@ -41,8 +41,16 @@ PetscErrorCode ISPHDestroy(ISPH *isph);
 /* Step from CFL on the flow speed (not a sound speed), force and viscous limits. */
 PetscErrorCode ISPHTimeStep(Sim sim, PetscReal *dt);
 /* At the current positions (r*): rho*, free surface, PPE matrix and right-hand side (needs sim->dt
- * and the predicted velocity). */
+ * and the predicted velocity): the source of ISPHPredict, then ISPHAssemble. */
 PetscErrorCode ISPHPressureEquation(Sim sim);
-/* One predictor-projection-corrector step of length sim->dt. */
-PetscErrorCode ISPHStep(Sim sim);
+/* One predictor-projection-corrector step of length sim->dt is these four in turn (the driver's
+ * Step, which logs each in its stage):
+ *   ISPHPredict   the predictor (v*, r*), the neighbours at r*, rho*, free surface and source;
+ *   ISPHAssemble  the PPE's rows and matrix;
+ *   ISPHSolve     the pressure;
+ *   ISPHCorrect   the corrector, the drift, the move to the end of the step and its neighbours. */
+PetscErrorCode ISPHPredict(Sim sim);
+PetscErrorCode ISPHAssemble(Sim sim);
+PetscErrorCode ISPHSolve(Sim sim);
+PetscErrorCode ISPHCorrect(Sim sim);
 PetscErrorCode ISPHView(Sim sim, PetscViewer v);

@@ -122,9 +122,7 @@ PetscErrorCode PPENumber(PPE ppe, Sim sim)
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, cnt, 3, MPIU_INT, MPI_SUM, ppe->comm));
   ppe->nrow_global = cnt[0]; ppe->ndirichlet_global = cnt[1]; ppe->nempty = cnt[2];
   for (PetscInt r = 0; r < n; r++) row[ppe->rowpart[r]] = (PetscReal)(ppe->rstart + r);
-  PetscCall(PetscLogStagePush(sim->stage[STAGE_HALO]));
   PetscCall(HaloRefresh(sim->halo, P, 1, refresh));
-  PetscCall(PetscLogStagePop());
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -388,7 +386,6 @@ PetscErrorCode PPEAssemble(PPE ppe, Sim sim, const PetscReal *src)
   PetscScalar     *bb;
 
   PetscFunctionBeginUser;
-  PetscCall(PetscLogStagePush(sim->stage[STAGE_PPE_ASSEMBLY]));
   ppe->pin = ppe->ndirichlet_global ? -1 : 0; /* no free surface: P = 0 at global row 0 (ppe.h) */
   PetscCall(Reset(ppe, sim));
   PetscCall(VecGetArrayWrite(ppe->b, &bb));
@@ -411,7 +408,6 @@ PetscErrorCode PPEAssemble(PPE ppe, Sim sim, const PetscReal *src)
       PetscCall(VecRestoreArray(ppe->b, &bb));
     }
   }
-  PetscCall(PetscLogStagePop());
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -426,7 +422,6 @@ PetscErrorCode PPESolve(PPE ppe, Sim sim)
   const FieldId      refresh[] = {FIELD_P, FIELD_FS, FIELD_FVIEW};
 
   PetscFunctionBeginUser;
-  PetscCall(PetscLogStagePush(sim->stage[STAGE_PPE_SOLVE]));
   PetscCall(VecGetArrayWrite(ppe->x, &xx));
   for (PetscInt r = 0; r < ppe->nrow; r++) {
     PetscInt a = ppe->rowpart[r];
@@ -481,10 +476,7 @@ PetscErrorCode PPESolve(PPE ppe, Sim sim)
     } else p[a] = xx[r];
   }
   PetscCall(VecRestoreArrayRead(ppe->x, (const PetscScalar **)&xx));
-  PetscCall(PetscLogStagePop());
-  PetscCall(PetscLogStagePush(sim->stage[STAGE_HALO]));
   PetscCall(HaloRefresh(sim->halo, P, fv ? 3 : 2, refresh));
-  PetscCall(PetscLogStagePop());
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

@@ -190,13 +190,9 @@ static PetscErrorCode Momentum(Sim sim) { return SPH_DIM_DISPATCH(sim->dim, Mome
 PetscErrorCode WCSPHRates(Sim sim)
 {
   PetscFunctionBeginUser;
-  PetscCall(PetscLogStagePush(sim->stage[STAGE_PHYSICS]));
   PetscCall(WCSPHPressure(sim));
-  PetscCall(PetscLogStagePop());
   PetscCall(BoundaryWallState(sim));
-  PetscCall(PetscLogStagePush(sim->stage[STAGE_PHYSICS]));
   PetscCall(Momentum(sim));
-  PetscCall(PetscLogStagePop());
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -237,13 +233,8 @@ PetscErrorCode WCSPHStep(Sim sim)
   const FieldId vel[] = {FIELD_V};
 
   PetscFunctionBeginUser;
-  PetscCall(PetscLogStagePush(sim->stage[STAGE_PHYSICS]));
   KickVelocity(sim, 0.5 * dt);
-  PetscCall(PetscLogStagePop());
-  PetscCall(PetscLogStagePush(sim->stage[STAGE_HALO]));
   PetscCall(HaloRefresh(sim->halo, P, 1, vel));
-  PetscCall(PetscLogStagePop());
-  PetscCall(PetscLogStagePush(sim->stage[STAGE_PHYSICS]));
   PetscCall(Continuity(sim));
   {
     PetscReal *x = PField(P, FIELD_X), *v = PField(P, FIELD_V), *xs = PField(P, FIELD_XSPH), *rho = PField(P, FIELD_RHO), *drho = PField(P, FIELD_DRHO);
@@ -254,11 +245,8 @@ PetscErrorCode WCSPHStep(Sim sim)
       for (PetscInt i = 0; i < D; i++) x[D * a + i] += dt * (v[D * a + i] + (xs ? xs[D * a + i] : 0));
     }
   }
-  PetscCall(PetscLogStagePop());
   PetscCall(NeighbourhoodUpdate(&sim->nbhd, sim->step));
   PetscCall(WCSPHRates(sim));
-  PetscCall(PetscLogStagePush(sim->stage[STAGE_PHYSICS]));
   KickVelocity(sim, 0.5 * dt);
-  PetscCall(PetscLogStagePop());
   PetscFunctionReturn(PETSC_SUCCESS);
 }

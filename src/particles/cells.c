@@ -112,59 +112,22 @@ PetscErrorCode CellsBuild(Cells c, Particles P)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-/* W and F of a pair at distance r for smoothing length h, given ih = 1 / h, sw = KernelSigma(h) and
- * sf = sw / (h h): the operations of KernelW and KernelF (kernel.h) without the per-pair
- * normalisation; one division, in the outer ring only. */
-static inline void PairKernel(KernelType t, PetscReal r, PetscReal ih, PetscReal sw, PetscReal sf, PetscReal *w, PetscReal *f)
+/* Kernel values of n pairs of smoothing length h (ih = 1 / h) from their r^2, stored in w: kernel.h's
+ * KernelShapeList, the kernel t a constant in each loop (UniformPairKernels), so that the compiler
+ * can vectorise the square roots and divisions. */
+SPH_INLINE void UniformPairKernelsT(PetscReal *restrict w, PetscReal *restrict f, PetscInt n, PetscReal ih, PetscReal sw, PetscReal sf, const KernelType t)
 {
-  PetscReal R = r * ih; /* ih = 1 / h: no division for the pairs inside h */
-  if (R >= 2.0) { *w = *f = 0.0; return; }
-  if (t == KERNEL_CUBIC) {
-    if (R < 1.0) {
-      *w = sw * (1.0 - 1.5 * R * R + 0.75 * R * R * R);
-      *f = sf * (-3.0 + 2.25 * R);
-    } else {
-      PetscReal u = 2.0 - R;
-      *w = sw * 0.25 * u * u * u;
-      *f = -0.75 * sf * u * u / R;
-    }
-  } else if (t == KERNEL_WENDLAND_C2) {
-    PetscReal q = 0.5 * R, u = 1.0 - q, u3 = u * u * u;
-    *w = sw * u3 * u * (1.0 + 4.0 * q);
-    *f = -5.0 * sf * u3;
-  } else {
-    PetscReal q = 0.5 * R, u = 1.0 - q, u2 = u * u, u5 = u2 * u2 * u;
-    *w = sw * u5 * u * (1.0 + 6.0 * q + 35.0 / 3.0 * q * q);
-    *f = -14.0 / 3.0 * sf * (1.0 + 5.0 * q) * u5;
-  }
+  for (PetscInt k = 0; k < n; k++) KernelShapeList(t, PetscSqrtReal(w[k]) * ih, sw, sf, &w[k], &f[k]);
 }
 
-/* Kernel values of n pairs of smoothing length h (ih = 1 / h) from their r^2, stored in w: PairKernel
- * without branches, so that the compiler vectorises the square roots and divisions; one loop per
- * kernel, chosen outside it.  Neither inlined nor cloned (noipa): the build and CellsPairW run the
- * same instructions. */
+/* Neither inlined nor cloned (noipa): the build and CellsPairW run the same instructions. */
 static __attribute__((noipa)) void UniformPairKernels(KernelType type, PetscReal *restrict w, PetscReal *restrict f, PetscInt n, PetscReal ih, PetscReal sw, PetscReal sf)
 {
-  if (type == KERNEL_CUBIC)
-    for (PetscInt k = 0; k < n; k++) {
-      PetscReal R = PetscSqrtReal(w[k]) * ih, t = 2.0 - R, tt = t * t;
-      PetscReal win = sw * (1.0 - 1.5 * R * R + 0.75 * R * R * R), fin = sf * (-3.0 + 2.25 * R);
-      PetscReal wout = sw * 0.25 * tt * t, fout = -0.75 * sf * tt / (R > 0 ? R : 1.0);
-      w[k] = R < 1.0 ? win : (R < 2.0 ? wout : 0.0);
-      f[k] = R < 1.0 ? fin : (R < 2.0 ? fout : 0.0);
-    }
-  else if (type == KERNEL_WENDLAND_C2)
-    for (PetscInt k = 0; k < n; k++) {
-      PetscReal q = 0.5 * PetscSqrtReal(w[k]) * ih, u = q < 1.0 ? 1.0 - q : 0.0, u3 = u * u * u;
-      w[k] = sw * u3 * u * (1.0 + 4.0 * q);
-      f[k] = -5.0 * sf * u3;
-    }
-  else
-    for (PetscInt k = 0; k < n; k++) {
-      PetscReal q = 0.5 * PetscSqrtReal(w[k]) * ih, u = q < 1.0 ? 1.0 - q : 0.0, u2 = u * u, u5 = u2 * u2 * u;
-      w[k] = sw * u5 * u * (1.0 + 6.0 * q + 35.0 / 3.0 * q * q);
-      f[k] = -14.0 / 3.0 * sf * (1.0 + 5.0 * q) * u5;
-    }
+  switch (type) {
+  case KERNEL_CUBIC: UniformPairKernelsT(w, f, n, ih, sw, sf, KERNEL_CUBIC); break;
+  case KERNEL_WENDLAND_C2: UniformPairKernelsT(w, f, n, ih, sw, sf, KERNEL_WENDLAND_C2); break;
+  case KERNEL_WENDLAND_C4: UniformPairKernelsT(w, f, n, ih, sw, sf, KERNEL_WENDLAND_C4); break;
+  }
 }
 
 /* Make room for `more` pairs after the first `cnt` of a list, filled for particles [0, a) of n: the
@@ -193,7 +156,7 @@ static PetscErrorCode ReserveNeighbours(Cells out, PetscInt cnt, PetscInt more, 
 static inline void OtherHPairKernel(const SPHKernel *K, PetscReal ha, PetscReal hb, PetscReal r2, PetscReal *w, PetscReal *f)
 {
   PetscReal hab = PairH(ha, hb), sw = KernelSigma(K, hab);
-  PairKernel(K->type, PetscSqrtReal(r2), 1.0 / hab, sw, sw / (hab * hab), w, f);
+  KernelShapePair(K->type, PetscSqrtReal(r2) * (1.0 / hab), sw, sw / (hab * hab), w, f);
 }
 
 /* Kernel values of particle a's n pairs (nbr, w, f from a's first pair): the pairs of a's own h hold
@@ -203,7 +166,7 @@ static inline void OwnPairKernels(KernelType type, const PetscReal *h, PetscReal
   if (!mixed) UniformPairKernels(type, w, f, n, iha, swa, sfa);
   else
     for (PetscInt k = 0; k < n; k++)
-      if (h[nbr[k]] == ha) PairKernel(type, PetscSqrtReal(w[k]), iha, swa, sfa, &w[k], &f[k]);
+      if (h[nbr[k]] == ha) KernelShapePair(type, PetscSqrtReal(w[k]) * iha, swa, sfa, &w[k], &f[k]);
 }
 
 /* Room for one particle's n pair values in the W/F scratch of drop_w. */
@@ -473,7 +436,7 @@ PetscErrorCode CellsRefreshPairs(Cells c, Particles P)
 }
 
 /* W of a's pairs again, as NeighbourPassD and RefreshPairsD evaluated them: r^2 from the same
- * positions, the pairs of another h by PairKernel, a's own by OwnPairKernels. */
+ * positions, the pairs of another h by KernelShapePair, a's own by OwnPairKernels. */
 SPH_INLINE const PetscReal *PairWD(Cells c, Particles P, PetscInt a, const PetscInt D)
 {
   const PetscReal *x = c->xk, *h = PField(P, FIELD_H);

@@ -6,7 +6,8 @@ PetscErrorCode HaloCreate(MPI_Comm comm, Halo *h)
 {
   PetscFunctionBeginUser;
   PetscCall(PetscNew(h));
-  (*h)->comm = comm;
+  (*h)->comm  = comm;
+  (*h)->stage = -1;
   for (PetscInt w = 1; w <= HALO_MAX_WIDTH; w++) {
     PetscCallMPI(MPI_Type_contiguous((PetscMPIInt)w, MPIU_REAL, &(*h)->unit[w]));
     PetscCallMPI(MPI_Type_commit(&(*h)->unit[w]));
@@ -206,10 +207,26 @@ static PetscErrorCode Refresh(Halo h, Particles P, PetscSF sf, const PetscInt *g
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+static PetscErrorCode StagePush(Halo h)
+{
+  PetscFunctionBeginUser;
+  if (h->stage >= 0) PetscCall(PetscLogStagePush(h->stage));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+static PetscErrorCode StagePop(Halo h)
+{
+  PetscFunctionBeginUser;
+  if (h->stage >= 0) PetscCall(PetscLogStagePop());
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 PetscErrorCode HaloRefresh(Halo h, Particles P, PetscInt nf, const FieldId f[])
 {
   PetscFunctionBeginUser;
+  PetscCall(StagePush(h));
   PetscCall(Refresh(h, P, h->sf, NULL, P->ng, nf, f));
+  PetscCall(StagePop(h));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -238,8 +255,10 @@ static PetscErrorCode KindsSF(Halo h, Particles P, PetscBool (*keep)(PetscInt))
 PetscErrorCode HaloRefreshKinds(Halo h, Particles P, PetscBool (*keep)(PetscInt), PetscInt nf, const FieldId f[])
 {
   PetscFunctionBeginUser;
+  PetscCall(StagePush(h));
   if (!h->sf_kinds || h->kinds != keep) PetscCall(KindsSF(h, P, keep));
   PetscCall(Refresh(h, P, h->sf_kinds, h->kinds_ghost, h->nkinds, nf, f));
+  PetscCall(StagePop(h));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -277,7 +296,9 @@ PetscErrorCode HaloRefreshSlots(Halo h, PetscSF sf, PetscInt nown, PetscInt na, 
 {
   PetscFunctionBeginUser;
   for (PetscInt k = 0; k < na; k++) PetscCheck(width[k] >= 1 && width[k] <= HALO_MAX_WIDTH, h->comm, PETSC_ERR_ARG_OUTOFRANGE, "Halo refresh of %" PetscInt_FMT " reals a slot: raise HALO_MAX_WIDTH (%d)", width[k], HALO_MAX_WIDTH);
+  PetscCall(StagePush(h));
   for (PetscInt k = 0; k < na; k++) PetscCall(PetscSFBcastBegin(sf, h->unit[width[k]], a[k], a[k] + nown * width[k], MPI_REPLACE));
   for (PetscInt k = 0; k < na; k++) PetscCall(PetscSFBcastEnd(sf, h->unit[width[k]], a[k], a[k] + nown * width[k], MPI_REPLACE));
+  PetscCall(StagePop(h));
   PetscFunctionReturn(PETSC_SUCCESS);
 }

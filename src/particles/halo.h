@@ -22,13 +22,15 @@ struct _p_Halo {
   PetscBool (*kinds)(PetscInt);
   PetscInt   *kinds_ghost; /* their ghost offsets (0 .. ng) */
   PetscInt    nkinds;
+  PetscLogStage stage; /* pushed around every refresh (NeighbourhoodWire: the halo stage); -1: none */
 };
 
 PetscErrorCode HaloCreate(MPI_Comm comm, Halo *h);
 PetscErrorCode HaloDestroy(Halo *h);
 /* Create ghosts of all fields marked `halo` (plus id, kind) and the SF for later refreshes. */
 PetscErrorCode HaloBuild(Halo h, Decomp d, Particles P);
-/* Copy the owners' current values of these fields into the ghosts. */
+/* Copy the owners' current values of these fields into the ghosts.  The refreshes (this and the two
+ * below) log in h->stage, wherever they are called from. */
 PetscErrorCode HaloRefresh(Halo h, Particles P, PetscInt nf, const FieldId f[]);
 /* The same for the ghosts whose kind `keep` accepts (the solid's sub-steps, between fluid steps,
  * change only the solids: refreshing the fluid's ghosts too costs most of a 3D FSI sub-step). */

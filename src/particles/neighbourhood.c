@@ -14,6 +14,7 @@ PetscErrorCode NeighbourhoodWire(Neighbourhood *nb, MPI_Comm comm, Particles P, 
   nb->outflow         = outflow;
   nb->stage_halo      = stage_halo;
   nb->stage_neighbour = stage_neighbour;
+  halo->stage         = stage_halo; /* every ghost refresh, whoever asks for it */
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -44,25 +45,24 @@ static PetscErrorCode Outflow(Neighbourhood *nb)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-/* full: outflow and rebalancing first (every rebuild of a run; a restart repeats one without). */
+/* full: outflow and rebalancing first (every rebuild of a run; a restart repeats one without).
+ * Logged in the neighbour stage, the particles' moves between ranks and the ghosts in the halo stage. */
 static PetscErrorCode Rebuild(Neighbourhood *nb, PetscBool full, PetscInt step)
 {
   PetscBool rep;
   Particles P = nb->P;
   PetscFunctionBeginUser;
+  PetscCall(PetscLogStagePush(nb->stage_neighbour));
   PetscCall(PetscLogStagePush(nb->stage_halo));
   if (full && nb->outflow) PetscCall(Outflow(nb));
   PetscCall(DecompMigrate(nb->decomp, P));
   if (full) PetscCall(DecompBalance(nb->decomp, P, step, &rep));
   PetscCall(PetscLogStagePop());
-  PetscCall(PetscLogStagePush(nb->stage_neighbour));
   PetscCall(DecompSortOwned(nb->decomp, P));
-  PetscCall(PetscLogStagePop());
   PetscCall(PetscLogStagePush(nb->stage_halo));
   PetscCall(HaloBuild(nb->halo, nb->decomp, P));
   PetscCall(PetscLogStagePop());
   if (nb->decomp->log_stats) PetscCall(DecompLogRebuild(nb->decomp, P, nb->halo->nbr_send, step));
-  PetscCall(PetscLogStagePush(nb->stage_neighbour));
   PetscCall(CellsBuild(nb->cells, P));
   if (full && P->f[FIELD_XREB].on) PetscCall(PetscArraycpy(PField(P, FIELD_XREB), PField(P, FIELD_X), P->dim * P->n)); /* a restart has them */
   if (full && P->f[FIELD_XLIST].on) PetscCall(PetscArraycpy(PField(P, FIELD_XLIST), PField(P, FIELD_X), P->dim * P->n));
@@ -104,7 +104,7 @@ PetscErrorCode NeighbourhoodUpdate(Neighbourhood *nb, PetscInt step)
     VSub(x + D * a, xr + D * a, d, D);
     d2 = PetscMax(d2, VDot(d, d, D));
   }
-  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &d2, 1, MPIU_REAL, MPIU_MAX, nb->comm));
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &d2, 1, MPIU_REAL, MPIU_MAX, nb->comm)); /* (in the caller's stage: the wait is the step's) */
   /* the steps that may rebalance rebuild on every number of ranks: the lists, and with them the
    * order of every sum, stay the same on 1 and on 2 ranks */
   if (d2 >= lim * lim || step % nb->decomp->check_every == 0) {
@@ -118,12 +118,19 @@ PetscErrorCode NeighbourhoodUpdate(Neighbourhood *nb, PetscInt step)
     if (P->f[f].halo) all[nf++] = (FieldId)f;
     else PetscCall(PetscArrayzero(P->f[f].a + P->n * P->f[f].width, P->ng * P->f[f].width));
   }
-  PetscCall(PetscLogStagePush(nb->stage_halo));
-  PetscCall(HaloRefresh(nb->halo, P, nf, all));
-  PetscCall(PetscLogStagePop());
+  PetscCall(HaloRefresh(nb->halo, P, nf, all)); /* in the halo stage */
   PetscCall(PetscLogStagePush(nb->stage_neighbour));
   PetscCall(CellsRefreshPairs(nb->cells, P));
   if (P->f[FIELD_XLIST].on) PetscCall(PetscArraycpy(PField(P, FIELD_XLIST), x, D * P->n));
+  PetscCall(PetscLogStagePop());
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode NeighbourhoodSubList(Neighbourhood *nb, PetscBool (*keep)(PetscInt), PetscReal skin, Cells sub)
+{
+  PetscFunctionBeginUser;
+  PetscCall(PetscLogStagePush(nb->stage_neighbour));
+  PetscCall(CellsBuildSubList(nb->cells, nb->P, keep, skin, sub));
   PetscCall(PetscLogStagePop());
   PetscFunctionReturn(PETSC_SUCCESS);
 }

@@ -25,7 +25,9 @@ typedef struct {
   PetscLogStage stage_halo, stage_neighbour;
 } Neighbourhood;
 
-/* The particles and machinery to work on, the boundary's kind and the log stages to push. */
+/* The particles and machinery to work on, the boundary's kind and the log stages to push: the
+ * neighbourhood's work logs in stage_neighbour, its moves of particles between ranks and every ghost
+ * refresh of the halo (whoever asks for it) in stage_halo. */
 PetscErrorCode NeighbourhoodWire(Neighbourhood *nb, MPI_Comm comm, Particles P, const Grid *grid, Decomp decomp, Halo halo, Cells cells, const PetscBool periodic[], PetscBool outflow, PetscLogStage stage_halo, PetscLogStage stage_neighbour);
 /* Outflow, migration, rebalancing (on the steps that may: DecompBalance), sort, ghosts, cells and
  * lists: after particles moved. */
@@ -36,3 +38,6 @@ PetscErrorCode NeighbourhoodRebuild(Neighbourhood *nb, PetscInt step);
 PetscErrorCode NeighbourhoodUpdate(Neighbourhood *nb, PetscInt step);
 /* The rebuild without outflow or rebalancing (a restart repeats the last rebuild of the run). */
 PetscErrorCode NeighbourhoodRebuildKeepPartition(Neighbourhood *nb, PetscInt step);
+/* A neighbour list of some kinds over the current cells (CellsBuildSubList: the solid's), logged as
+ * the neighbourhood's. */
+PetscErrorCode NeighbourhoodSubList(Neighbourhood *nb, PetscBool (*keep)(PetscInt), PetscReal skin, Cells sub);

@@ -189,6 +189,27 @@ static PetscErrorCode HelpOtherModules(Sim sim)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* A phase of a step, logged in its stage (-log_view).  The stages are the driver's: the physics
+ * pushes none; the neighbourhood's work and the ghost refreshes inside a phase log in their own
+ * stages (NeighbourhoodWire).  A fault inside leaves the stage pushed: GuardStep pops it. */
+static PetscErrorCode Staged(Sim sim, SimStage stage, PetscErrorCode (*phase)(Sim))
+{
+  PetscFunctionBeginUser;
+  PetscCall(PetscLogStagePush(sim->stage[stage]));
+  PetscCall(phase(sim));
+  PetscCall(PetscLogStagePop());
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* The solid's state after the particles moved (its list, loads and rates). */
+static PetscErrorCode SolidAfterRebuild(Sim sim)
+{
+  PetscFunctionBeginUser;
+  PetscCall(SolidPrepare(sim));
+  PetscCall(SolidRates(sim));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 PetscErrorCode SimSetUp(Sim sim)
 {
   PetscFunctionBeginUser;
@@ -290,12 +311,9 @@ PetscErrorCode SimSetUp(Sim sim)
     PetscCall(DecompMigrate(sim->decomp, sim->P));   /* wraps and checks every particle is inside */
     PetscCall(NeighbourhoodRebuild(&sim->nbhd, sim->step));
     PetscCall(SimTotalMass(sim, &sim->mass0));
-    if (sim->has_fluid && sim->fluid == FLUID_ISPH) PetscCall(ISPHInitialize(sim));
-    else if (sim->has_fluid) PetscCall(WCSPHRates(sim));
-    if (sim->has_solid) {
-      PetscCall(SolidPrepare(sim));
-      PetscCall(SolidRates(sim));
-    }
+    if (sim->has_fluid && sim->fluid == FLUID_ISPH) PetscCall(Staged(sim, STAGE_PHYSICS, ISPHInitialize));
+    else if (sim->has_fluid) PetscCall(Staged(sim, STAGE_PHYSICS, WCSPHRates));
+    if (sim->has_solid) PetscCall(Staged(sim, STAGE_SOLID, SolidAfterRebuild));
   }
   if (sim->restart[0]) PetscCall(OutDirTidyRestart(sim)); /* the snapshots past the checkpoint */
   PetscCall(IOSetUp(sim));
@@ -315,6 +333,21 @@ static PetscErrorCode Progress(Sim sim)
     if (sim->has_fluid && sim->solid) PetscCall(PetscSNPrintf(its + strlen(its), sizeof(its) - strlen(its), "  solid sub-steps %" PetscInt_FMT, sim->solid->nsub_last));
     PetscCall(PetscPrintf(sim->comm, "step %7" PetscInt_FMT "  t %.5e / %.4g s  dt %.3e  particles %" PetscInt_FMT "%s  wall %.1f s  left ~%.0f s\n", sim->step, (double)sim->t, (double)sim->t_end, (double)sim->dt, sim->nbhd.nparticles, its, (double)el, (double)left));
   }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* The fluid's step; ISPH's in its four phases (isph.h). */
+static PetscErrorCode FluidStep(Sim sim)
+{
+  PetscFunctionBeginUser;
+  if (!sim->isph) {
+    PetscCall(Staged(sim, STAGE_PHYSICS, WCSPHStep));
+    PetscFunctionReturn(PETSC_SUCCESS);
+  }
+  PetscCall(Staged(sim, STAGE_PHYSICS, ISPHPredict));
+  PetscCall(Staged(sim, STAGE_PPE_ASSEMBLY, ISPHAssemble));
+  PetscCall(Staged(sim, STAGE_PPE_SOLVE, ISPHSolve));
+  PetscCall(Staged(sim, STAGE_PHYSICS, ISPHCorrect));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -342,24 +375,18 @@ static PetscErrorCode Step(Sim sim)
     if (left < sim->dt * (1 + 1e-6)) sim->dt = left;
     else if (left < 2 * sim->dt) sim->dt = 0.5 * left;
   }
-  if (sim->has_fluid) {
-    if (sim->isph) PetscCall(ISPHStep(sim));
-    else PetscCall(WCSPHStep(sim));
-  }
+  if (sim->has_fluid) PetscCall(FluidStep(sim));
   if (sim->has_solid) {
     if (dts < sim->dt) nsub = (PetscInt)PetscCeilReal(sim->dt / dts * (1 - 1e-12));
-    if (sim->has_fluid) { /* the fluid moved and everything was rebuilt: new loads on the solid */
-      PetscCall(SolidPrepare(sim));
-      PetscCall(SolidRates(sim));
-    }
+    PetscCall(PetscLogStagePush(sim->stage[STAGE_SOLID]));
+    if (sim->has_fluid) PetscCall(SolidAfterRebuild(sim)); /* the fluid moved and everything was rebuilt: new loads on the solid */
     PetscCall(SolidBeginSubsteps(sim));
     for (PetscInt k = 0; k < nsub; k++) PetscCall(SolidStep(sim, sim->dt / nsub));
+    PetscCall(PetscLogStagePop());
     if (sim->has_fluid) { /* the last half kick left the solids' ghosts a half kick behind their owners,
                             and the next fluid step reads them (ISPH's predictor before any refresh) */
       const FieldId vel[] = {FIELD_V};
-      PetscCall(PetscLogStagePush(sim->stage[STAGE_HALO]));
       PetscCall(HaloRefresh(sim->halo, sim->P, 1, vel));
-      PetscCall(PetscLogStagePop());
     }
     sim->solid->nsub_last = nsub;
     sim->solid->nsub_max  = PetscMax(sim->solid->nsub_max, nsub);

@@ -178,9 +178,7 @@ SPH_INLINE PetscErrorCode NormalsD(Sim sim, const PetscInt D)
     if (gn * dxa > sim->solid->nrm_min)
       for (PetscInt i = 0; i < D; i++) nrm[D * a + i] = g[i] / gn;
   }
-  PetscCall(PetscLogStagePush(sim->stage[STAGE_HALO]));
   PetscCall(HaloRefreshKinds(sim->halo, P, SolidKeep, 1, refresh));
-  PetscCall(PetscLogStagePop());
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -194,8 +192,7 @@ PetscErrorCode SolidPrepare(Sim sim)
   Particles        P = sim->P;
   const PetscReal *x = PField(P, FIELD_X);
   PetscFunctionBeginUser;
-  PetscCall(PetscLogStagePush(sim->stage[STAGE_NEIGHBOUR]));
-  PetscCall(CellsBuildSubList(sim->cells, P, SolidKeep, s->skin * sim->dx, s->nl));
+  PetscCall(NeighbourhoodSubList(&sim->nbhd, SolidKeep, s->skin * sim->dx, s->nl));
   if (P->dim * P->n > s->cap_xref) {
     PetscCall(PetscFree(s->xref));
     s->cap_xref = 3 * P->n + 16;
@@ -203,12 +200,9 @@ PetscErrorCode SolidPrepare(Sim sim)
   }
   PetscCall(PetscArraycpy(s->xref, x, P->dim * P->n));
   if (s->formulation == SOLID_TOTAL) PetscCall(SolidTotalPrepare(sim));
-  PetscCall(PetscLogStagePop());
   if (sim->has_fluid) { /* the fluid's last half kick came after its rebuild: the loads need its ghosts' velocities */
     const FieldId vel[] = {FIELD_V};
-    PetscCall(PetscLogStagePush(sim->stage[STAGE_HALO]));
     PetscCall(HaloRefresh(sim->halo, P, 1, vel));
-    PetscCall(PetscLogStagePop());
   }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -236,9 +230,7 @@ static PetscErrorCode SolidRefresh(Sim sim)
     PetscCall(SolidPrepare(sim));
     s->nrebuild++;
   } else {
-    PetscCall(PetscLogStagePush(sim->stage[STAGE_HALO]));
     PetscCall(HaloRefreshKinds(sim->halo, P, SolidKeep, 3, state));
-    PetscCall(PetscLogStagePop());
   }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -246,17 +238,14 @@ static PetscErrorCode SolidRefresh(Sim sim)
 PetscErrorCode SolidRates(Sim sim)
 {
   PetscFunctionBeginUser;
-  PetscCall(PetscLogStagePush(sim->stage[STAGE_SOLID]));
   PetscCall(CellsUpdatePairs(sim->solid->nl, sim->P));
   if (sim->solid->formulation == SOLID_TOTAL) {
     if (sim->solid->repulsion) PetscCall(Normals(sim));
     PetscCall(SolidTotalRates(sim));
-    PetscCall(PetscLogStagePop());
     PetscFunctionReturn(PETSC_SUCCESS);
   }
   if (sim->solid->repulsion) PetscCall(Normals(sim));
   PetscCall(SolidUpdatedRates(sim));
-  PetscCall(PetscLogStagePop());
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -341,14 +330,9 @@ PetscErrorCode SolidStep(Sim sim, PetscReal dt)
   const FieldId vel[] = {FIELD_V};
 
   PetscFunctionBeginUser;
-  PetscCall(PetscLogStagePush(sim->stage[STAGE_SOLID]));
   Kick(sim, 0.5 * dt);
   if (sim->scene->prescribe) PetscCall(sim->scene->prescribe(sim));
-  PetscCall(PetscLogStagePop());
-  PetscCall(PetscLogStagePush(sim->stage[STAGE_HALO]));
   PetscCall(HaloRefreshKinds(sim->halo, P, SolidKeep, 1, vel)); /* only the solids were kicked */
-  PetscCall(PetscLogStagePop());
-  PetscCall(PetscLogStagePush(sim->stage[STAGE_SOLID]));
   if (sim->solid->formulation == SOLID_UPDATED) PetscCall(SolidUpdatedDeform(sim, dt)); /* total: F follows from the positions */
   {
     PetscReal *x = PField(P, FIELD_X), *v = PField(P, FIELD_V);
@@ -357,12 +341,9 @@ PetscErrorCode SolidStep(Sim sim, PetscReal dt)
       for (PetscInt i = 0; i < P->dim; i++) x[P->dim * a + i] += dt * v[P->dim * a + i];
     }
   }
-  PetscCall(PetscLogStagePop());
   PetscCall(SolidRefresh(sim));
   PetscCall(SolidRates(sim));
-  PetscCall(PetscLogStagePush(sim->stage[STAGE_SOLID]));
   Kick(sim, 0.5 * dt);
-  PetscCall(PetscLogStagePop());
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

@@ -321,9 +321,7 @@ SPH_INLINE PetscErrorCode DeformationAndStressD(Sim sim, const PetscInt D)
     if (!ParticleEnergy(sm, s->G0 + nb * nb * slot[a], A, h[a], s->quadrature ? dxa * dxa / 24 : 0, Fa, Qa, &W, D)) /* inverted: the run guard stops on the NaN and names the particle */
       for (PetscInt q = 0; q < D * nb; q++) Qa[q] = NAN;
   }
-  PetscCall(PetscLogStagePush(sim->stage[STAGE_HALO]));
   PetscCall(HaloRefreshSlots(sim->halo, s->sf_slot, s->nown, 2, width, FQ));
-  PetscCall(PetscLogStagePop());
   for (PetscInt a = 0; a < P->n + P->ng; a++) {
     const PetscReal *Fa;
     PetscReal        Sk[9], J;

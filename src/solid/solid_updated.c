@@ -115,9 +115,7 @@ PetscErrorCode SolidUpdatedRates(Sim sim)
   if (sim->solid->gradient == SOLID_GRAD_CORRECTED) {
     const FieldId kc[] = {FIELD_KCORR};
     PetscCall(SPHGradientCorrection(sim->P, sim->solid->nl, SolidKeep, PField(sim->P, FIELD_KCORR)));
-    PetscCall(PetscLogStagePush(sim->stage[STAGE_HALO]));
     PetscCall(HaloRefreshKinds(sim->halo, sim->P, SolidKeep, 1, kc));
-    PetscCall(PetscLogStagePop());
   }
   PetscCall(SPH_DIM_DISPATCH(sim->dim, MomentumD, sim));
   PetscFunctionReturn(PETSC_SUCCESS);

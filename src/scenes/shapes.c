@@ -96,7 +96,7 @@ PetscErrorCode ShapesRead(Sim sim, PetscOptionItems *PetscOptionsObject, Shapes 
   for (PetscInt k = 1; k <= SHAPES_MAX; k++) { /* polygons: vertices in the option, or in a file */
     PetscInt  n = 2 * SHAPES_MAX_VERTICES, e[2];
     PetscBool fset;
-    char      file[PETSC_MAX_PATH_LEN] = "", fopt[48];
+    char      file[PETSC_MAX_PATH_LEN] = "", fopt[PETSC_MAX_PATH_LEN + 48];
     GeomFault fault;
     PetscCall(PetscSNPrintf(name, sizeof(name), "-polygon_%d", (int)k));
     PetscCall(PetscSNPrintf(fopt, sizeof(fopt), "-polygon_%d_file", (int)k));
@@ -105,19 +105,18 @@ PetscErrorCode ShapesRead(Sim sim, PetscOptionItems *PetscOptionsObject, Shapes 
     if (!set && !fset) continue;
     PetscCheck(D == 2, sim->comm, PETSC_ERR_ARG_INCOMP, "%s: polygons are 2D; a 3D case takes boxes and -sphere_K", set ? name : fopt);
     PetscCheck(!(set && fset), sim->comm, PETSC_ERR_ARG_INCOMP, "%s and %s: give the vertices one way", name, fopt);
-    if (fset) {
-      PetscCall(ReadVertexFile(sim, fopt, file, xy, &n));
-      PetscCall(PetscStrncpy(name, fopt, sizeof(name)));
-    } else {
+    if (fset) PetscCall(ReadVertexFile(sim, fopt, file, xy, &n));
+    else {
       PetscCheck(n % 2 == 0, sim->comm, PETSC_ERR_USER_INPUT, "%s has %d numbers: give x,y pairs", name, (int)n);
       PetscCheck(n < 2 * SHAPES_MAX_VERTICES, sim->comm, PETSC_ERR_USER_INPUT, "%s: at most %d vertices (more: -polygon_%d_file)", name, SHAPES_MAX_VERTICES - 1, (int)k);
       n /= 2;
     }
     fault = GeomPolygonCheck(n, xy, e);
-    if (fault == GEOM_FEW_VERTICES) SETERRQ(sim->comm, PETSC_ERR_USER_INPUT, "%s: a polygon needs at least 3 vertices, not %d", name, (int)n);
-    if (fault == GEOM_REPEATED_VERTEX) SETERRQ(sim->comm, PETSC_ERR_ARG_WRONG, "%s: vertices %d and %d are the same point (%g, %g): remove one", name, (int)e[0] + 1, (int)e[1] + 1, (double)xy[2 * e[0]], (double)xy[2 * e[0] + 1]);
-    if (fault == GEOM_SELF_INTERSECTING) SETERRQ(sim->comm, PETSC_ERR_ARG_WRONG, "%s: edges %d and %d cross or touch (edge i joins vertex i to i + 1): the polygon must be simple", name, (int)e[0] + 1, (int)e[1] + 1);
-    if (fault == GEOM_ZERO_AREA) SETERRQ(sim->comm, PETSC_ERR_ARG_WRONG, "%s encloses no area", name);
+    if (fset) PetscCall(PetscSNPrintf(fopt, sizeof(fopt), "%s (%s)", name, file)); /* the messages name the file */
+    if (fault == GEOM_FEW_VERTICES) SETERRQ(sim->comm, PETSC_ERR_USER_INPUT, "%s: a polygon needs at least 3 vertices, not %d", fset ? fopt : name, (int)n);
+    if (fault == GEOM_REPEATED_VERTEX) SETERRQ(sim->comm, PETSC_ERR_ARG_WRONG, "%s: vertices %d and %d are the same point (%g, %g): remove one", fset ? fopt : name, (int)e[0] + 1, (int)e[1] + 1, (double)xy[2 * e[0]], (double)xy[2 * e[0] + 1]);
+    if (fault == GEOM_SELF_INTERSECTING) SETERRQ(sim->comm, PETSC_ERR_ARG_WRONG, "%s: edges %d and %d cross or touch (edge i joins vertex i to i + 1): the polygon must be simple", fset ? fopt : name, (int)e[0] + 1, (int)e[1] + 1);
+    if (fault == GEOM_ZERO_AREA) SETERRQ(sim->comm, PETSC_ERR_ARG_WRONG, "%s encloses no area", fset ? fopt : name);
     PetscCall(GeomPolygon(n, xy, &S->s[S->n].g));
     PetscCall(PetscStrncpy(S->s[S->n].name, name, sizeof(S->s[0].name)));
     PetscCall(ReadShapeOptions(sim, PetscOptionsObject, &S->s[S->n++]));

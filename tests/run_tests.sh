@@ -144,6 +144,8 @@ if [ "${1:-}" != "--unit-only" ]; then
   run refdata bash tests/check_refdata.sh "$MPI" "$OUT/refdata"
   # A case without C: the built-in dam break and tank written as data (-case boxes) run bit for bit alike
   run boxes bash tests/check_boxes.sh "$MPI" "$OUT/boxes"
+  # Shapes (issue 48): the cylinder array's layout and drag at L/dx = 20 (both fluids), still water over a curved trough
+  run geometry bash tests/check_geometry.sh "$MPI" "$OUT/geometry"
   # Three dimensions, the fluids: a 3D tank at rest, 1 and 2 ranks equal, restart equal, Taylor-Green in a cube
   run three_d bash tests/check_3d.sh "$MPI" "$OUT/three_d"
   # Three dimensions, the solid and FSI: the cantilever against beam theory, slabs against the 2D plate and gate

@@ -103,6 +103,22 @@ check "has no water"                   -case boxes -dim 3 -dx 0.01 -tank_1 0,1,0
 check "-fluid_box_1 takes 6 or 7 numbers" -case boxes -dim 3 -dx 0.01 -tank_1 0,1,0,1,0,1 -fluid_box_1 0,0,0.5,0.5
 check "a 3D tank has walls on all four sides" -case boxes -dim 3 -dx 0.01 -tank_1 0,1,0,1,0,1 -tank_1_sides left -fluid_box_1 0,0,0,0.5,0.5,0.5
 check "-solid_box_1 touches no -clamp_box" -case boxes -dx 0.01 -tank_1 0,1,0,1 -fluid_box_1 0,0,0.5,0.5 -solid_box_1 0.6,0,0.7,0.3
+# issue 48: bad shapes (-cylinder_K, -sphere_K, -polygon_K; docs/geometry.md)
+check "-polygon_1: a polygon needs at least 3 vertices, not 2" -case boxes -dx 0.01 -domain 0,0,1,1 -fluid_box_1 0,0,1,0.5 -polygon_1 0.2,0.2,0.4,0.2
+check "-polygon_1: edges 1 and 3 cross or touch (edge i" -case boxes -dx 0.01 -domain 0,0,1,1 -fluid_box_1 0,0,1,0.5 -polygon_1 0.2,0.2,0.4,0.4,0.4,0.2,0.2,0.4
+check "-polygon_1: vertices 2 and 3 are the same point" -case boxes -dx 0.01 -domain 0,0,1,1 -fluid_box_1 0,0,1,0.5 -polygon_1 0.2,0.2,0.4,0.2,0.4,0.2,0.3,0.4
+check "-polygon_1: edges 1 and 3 cross or touch" -case boxes -dx 0.01 -domain 0,0,1,1 -fluid_box_1 0,0,1,0.5 -polygon_1 0.2,0.2,0.4,0.2,0.6,0.2
+check "-polygon_1 has 5 numbers: give x,y pairs" -case boxes -dx 0.01 -domain 0,0,1,1 -fluid_box_1 0,0,1,0.5 -polygon_1 0.2,0.2,0.4,0.2,0.3
+check "no_such_file.txt cannot be opened" -case boxes -dx 0.01 -domain 0,0,1,1 -fluid_box_1 0,0,1,0.5 -polygon_1_file no_such_file.txt
+check "-cylinder_1: the radius -0.1 must be > 0" -case boxes -dx 0.01 -domain 0,0,1,1 -fluid_box_1 0,0,1,0.5 -cylinder_1 0.5,0.25,-0.1
+check "-cylinder_1 takes 3 numbers x,y,r, not 2" -case boxes -dx 0.01 -domain 0,0,1,1 -fluid_box_1 0,0,1,0.5 -cylinder_1 0.5,0.25
+check "in 3D give -sphere_1"         -case boxes -dim 3 -dx 0.01 -domain 0,0,0,1,1,1 -fluid_box_1 0,0,0,1,1,0.5 -cylinder_1 0.5,0.5,0.2,0.1
+check "-cylinder_1 reaches outside the domain" -case boxes -dx 0.01 -domain 0,0,1,1 -fluid_box_1 0,0,1,0.5 -cylinder_1 0.95,0.25,0.1
+check "-cylinder_1 (wall) overlaps -cylinder_2 (wall)" -case boxes -dx 0.01 -domain 0,0,1,1 -fluid_box_1 0,0,1,0.5 -cylinder_1 0.5,0.25,0.1 -cylinder_2 0.6,0.25,0.1
+check "-cylinder_1 (fluid) overlaps -fluid_box_1" -case boxes -dx 0.01 -domain 0,0,1,1 -fluid_box_1 0,0,1,0.5 -cylinder_1 0.5,0.6,0.2 -cylinder_1_kind fluid
+check "-cylinder_1_kind"             -case boxes -dx 0.01 -domain 0,0,1,1 -fluid_box_1 0,0,1,0.5 -cylinder_1 0.5,0.25,0.1 -cylinder_1_kind rock
+check "-periodic x needs -domain"    -case boxes -dx 0.01 -tank_1 0,1,0,1 -fluid_box_1 0,0,0.5,0.5 -periodic x
+check "-periodic q: the directions are x, y" -case boxes -dx 0.01 -domain 0,0,1,1 -fluid_box_1 0,0,1,0.5 -periodic q
 wait
 cat "$OUT"/verdict.* 2>/dev/null
 bad=$(ls "$OUT"/verdict.* 2>/dev/null | wc -l)

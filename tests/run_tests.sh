@@ -150,6 +150,8 @@ if [ "${1:-}" != "--unit-only" ]; then
   # Particles from an HDF5 file (-case file): a scene's first snapshot reproduces its run bit for bit;
   # the example generator's case runs; bad files are refused with one line
   run particles_file bash tests/check_particles_file.sh "$MPI" "$OUT/particles_file"
+  # Shapes (issue 48): the cylinder array's layout and drag at L/dx = 20 (both fluids), still water over a curved trough
+  run geometry bash tests/check_geometry.sh "$MPI" "$OUT/geometry"
   # Three dimensions, the fluids: a 3D tank at rest, 1 and 2 ranks equal, restart equal, Taylor-Green in a cube
   run three_d bash tests/check_3d.sh "$MPI" "$OUT/three_d"
   # Three dimensions, the solid and FSI: the cantilever against beam theory, slabs against the 2D plate and gate

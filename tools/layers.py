@@ -74,8 +74,8 @@ def main():
         m = module(path)
         text = strip(open(path).read())
         for no, line in enumerate(text.split("\n"), 1):
-            for inc in re.findall(r'#\s*include\s*"\w+/(\w+)\.h"', line):
-                inc = GROUP.get(inc, inc)
+            for fold, inc in re.findall(r'#\s*include\s*"(\w+)/(\w+)\.h"', line):
+                inc = "scene" if fold == "scenes" else GROUP.get(inc, inc)  # every scenes/ header is the module scene
                 if inc != m and ORDER.index(OF[inc]) > ORDER.index(OF[m]):
                     up.append((path, no, "#include " + inc + ".h", OF[m], OF[inc]))
             for name in re.findall(r"\b([A-Za-z_]\w*)\s*\(", line):

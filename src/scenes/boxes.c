@@ -20,8 +20,13 @@
  * -dim 3: the same primitives in 3D (z up): a box is x0,y0,z0,x1,y1,z1[,s]; a tank
  * x0,x1,y0,y1,z0,z1[,s[,rows]] has its floor at z0 and walls on all four sides up to z1; obstacle
  * faces left,right,front,back,bottom,top (x-, x+, y-, y+, z-, z+); -domain six numbers; a level
- * gauge x,y; a pressure gauge x,y,z; a solid gauge x0,y0,z0,x1,y1,z1 (probes solid_dx, _dy, _dz). */
+ * gauge x,y; a pressure gauge x,y,z; a solid gauge x0,y0,z0,x1,y1,z1 (probes solid_dx, _dy, _dz).
+ * Shapes (scenes/shapes.c, docs/geometry.md): -cylinder_K x,y,r (3D -sphere_K x,y,z,r), -polygon_K
+ * x0,y0,x1,y1,... (2D), each -..._kind wall|fluid|solid|clamp, made after the wall boxes; water of
+ * the boxes is cut where an obstacle, solid or clamp shape is.  -periodic x[,y[,z]] with -domain;
+ * -confined (no free surface; default when every direction is periodic); -flow_probe. */
 #include "scenes/scene.h"
+#include "scenes/shapes.h"
 #include "base/dim.h"
 #include "base/options_used.h"
 
@@ -40,6 +45,7 @@ typedef struct {
   PetscInt  nfluid, ntank, nsolid, nclamp, nwall, nlevel, npress, nsgauge;
   PetscReal level[NGAUGE][2], press[NGAUGE][3], sgauge[NGAUGE][6];
   char      names[SCENE_MAX_PROBES][32];
+  Shapes    shapes;
 } Boxes;
 
 extern SceneOps SceneBoxes; /* not const: Create fills in its probe names */
@@ -187,10 +193,28 @@ static PetscErrorCode Create(Sim sim)
   PetscCall(ReadBoxes(sim, PetscOptionsObject, "solid_box", "Elastic solid x0,y0,x1,y1 (m), at -dx", c->solid, &c->nsolid, PETSC_FALSE, PETSC_FALSE));
   PetscCall(ReadBoxes(sim, PetscOptionsObject, "clamp_box", "Rigid clamp of a solid x0,y0,x1,y1 (m), at -dx", c->clamp, &c->nclamp, PETSC_FALSE, PETSC_FALSE));
   PetscCall(ReadBoxes(sim, PetscOptionsObject, "wall_box", "Obstacle of wall particles x0,y0,x1,y1 (m), at -dx", c->wall, &c->nwall, PETSC_FALSE, PETSC_TRUE));
+  PetscCall(ShapesRead(sim, PetscOptionsObject, &c->shapes, rows));
   PetscCall(OptBool("-outflow", "Water that leaves the domain is removed (an open boundary)", "", sim->outflow, &sim->outflow, NULL));
   n = 2 * D;
   PetscCall(PetscOptionsRealArray("-domain", "Computational box x0,y0,x1,y1 (3D: x0,y0,z0,x1,y1,z1) (m); default: the tanks with their walls, open to twice their height", "", dom, &n, &dom_set));
   if (dom_set) PetscCall(CheckBox(sim, "-domain", dom, n, 2 * D));
+  {
+    char per[16] = "";
+    PetscBool all = PETSC_TRUE;
+    PetscCall(PetscOptionsString("-periodic", "Directions in which the domain is periodic: x, x,y, ... (needs -domain; the water should fill those directions exactly, in whole spacings)", "", per, per, sizeof(per), &set));
+    if (set) {
+      PetscCheck(dom_set, sim->comm, PETSC_ERR_ARG_INCOMP, "-periodic %s needs -domain: the periodic box", per);
+      for (char *q = per; *q; q++) {
+        PetscInt d = *q == 'x' ? 0 : *q == 'y' ? 1 : *q == 'z' ? 2 : -1;
+        if (*q == ',' || *q == ' ') continue;
+        PetscCheck(d >= 0 && d < D, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-periodic %s: the directions are %s, separated by commas", per, D == 3 ? "x, y, z" : "x, y");
+        sim->periodic[d] = PETSC_TRUE;
+      }
+    }
+    for (PetscInt d = 0; d < D; d++) all = (PetscBool)(all && sim->periodic[d]);
+    sim->confined = all;
+    PetscCall(OptBool("-confined", "The water fills the domain: no free surface (ISPH pins the pressure's constant); default when every direction is periodic", "", sim->confined, &sim->confined, NULL));
+  }
   for (PetscInt k = 1; k <= NGAUGE; k++) {
     PetscInt nl = D - 1, np = D, nbox = 2 * D;
     PetscCall(PetscSNPrintf(name, sizeof(name), "-gauge_level_%d", (int)k));
@@ -206,10 +230,23 @@ static PetscErrorCode Create(Sim sim)
     if (set) PetscCall(CheckBox(sim, name, c->sgauge[c->nsgauge++], nbox, 2 * D));
   }
   PetscOptionsEnd();
-  PetscCheck(c->nfluid > 0 || c->nsolid > 0, sim->comm, PETSC_ERR_USER_INPUT, "Scene boxes has no water and no solid: give -fluid_box_1 x0,y0,x1,y1");
+  {
+    PetscInt nfs = 0, nss = 0, ncs = 0;
+    for (PetscInt i = 0; i < c->shapes.n; i++) {
+      nfs += c->shapes.s[i].kind == SHAPE_FLUID;
+      nss += c->shapes.s[i].kind == SHAPE_SOLID;
+      ncs += c->shapes.s[i].kind == SHAPE_CLAMP;
+      if (c->shapes.s[i].kind == SHAPE_FLUID) {
+        top = PetscMax(top, c->shapes.s[i].g.hi[up]);
+        low = PetscMin(low, c->shapes.s[i].g.lo[up]);
+      }
+    }
+    PetscCheck(c->nfluid + nfs > 0 || c->nsolid + nss > 0, sim->comm, PETSC_ERR_USER_INPUT, "Scene boxes has no water and no solid: give -fluid_box_1 x0,y0,x1,y1");
+    PetscCheck(!nss || c->nclamp + ncs > 0, sim->comm, PETSC_ERR_ARG_INCOMP, "A solid shape needs a clamp (-clamp_box_K, or a shape of kind clamp next to it): a free solid is not supported");
+    sim->has_fluid = (PetscBool)(c->nfluid + nfs > 0);
+    sim->has_solid = (PetscBool)(c->nsolid + nss > 0);
+  }
   if (sim->t_end < 0) sim->t_end = 1.0;
-  sim->has_fluid = (PetscBool)(c->nfluid > 0);
-  sim->has_solid = (PetscBool)(c->nsolid > 0);
   for (PetscInt i = 0; i < c->nsolid; i++) {
     PetscBool held = PETSC_FALSE;
     for (PetscInt j = 0; j < c->nclamp; j++) held = (PetscBool)(held || Touch(c->solid[i].b, c->clamp[j].b, 1e-9 * sim->dx, D));
@@ -263,6 +300,14 @@ static PetscErrorCode Create(Sim sim)
     for (PetscInt d = 0; d < D; d++) in = (PetscBool)(in && c->press[k][d] > sim->dom_lo[d] && c->press[k][d] < sim->dom_hi[d]);
     PetscCheck(in, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-gauge_pressure_%d %g,%g%s is outside the domain", (int)k + 1, (double)c->press[k][0], (double)c->press[k][1], D == 3 ? ",..." : "");
   }
+  {
+    PetscReal box[NBOX][6], sp[NBOX];
+    for (PetscInt i = 0; i < c->nfluid; i++) {
+      for (PetscInt k = 0; k < 6; k++) box[i][k] = c->fluid[i].b[k];
+      sp[i] = c->fluid[i].s;
+    }
+    PetscCall(ShapesSetUp(sim, &c->shapes, c->nfluid, (const PetscReal(*)[6])box, sp));
+  }
   PetscCheck(!c->nsgauge || c->nsolid, sim->comm, PETSC_ERR_ARG_INCOMP, "-gauge_solid_1 needs a -solid_box_1");
   /* c0 = 10 x the speed of a fall from the highest water surface to the lowest water */
   if (sim->has_fluid) sim->v_ref = PetscSqrtReal(2 * PetscSqrtReal(VDot(sim->g, sim->g, D)) * (top - low));
@@ -276,6 +321,10 @@ static PetscErrorCode Create(Sim sim)
     PetscCall(ProbeName(c, &n, "solid_dx", k));
     PetscCall(ProbeName(c, &n, "solid_dy", k));
     if (D == 3) PetscCall(ProbeName(c, &n, "solid_dz", k));
+  }
+  if (ShapesFlowColumns(&c->shapes)) {
+    PetscCall(ProbeName(c, &n, "u_mean", 0));
+    PetscCall(ProbeName(c, &n, "drag", 0));
   }
   PetscCheck(n <= SCENE_MAX_PROBES, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "Scene boxes has %d probe columns (front_x, v_max and the gauges; a solid gauge counts one per dimension): at most %d", (int)n, SCENE_MAX_PROBES);
   SceneBoxes.nprobes = n;
@@ -292,6 +341,7 @@ static PetscErrorCode Populate(Sim sim)
     PetscInt   first = sim->P->n, n;
     PetscReal  s     = SceneFitSpacing(F->b[D + up] - F->b[up], F->s, &n);
     PetscCall(SceneAddBox(sim, KIND_FLUID, F->b, F->s, sim->fl.rho0));
+    if (c->shapes.n) PetscCall(ShapesCutWater(sim, &c->shapes, first, F->b, F->b + D, F->s));
     PetscCall(SceneHydrostaticDensity(sim, first, F->b[up] + n * s));
   }
   for (PetscInt i = 0; i < c->ntank; i++) {
@@ -302,6 +352,7 @@ static PetscErrorCode Populate(Sim sim)
   for (PetscInt i = 0; i < c->nsolid; i++) PetscCall(SceneAddBox(sim, KIND_SOLID, c->solid[i].b, sim->dx, sim->sl.rho0));
   for (PetscInt i = 0; i < c->nclamp; i++) PetscCall(SceneAddBox(sim, KIND_CLAMP, c->clamp[i].b, sim->dx, sim->sl.rho0));
   for (PetscInt i = 0; i < c->nwall; i++) PetscCall(SceneAddWallBox(sim, c->wall[i].b, sim->dx, c->wall[i].face));
+  PetscCall(ShapesPopulate(sim, &c->shapes));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -340,12 +391,22 @@ static PetscErrorCode Probe(Sim sim, PetscReal *vals)
   for (PetscInt k = 0; k < c->npress; k++) PetscCall(SceneProbePressure(sim, c->press[k], &vals[n++]));
   for (PetscInt k = 0; k < c->nsgauge; k++)
     for (PetscInt d = 0; d < D; d++) vals[n++] = s[(D + 1) * k + D] > 0 ? s[(D + 1) * k + d] / s[(D + 1) * k + D] : 0;
+  PetscCall(ShapesFlowProbe(sim, &c->shapes, vals + n));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+static PetscErrorCode Errors(Sim sim, FILE *f)
+{
+  Boxes *c = (Boxes *)sim->scene_ctx;
+  PetscFunctionBeginUser;
+  PetscCall(ShapesFlowErrors(sim, &c->shapes, f));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
 static PetscErrorCode Destroy(Sim sim)
 {
   PetscFunctionBeginUser;
+  PetscCall(ShapesDestroy(&((Boxes *)sim->scene_ctx)->shapes));
   PetscCall(PetscFree(sim->scene_ctx));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -353,5 +414,5 @@ static PetscErrorCode Destroy(Sim sim)
 SceneOps SceneBoxes = {
   .name = "boxes", .help = "a case given as data: water, tanks, obstacles and solids as boxes in the options file",
   .create = Create, .populate = Populate,
-  .probe = Probe, .destroy = Destroy,
+  .probe = Probe, .errors = Errors, .destroy = Destroy,
 };

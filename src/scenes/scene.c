@@ -81,6 +81,13 @@ static PetscErrorCode AddPointSpaced(Sim sim, ParticleKind kind, const PetscReal
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+PetscErrorCode SceneAddPoint(Sim sim, ParticleKind kind, const PetscReal p[], const PetscReal s[], PetscReal dx, PetscReal rho0)
+{
+  PetscFunctionBeginUser;
+  PetscCall(AddPointSpaced(sim, kind, p, s, dx, rho0));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 /* One particle at p of spacing dx in every direction: mass rho0 dx^dim. */
 static PetscErrorCode AddPoint(Sim sim, ParticleKind kind, const PetscReal p[], PetscReal dx, PetscReal rho0)
 {

@@ -48,6 +48,9 @@ PetscInt SceneLayoutDim(Sim sim);
 /* Add a lattice of n[0] x n[1] (x n[2] in 3D) particles of spacing dx whose first centre is lo,
  * ids from sim->next_id (x fastest); each rank keeps every size-th particle. */
 PetscErrorCode SceneAddBlock(Sim sim, ParticleKind kind, const PetscReal lo[], const PetscInt n[], PetscReal dx, PetscReal rho0);
+/* Add one particle at p (coordinates of the layout) spaced s[d] along each direction: mass rho0
+ * times the spacings' product, smoothing length from dx, the next id (kept by rank id % size). */
+PetscErrorCode SceneAddPoint(Sim sim, ParticleKind kind, const PetscReal p[], const PetscReal s[], PetscReal dx, PetscReal rho0);
 /* Add an nx x ny lattice of spacing dx starting at cell centre (x0, y0), ids from sim->next_id;
  * each rank keeps every size-th particle (migration sorts them out later). */
 PetscErrorCode SceneAddLattice(Sim sim, ParticleKind kind, PetscReal x0, PetscReal y0, PetscInt nx, PetscInt ny, PetscReal dx, PetscReal rho0);

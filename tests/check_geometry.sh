@@ -1,0 +1,39 @@
+#!/usr/bin/env bash
+# Shapes in -case boxes (issue 48, docs/geometry.md), short:
+#  1. the cylinder array (cases/boxes/cylinder_array.opts, phi = 0.1) at L/dx = 20, both fluids, to
+#     steady Stokes flow: the layout (no water inside the circle, walls within dx of it, dummies
+#     deeper, the water's volume within 2 % of the cell less the circle, no water particle closer
+#     than dx to a wall particle) and the drag F/(mu U) within 3 % of Sangani & Acrivos at the
+#     fraction the lattice makes (measured: WCSPH -0.4 %, ISPH +1.3 %) and within 10 % at phi = 0.1
+#     (+7 %, +9 %: at L/dx = 20 the circle holds 44 lattice points for its 40 dx^2);
+#  2. still water over a half-cylinder trough (cases/boxes/still_trough.opts, ISPH, 1 s): after
+#     0.5 s no water faster than 0.01 sqrt(g H), no particle farther than 0.5 dx from its start.
+MPI=$1; OUT=$2
+mkdir -p "$OUT"
+bad=0
+BIN="${BINDIR:-bin}"/sphfsi
+for f in wcsph isph; do
+  timeout 300 $MPI $BIN -options_file cases/boxes/cylinder_array.opts -fluid $f -dx 0.005 -output_interval 4000 -progress_every 0 -output_dir "$OUT/cyl_$f" > "$OUT/cyl_$f.log" 2>&1 || { echo "geometry: the cylinder array ($f) failed"; bad=1; continue; }
+  python3 - "$OUT/cyl_$f" <<'PY' || bad=1
+import glob, json, math, sys
+import h5py, numpy as np
+out = sys.argv[1]
+s = json.load(open(out + "/summary.json")); e = s["errors"]; dx = s["dx"]
+with h5py.File(sorted(glob.glob(out + "/particles_*.h5"))[0]) as f:
+    x, k = f["x"][:], f["kind"][:].ravel()
+L, a = 0.1, 0.0178412
+d = np.hypot(x[:, 0] - 0.05, x[:, 1] - 0.05) - a
+w, du, fl = k == 1, k == 2, k == 0
+vol = fl.sum() * dx * dx / (L * L - math.pi * a * a)
+near = np.hypot(*(x[fl][:, None, :] - x[w | du][None, :, :]).transpose(2, 0, 1)).min() / dx
+print(f"geometry: cylinder array ({s['fluid']}, L/dx 20): water {d[fl].min() / dx:.2f} dx and more from the circle, walls {d[w].min() / dx:.2f} to {d[w].max() / dx:.2f} dx, dummies {d[du].min() / dx:.2f} to {d[du].max() / dx:.2f} dx, water volume {vol:.4f} of the cell's, nearest wall particle {near:.2f} dx")
+print(f"geometry: drag F/(mu U) {e['drag_coefficient']:.3f}: {100 * e['drag_rel_err']:+.2f} % against Sangani & Acrivos at phi 0.1 (bound 10 %), {100 * e['drag_rel_err_phi_lattice']:+.2f} % at the lattice's phi {e['phi_lattice']:.3f} (bound 3 %), Re {e['re']:.2g}")
+assert d[fl].min() > 0 and d[w].min() > -dx and d[w].max() <= 0 and d[du].max() <= -dx and d[du].min() > -3 * dx, "layout"
+assert abs(vol - 1) < 0.02 and near >= 0.999, "water volume or spacing"
+assert abs(e["drag_rel_err"]) < 0.10 and abs(e["drag_rel_err_phi_lattice"]) < 0.03, "drag"
+PY
+done
+timeout 300 $MPI $BIN -options_file cases/boxes/still_trough.opts -fluid isph -t_end 1 -output_interval 1 -progress_every 0 -output_dir "$OUT/trough" > "$OUT/trough.log" 2>&1 || { echo "geometry: the still trough failed"; bad=1; }
+r=$(python3 tools/still_check.py "$OUT/trough" --t0 0.5 --vbound 0.01 --drift 0.5 2>&1) || bad=1
+echo "geometry: $r (bounds 0.01 sqrt(gH), 0.5 dx)"
+exit $bad

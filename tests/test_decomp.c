@@ -107,10 +107,10 @@ int main(int argc, char **argv)
   PetscCall(Check(sim, 0));
   PetscCall(CheckEmptyCells(sim));
   for (PetscInt s = 1; s <= nsteps; s++) {
-    PetscCall(WCSPHTimeStep(sim, &sim->dt));
-    sim->dt *= 4; /* larger steps: more particles change cells and owners (still stable for 60 steps) */
-    PetscCall(WCSPHStep(sim));
-    sim->step++;
+    PetscCall(WCSPHTimeStep(&sim->phys, &sim->phys.dt));
+    sim->phys.dt *= 4; /* larger steps: more particles change cells and owners (still stable for 60 steps) */
+    PetscCall(WCSPHStep(&sim->phys));
+    sim->phys.step++;
     /* x, rho, p of ghosts are current after a step; v is refreshed where it is read (start of the
      * next step), so refresh it here as the step would */
     PetscCall(HaloRefresh(sim->halo, sim->P, 1, (FieldId[]){FIELD_V}));

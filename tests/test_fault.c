@@ -25,8 +25,8 @@ int main(int argc, char **argv)
   PetscCall(SimSetFromOptions(sim));
   PetscCall(SimSetUp(sim));
   PetscCall(SimRun(sim));
-  PetscCheck(sim->exit_status == 0 && sim->step == 15, PETSC_COMM_WORLD, PETSC_ERR_PLIB, "The first 15 steps did not run cleanly");
-  sim->g[1]      = NAN; /* the state is finite; the next step's accelerations are not */
+  PetscCheck(sim->exit_status == 0 && sim->phys.step == 15, PETSC_COMM_WORLD, PETSC_ERR_PLIB, "The first 15 steps did not run cleanly");
+  sim->phys.g[1]      = NAN; /* the state is finite; the next step's accelerations are not */
   sim->max_steps = 1000;
   PetscCall(SimRun(sim));
   status = sim->exit_status;
@@ -47,7 +47,7 @@ int main(int argc, char **argv)
   for (PetscInt f = 0; f < FIELD_COUNT; f++)
     for (PetscInt k = 0; sim->P->f[f].on && k < sim->P->n * sim->P->f[f].width; k++) bad += PetscIsInfOrNanReal(sim->P->f[f].a[k]);
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &bad, 1, MPIU_INT, MPI_SUM, PETSC_COMM_WORLD));
-  PetscCheck(!bad && sim->step == 10, PETSC_COMM_WORLD, PETSC_ERR_PLIB, "last_good.h5: %d non-finite values, step %d (expected 0, 10)", (int)bad, (int)sim->step);
+  PetscCheck(!bad && sim->phys.step == 10, PETSC_COMM_WORLD, PETSC_ERR_PLIB, "last_good.h5: %d non-finite values, step %d (expected 0, 10)", (int)bad, (int)sim->phys.step);
   PetscCall(PetscPrintf(PETSC_COMM_WORLD, "fault: a NaN in step 16 stops the run with status %d and its message; last_good.h5 (step 10) loads, every field finite\n", (int)status));
   PetscCall(SimDestroy(&sim));
   PetscCall(PetscFinalize());

@@ -77,9 +77,9 @@ int main(int argc, char **argv)
   PetscCall(SimCreate(PETSC_COMM_WORLD, &sim));
   PetscCall(SimSetFromOptions(sim));
   PetscCall(SimSetUp(sim));
-  sim->dt = 1e-3;
-  PetscCall(ISPHPressureEquation(sim));
-  ppe = sim->isph->ppe;
+  sim->phys.dt = 1e-3;
+  PetscCall(ISPHPressureEquation(&sim->phys));
+  ppe = sim->phys.isph->ppe;
   for (PetscInt r = ppe->rstart; r < ppe->rstart + ppe->nrow; r++) {
     const PetscInt *cols;
     PetscInt        nc;
@@ -118,7 +118,7 @@ int main(int argc, char **argv)
      * matrix as the AIJ one assembled without it */
     PetscCall(CheckHypreLayout(ppe->Ap));
     ppe->mat_hypre = PETSC_FALSE;
-    PetscCall(ISPHPressureEquation(sim));
+    PetscCall(ISPHPressureEquation(&sim->phys));
     PetscCall(MatDuplicate(ppe->Ap, MAT_COPY_VALUES, &Bp));
     PetscCall(MatAXPY(Bh, -1.0, Bp, DIFFERENT_NONZERO_PATTERN));
     PetscCall(MatNorm(Bh, NORM_INFINITY, &d));
@@ -132,7 +132,7 @@ int main(int argc, char **argv)
   {
     Particles        P = sim->P;
     const PetscReal *x = PField(P, FIELD_X), *m = PField(P, FIELD_M);
-    const PetscReal  H = 0.1, W = 0.1, margin = 3 * sim->kernel.h_factor * sim->dx;
+    const PetscReal  H = 0.1, W = 0.1, margin = 3 * sim->phys.kernel.h_factor * sim->phys.dx;
     PetscCall(VecGetArrayWrite(f, &ff));
     for (PetscInt r = 0; r < ppe->nrow; r++) {
       const PetscReal *xa = x + 2 * ppe->rowpart[r];
@@ -144,9 +144,9 @@ int main(int argc, char **argv)
     for (PetscInt r = 0; r < ppe->nrow; r++) {
       PetscInt         a  = ppe->rowpart[r];
       const PetscReal *xa = x + 2 * a;
-      PetscReal        L, exact = 6.0 / sim->fl.rho0;
+      PetscReal        L, exact = 6.0 / sim->phys.fl.rho0;
       if (!KindIsFluid(P->kind[a]) || xa[0] < margin || xa[0] > W - margin || xa[1] < margin || xa[1] > H - 2 * margin) continue;
-      L     = -y[r] / (m[a] / sim->fl.rho0);
+      L     = -y[r] / (m[a] / sim->phys.fl.rho0);
       worst = PetscMax(worst, PetscAbsReal(L - exact) / exact);
       nin++;
     }

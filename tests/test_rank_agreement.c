@@ -75,7 +75,7 @@ int main(int argc, char **argv)
     PetscCallMPI(MPI_Gatherv(loc, n, MPIU_REAL, buf, cnt, disp, MPIU_REAL, 0, PETSC_COMM_WORLD));
     if (!rank) {
       Particles Q = self->P;
-      PetscCheck(Q->n == N && world->step == self->step, PETSC_COMM_SELF, PETSC_ERR_PLIB, "Runs differ: %d vs %d particles, %d vs %d steps", (int)N, (int)Q->n, (int)world->step, (int)self->step);
+      PetscCheck(Q->n == N && world->phys.step == self->phys.step, PETSC_COMM_SELF, PETSC_ERR_PLIB, "Runs differ: %d vs %d particles, %d vs %d steps", (int)N, (int)Q->n, (int)world->phys.step, (int)self->phys.step);
       PetscCall(PetscMalloc1(6 * N, &ref));
       for (PetscInt a = 0; a < Q->n; a++) {
         PetscReal *r = ref + 6 * Q->id[a];
@@ -90,7 +90,7 @@ int main(int argc, char **argv)
         }
         scale = PetscMax(scale, PetscAbsReal(s[3]) + PetscAbsReal(s[4]));
       }
-      PetscCall(PetscPrintf(PETSC_COMM_SELF, "rank agreement (%s %s): %d particles after %d steps, max scaled difference %.3e (bound %.0e; max speed %.3f m/s)\n", world->scene->name, !world->has_fluid ? "solid" : world->isph ? "isph" : "wcsph", (int)N, (int)world->step, (double)err, (double)tol, (double)scale));
+      PetscCall(PetscPrintf(PETSC_COMM_SELF, "rank agreement (%s %s): %d particles after %d steps, max scaled difference %.3e (bound %.0e; max speed %.3f m/s)\n", world->scene->name, !world->phys.has_fluid ? "solid" : world->phys.isph ? "isph" : "wcsph", (int)N, (int)world->phys.step, (double)err, (double)tol, (double)scale));
       if (err > tol) PetscCall(PetscPrintf(PETSC_COMM_SELF, "largest difference: particle %d (%s) at (%g, %g), %s\n", (int)worst, ParticleKindNames[KindOf(self->P, worst)], (double)ref[6 * worst + 1], (double)ref[6 * worst + 2], (const char *[]){"", "x", "y", "vx", "vy", "rho"}[wcomp]));
       PetscCheck(err <= tol, PETSC_COMM_SELF, PETSC_ERR_PLIB, "1-rank and %d-rank runs differ by %g", size, (double)err);
       PetscCheck(scale > vmin, PETSC_COMM_SELF, PETSC_ERR_PLIB, "The run did not move: max speed %g <= -min_speed %g", (double)scale, (double)vmin);

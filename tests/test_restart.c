@@ -58,7 +58,7 @@ static PetscErrorCode Collect(Sim *psim, Final *F)
       for (PetscInt k = 0; P->f[f].on && f != FIELD_ROW && k < P->f[f].width; k++) *r++ = P->f[f].a[a * P->f[f].width + k];
   }
   n = (PetscMPIInt)(w * P->n);
-  F->N = sim->nbhd.nparticles; F->w = w; F->step = sim->step; F->t = sim->t;
+  F->N = sim->nbhd.nparticles; F->w = w; F->step = sim->phys.step; F->t = sim->phys.t;
   F->ncol = 1 + sim->scene->nprobes; F->nrow = sim->nprobe_rows;
   if (!sim->rank) {
     PetscCall(PetscMalloc2(sim->size, &cnt, sim->size + 1, &disp));
@@ -148,8 +148,8 @@ int main(int argc, char **argv)
   PetscCall(PetscOptionsSetValue(NULL, "-checkpoint_interval", "1e9")); /* only the one at the end */
 
   PetscCall(Run(PETSC_COMM_WORLD, "out/test_restart/full", NULL, 0, &sim));
-  half = sim->step / 2;
-  PetscCall(PetscPrintf(PETSC_COMM_WORLD, "restart (%s %s): %d particles, %d steps, stopped after %d and restarted:\n", sim->scene->name, !sim->has_fluid ? "solid" : sim->isph ? "isph" : "wcsph", (int)sim->nbhd.nparticles, (int)sim->step, (int)half));
+  half = sim->phys.step / 2;
+  PetscCall(PetscPrintf(PETSC_COMM_WORLD, "restart (%s %s): %d particles, %d steps, stopped after %d and restarted:\n", sim->scene->name, !sim->phys.has_fluid ? "solid" : sim->phys.isph ? "isph" : "wcsph", (int)sim->nbhd.nparticles, (int)sim->phys.step, (int)half));
   PetscCall(Collect(&sim, &full));
   /* same ranks */
   PetscCall(Run(PETSC_COMM_WORLD, "out/test_restart/world", NULL, half, &sim));

@@ -5,7 +5,7 @@ Each source file belongs to the layer of its folder, src/<folder>/, lowest first
   base       (src/base)      kernel, materials, dimensions, CSR matrices, reference data, reading options, version
   particles  (src/particles) the particle arrays and the parallel machinery: grid, cells, decomposition, halo,
                              exchange, and the neighbourhood that brings them up to date after particles move
-  physics    (src/fluid, src/solid) the fluids (WCSPH, ISPH, the pressure equation, walls, operators), the solids
+  physics    (src/physics, src/fluid, src/solid) the context they share (physics.h), the fluids (WCSPH, ISPH, the pressure equation, walls, operators), the solids
   io         (src/io)        snapshots, checkpoints, output directories, disk space
   scenes     (src/scenes)    the scenes and the helpers that build them
   run        (src/run)       the driver (sim), the run guard, the size guard, options bookkeeping, main
@@ -22,7 +22,7 @@ import glob, os, re, sys
 
 ROOT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..")
 ORDER = ["base", "particles", "physics", "io", "scenes", "run"]
-FOLDER = {"base": "base", "particles": "particles", "fluid": "physics", "solid": "physics", "io": "io", "scenes": "scenes", "run": "run"}
+FOLDER = {"base": "base", "particles": "particles", "physics": "physics", "fluid": "physics", "solid": "physics", "io": "io", "scenes": "scenes", "run": "run"}
 
 # Upward edges that remain to be removed: "file -> symbol" (a call) or "file -> #include header".
 KNOWN_FILE = os.path.join(ROOT, "tools", "layers_known.txt")

@@ -28,14 +28,14 @@ static PetscErrorCode BuildScene(Sim sim)
 {
   PetscFunctionBeginUser;
   PetscCall(sim->scene->create(sim));
-  if (sim->fl.c0 <= 0) sim->fl.c0 = 10.0 * sim->v_ref; /* as SimSetUp: the EOS of the initial density */
-  KernelInit(&sim->kernel, sim->kernel.type, sim->dim, sim->kernel.h_factor);
-  PetscCall(ParticlesSetDimension(sim->P, sim->dim));
-  if (sim->has_solid) PetscCall(SolidSetUp(sim));
+  if (sim->phys.fl.c0 <= 0) sim->phys.fl.c0 = 10.0 * sim->phys.v_ref; /* as SimSetUp: the EOS of the initial density */
+  KernelInit(&sim->phys.kernel, sim->phys.kernel.type, sim->phys.dim, sim->phys.kernel.h_factor);
+  PetscCall(ParticlesSetDimension(sim->P, sim->phys.dim));
+  if (sim->phys.has_solid) PetscCall(SolidSetUp(&sim->phys));
   PetscCall(ParticlesSetUp(sim->P));
-  sim->h_max = sim->kernel.h_factor * sim->dx;
+  sim->phys.h_max = sim->phys.kernel.h_factor * sim->phys.dx;
   PetscCall(sim->scene->populate(sim));
-  PetscCall(GridSetUp(&sim->grid, sim->dim, sim->dom_lo, sim->dom_hi, 2.0 * sim->h_max + (sim->solid ? sim->solid->skin * sim->dx : 0), sim->periodic));
+  PetscCall(GridSetUp(&sim->grid, sim->phys.dim, sim->dom_lo, sim->dom_hi, 2.0 * sim->phys.h_max + (sim->phys.solid ? sim->phys.solid->skin * sim->phys.dx : 0), sim->periodic));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

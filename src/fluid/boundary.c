@@ -7,11 +7,11 @@
  * moving-wall term rho_f a_w . r is left out for solids: a particle's own acceleration carries the
  * solid's elastic waves (hundreds of g at the wetted surface when loaded), not the motion of the
  * interface. */
-SPH_INLINE PetscErrorCode WallStateD(Sim sim, PetscBool pressure, const PetscInt D)
+SPH_INLINE PetscErrorCode WallStateD(Physics *ph, PetscBool pressure, const PetscInt D)
 {
-  Particles        P = sim->P;
-  Cells            C = sim->cells;
-  const PetscReal *x = PField(P, FIELD_X), *v = PField(P, FIELD_V), *g = sim->g;
+  Particles        P = ph->P;
+  Cells            C = ph->cells;
+  const PetscReal *x = PField(P, FIELD_X), *v = PField(P, FIELD_V), *g = ph->g;
   PetscReal       *p = PField(P, FIELD_P), *rho = PField(P, FIELD_RHO), *vw = PField(P, FIELD_VWALL), *fv = PField(P, FIELD_FVIEW);
   const PetscReal *m = PField(P, FIELD_M);
   const FieldId    refresh[] = {FIELD_VWALL, FIELD_P, FIELD_RHO, FIELD_FVIEW};
@@ -38,32 +38,32 @@ SPH_INLINE PetscErrorCode WallStateD(Sim sim, PetscBool pressure, const PetscInt
     if (D == 3) pg += g[2] * sg[2];
     if (solid) {
       if (pressure) fv[3 * a] = sw > 0 ? PetscMax(pg / sw, 0.0) : 0;
-      fv[3 * a + 1] = pressure ? EOSDensity(&sim->fl, fv[3 * a]) : sim->fl.rho0;
+      fv[3 * a + 1] = pressure ? EOSDensity(&ph->fl, fv[3 * a]) : ph->fl.rho0;
       fv[3 * a + 2] = fv[3 * a + 1] * m[a] / rho[a];
     } else if (pressure) {
       /* Adami et al. 2012, Eq. 27 (static wall): p_w = (sum p_f W + g . sum rho_f r_wf W) / sum W */
       p[a]   = sw > 0 ? pg / sw : 0;
-      if (sim->fl.wall_clip) p[a] = PetscMax(p[a], 0.0); /* a wall pushes, never pulls: fluid in tension would stick to it */
-      rho[a] = EOSDensity(&sim->fl, p[a]);
+      if (ph->fl.wall_clip) p[a] = PetscMax(p[a], 0.0); /* a wall pushes, never pulls: fluid in tension would stick to it */
+      rho[a] = EOSDensity(&ph->fl, p[a]);
     }
   }
-  if (fv) PetscCall(HaloRefresh(sim->halo, P, 1, refresh + 3));
-  PetscCall(HaloRefresh(sim->halo, P, pressure ? 3 : 1, refresh));
+  if (fv) PetscCall(HaloRefresh(ph->halo, P, 1, refresh + 3));
+  PetscCall(HaloRefresh(ph->halo, P, pressure ? 3 : 1, refresh));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-static PetscErrorCode WallState(Sim sim, PetscBool pressure) { return SPH_DIM_DISPATCH(sim->dim, WallStateD, sim, pressure); }
+static PetscErrorCode WallState(Physics *ph, PetscBool pressure) { return SPH_DIM_DISPATCH(ph->dim, WallStateD, ph, pressure); }
 
-PetscErrorCode BoundaryWallState(Sim sim)
+PetscErrorCode BoundaryWallState(Physics *ph)
 {
   PetscFunctionBeginUser;
-  PetscCall(WallState(sim, PETSC_TRUE));
+  PetscCall(WallState(ph, PETSC_TRUE));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode BoundaryWallVelocity(Sim sim)
+PetscErrorCode BoundaryWallVelocity(Physics *ph)
 {
   PetscFunctionBeginUser;
-  PetscCall(WallState(sim, PETSC_FALSE));
+  PetscCall(WallState(ph, PETSC_FALSE));
   PetscFunctionReturn(PETSC_SUCCESS);
 }

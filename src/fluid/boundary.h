@@ -2,13 +2,13 @@
  * the fluid (Adami, Hu & Adams 2012), which holds the hydrostatic balance and keeps fluid out;
  * with ISPH it comes from the pressure Poisson equation (ppe.c). */
 #pragma once
-#include "run/sim.h"
+#include "physics/physics.h"
 
 /* Pressure, density and viscous velocity of owned wall/dummy particles (and the fluid view of
  * solids), then ghosts refreshed. */
-PetscErrorCode BoundaryWallState(Sim sim);
+PetscErrorCode BoundaryWallState(Physics *ph);
 /* Only the no-slip velocity seen by the viscous term (ISPH), then ghosts refreshed. */
-PetscErrorCode BoundaryWallVelocity(Sim sim);
+PetscErrorCode BoundaryWallVelocity(Physics *ph);
 
 /* Particles that bound the fluid: walls and solids.  A solid next to fluid is, to the fluid, a
  * moving wall: its pressure is the fluid's pressure extrapolated onto it (Adami et al. 2012, with

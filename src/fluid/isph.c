@@ -11,13 +11,13 @@ const char *const ISPHFreeSurfaces[] = {"density", "divr", "ISPHFreeSurface", "I
 const char *const ISPHSources[]      = {"divergence", "density", "blend", "ISPHSource", "ISPH_SOURCE_", NULL};
 const char *const ISPHGradients[]    = {"eq14", "corrected", "hybrid", "ISPHGradient", "ISPH_GRAD_", NULL};
 
-PetscErrorCode ISPHSetFromOptions(Sim sim)
+PetscErrorCode ISPHSetFromOptions(Physics *ph)
 {
   ISPH      s;
   PetscInt  fs, src, grad;
   PetscFunctionBeginUser;
   PetscCall(PetscNew(&s));
-  sim->isph   = s;
+  ph->isph   = s;
   s->beta     = 0.9;
   s->divr_min = 1.5;
   /* Defaults measured on the still tank (docs/convergence.md): the corrected gradient is exact for
@@ -32,7 +32,7 @@ PetscErrorCode ISPHSetFromOptions(Sim sim)
    * flung at 16 m/s and over walls (docs/convergence.md, -isph_gradient_cond) */
   s->grad_cond  = 0.25;
   fs = s->fs; src = s->source; grad = s->gradient;
-  PetscOptionsBegin(sim->comm, "isph_", "ISPH fluid (section 2.8)", "ISPH");
+  PetscOptionsBegin(ph->comm, "isph_", "ISPH fluid (section 2.8)", "ISPH");
   PetscCall(OptEList("-free_surface", "Free-surface criterion: density (rho* < beta rho0, section 2.5) or divr (divergence of position)", "", ISPHFreeSurfaces, 2, ISPHFreeSurfaces[fs], &fs, NULL));
   PetscCall(OptReal("-beta", "Free surface where rho* < beta rho0 (paper: 0.8 < beta < 0.99)", "", s->beta, &s->beta, NULL));
   PetscCall(OptReal("-divr", "Free surface where div r < this (2 in the bulk in 2D)", "", s->divr_min, &s->divr_min, NULL));
@@ -46,31 +46,31 @@ PetscErrorCode ISPHSetFromOptions(Sim sim)
   PetscCall(OptReal("-shift", "Particle shifting coefficient A (D = A h |v| dt, Skillen et al. 2013); 0 = off", "", s->shift, &s->shift, NULL));
   PetscOptionsEnd();
   s->fs = (ISPHFreeSurface)fs; s->source = (ISPHSource)src; s->gradient = (ISPHGradient)grad;
-  PetscCheck(s->beta > 0 && s->beta < 1, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-isph_beta %g must be in (0, 1); the paper uses 0.8 .. 0.99", (double)s->beta);
-  PetscCheck(s->divr_min > 0 && s->divr_min < 2, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-isph_divr %g must be in (0, 2)", (double)s->divr_min);
-  PetscCheck(s->blend >= 0 && s->blend <= 1, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-isph_blend %g must be in [0, 1]", (double)s->blend);
-  PetscCheck(s->alpha >= 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-isph_alpha %g must be >= 0", (double)s->alpha);
-  PetscCheck(s->shift >= 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-isph_shift %g must be >= 0", (double)s->shift);
-  PetscCheck(s->grad_cond >= 0 && s->grad_cond < 1, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-isph_gradient_cond %g must be in [0, 1): the smallest over the largest eigenvalue of the correction matrix (0.25 the default)", (double)s->grad_cond);
+  PetscCheck(s->beta > 0 && s->beta < 1, ph->comm, PETSC_ERR_ARG_OUTOFRANGE, "-isph_beta %g must be in (0, 1); the paper uses 0.8 .. 0.99", (double)s->beta);
+  PetscCheck(s->divr_min > 0 && s->divr_min < 2, ph->comm, PETSC_ERR_ARG_OUTOFRANGE, "-isph_divr %g must be in (0, 2)", (double)s->divr_min);
+  PetscCheck(s->blend >= 0 && s->blend <= 1, ph->comm, PETSC_ERR_ARG_OUTOFRANGE, "-isph_blend %g must be in [0, 1]", (double)s->blend);
+  PetscCheck(s->alpha >= 0, ph->comm, PETSC_ERR_ARG_OUTOFRANGE, "-isph_alpha %g must be >= 0", (double)s->alpha);
+  PetscCheck(s->shift >= 0, ph->comm, PETSC_ERR_ARG_OUTOFRANGE, "-isph_shift %g must be >= 0", (double)s->shift);
+  PetscCheck(s->grad_cond >= 0 && s->grad_cond < 1, ph->comm, PETSC_ERR_ARG_OUTOFRANGE, "-isph_gradient_cond %g must be in [0, 1): the smallest over the largest eigenvalue of the correction matrix (0.25 the default)", (double)s->grad_cond);
   if (s->source == ISPH_SOURCE_DIVERGENCE) s->blend = 0;
   if (s->source == ISPH_SOURCE_DENSITY) s->blend = 1;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode ISPHSetUp(Sim sim)
+PetscErrorCode ISPHSetUp(Physics *ph)
 {
-  ISPH s = sim->isph;
+  ISPH s = ph->isph;
   PetscFunctionBeginUser;
-  s->lat_w    = KernelLatticeSum(&sim->kernel, LATTICE_W, 0);
-  s->lat_divr = KernelLatticeSum(&sim->kernel, LATTICE_DIVR, 0);
-  PetscCall(PPECreate(sim->comm, &s->ppe));
-  PetscCall(PPESetFromOptions(s->ppe, (PetscBool)!(sim->solid && sim->solid->implicit)));
-  PetscCall(ParticlesEnableField(sim->P, FIELD_ACC, PETSC_FALSE));
-  PetscCall(ParticlesEnableField(sim->P, FIELD_VWALL, PETSC_FALSE));
-  PetscCall(ParticlesEnableField(sim->P, FIELD_VSTAR, PETSC_TRUE)); /* read by neighbours after the predictor's rebuild */
-  PetscCall(ParticlesEnableField(sim->P, FIELD_FS, PETSC_FALSE));
-  PetscCall(ParticlesEnableField(sim->P, FIELD_ROW, PETSC_FALSE));
-  if (sim->fl.xsph > 0 || s->shift > 0) PetscCall(ParticlesEnableField(sim->P, FIELD_XSPH, PETSC_FALSE));
+  s->lat_w    = KernelLatticeSum(&ph->kernel, LATTICE_W, 0);
+  s->lat_divr = KernelLatticeSum(&ph->kernel, LATTICE_DIVR, 0);
+  PetscCall(PPECreate(ph->comm, &s->ppe));
+  PetscCall(PPESetFromOptions(s->ppe, (PetscBool)!(ph->solid && ph->solid->implicit)));
+  PetscCall(ParticlesEnableField(ph->P, FIELD_ACC, PETSC_FALSE));
+  PetscCall(ParticlesEnableField(ph->P, FIELD_VWALL, PETSC_FALSE));
+  PetscCall(ParticlesEnableField(ph->P, FIELD_VSTAR, PETSC_TRUE)); /* read by neighbours after the predictor's rebuild */
+  PetscCall(ParticlesEnableField(ph->P, FIELD_FS, PETSC_FALSE));
+  PetscCall(ParticlesEnableField(ph->P, FIELD_ROW, PETSC_FALSE));
+  if (ph->fl.xsph > 0 || s->shift > 0) PetscCall(ParticlesEnableField(ph->P, FIELD_XSPH, PETSC_FALSE));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -84,31 +84,31 @@ PetscErrorCode ISPHDestroy(ISPH *isph)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode ISPHView(Sim sim, PetscViewer v)
+PetscErrorCode ISPHView(Physics *ph, PetscViewer v)
 {
-  ISPH s = sim->isph;
+  ISPH s = ph->isph;
   PetscFunctionBeginUser;
-  PetscCall(PetscViewerASCIIPrintf(v, "ISPH: free surface by %s (%s %g), PPE source %s (density weight %g), gradient %s (corrected where its matrix's eigenvalue ratio > %g)%s, AV alpha %g, shifting A = %g, XSPH %g\n", ISPHFreeSurfaces[s->fs], s->fs == ISPH_FS_DENSITY ? "beta" : "div r <", (double)(s->fs == ISPH_FS_DENSITY ? s->beta : s->divr_min), ISPHSources[s->source], (double)s->blend, ISPHGradients[s->gradient], (double)s->grad_cond, s->solid_eq14 && s->gradient != ISPH_GRAD_EQ14 ? " (Eq. 14 next to solids)" : "", (double)s->alpha, (double)s->shift, (double)sim->fl.xsph));
+  PetscCall(PetscViewerASCIIPrintf(v, "ISPH: free surface by %s (%s %g), PPE source %s (density weight %g), gradient %s (corrected where its matrix's eigenvalue ratio > %g)%s, AV alpha %g, shifting A = %g, XSPH %g\n", ISPHFreeSurfaces[s->fs], s->fs == ISPH_FS_DENSITY ? "beta" : "div r <", (double)(s->fs == ISPH_FS_DENSITY ? s->beta : s->divr_min), ISPHSources[s->source], (double)s->blend, ISPHGradients[s->gradient], (double)s->grad_cond, s->solid_eq14 && s->gradient != ISPH_GRAD_EQ14 ? " (Eq. 14 next to solids)" : "", (double)s->alpha, (double)s->shift, (double)ph->fl.xsph));
   PetscCall(PPEView(s->ppe, v));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode ISPHInitialize(Sim sim)
+PetscErrorCode ISPHInitialize(Physics *ph)
 {
-  Particles  P   = sim->P;
+  Particles  P   = ph->P;
   PetscReal *rho = PField(P, FIELD_RHO);
   PetscFunctionBeginUser;
   for (PetscInt a = 0; a < P->n + P->ng; a++)
-    if (KindIsWall(P->kind[a])) rho[a] = sim->fl.rho0; /* solids' fluid view: BoundaryWallVelocity */
-  PetscCall(BoundaryWallVelocity(sim));
+    if (KindIsWall(P->kind[a])) rho[a] = ph->fl.rho0; /* solids' fluid view: BoundaryWallVelocity */
+  PetscCall(BoundaryWallVelocity(ph));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode ISPHTimeStep(Sim sim, PetscReal *dt)
+PetscErrorCode ISPHTimeStep(Physics *ph, PetscReal *dt)
 {
-  Particles        P = sim->P;
+  Particles        P = ph->P;
   const PetscReal *v = PField(P, FIELD_V), *h = PField(P, FIELD_H);
-  const PetscReal  g = PetscSqrtReal(VDot(sim->g, sim->g, P->dim));
+  const PetscReal  g = PetscSqrtReal(VDot(ph->g, ph->g, P->dim));
   PetscReal        lim = PETSC_MAX_REAL, hmin = PETSC_MAX_REAL;
 
   PetscFunctionBeginUser;
@@ -119,17 +119,17 @@ PetscErrorCode ISPHTimeStep(Sim sim, PetscReal *dt)
     if (!KindIsFluid(P->kind[a])) continue;
     vn   = PetscSqrtReal(VDot(v + P->dim * a, v + P->dim * a, P->dim));
     hmin = PetscMin(hmin, h[a]);
-    if (vn > 0) lim = PetscMin(lim, sim->cfl * h[a] / vn);                                     /* CFL on the flow speed */
+    if (vn > 0) lim = PetscMin(lim, ph->cfl * h[a] / vn);                                     /* CFL on the flow speed */
     if (g > 0) lim = PetscMin(lim, 0.25 * PetscSqrtReal(h[a] / g));                            /* body force */
-    if (sim->fl.mu > 0) lim = PetscMin(lim, 0.125 * h[a] * h[a] * sim->fl.rho0 / sim->fl.mu); /* viscous */
-    if (sim->isph->alpha > 0) lim = PetscMin(lim, 0.5 * h[a] / (sim->isph->alpha * sim->fl.c0));    /* explicit AV, nu ~ alpha c0 h / 8 */
+    if (ph->fl.mu > 0) lim = PetscMin(lim, 0.125 * h[a] * h[a] * ph->fl.rho0 / ph->fl.mu); /* viscous */
+    if (ph->isph->alpha > 0) lim = PetscMin(lim, 0.5 * h[a] / (ph->isph->alpha * ph->fl.c0));    /* explicit AV, nu ~ alpha c0 h / 8 */
   }
   { /* the fallback is decided on the global minimum: a rank without fluid has no limit of its own,
      * and its fallback would cut every rank's step (8 ranks of the dam break: 81 steps, not 41) */
     PetscReal m[3] = {lim, hmin, PETSC_MAX_REAL};
-    if (sim->solid) PetscCall(SolidTransitLimit(sim, &m[2])); /* the pressure is frozen over the solid sub-steps: at most about one elastic transit */
-    PetscCall(MPIU_Allreduce(MPI_IN_PLACE, m, 3, MPIU_REAL, MPIU_MIN, sim->comm));
-    lim = m[0] == PETSC_MAX_REAL ? sim->cfl * m[1] / sim->v_ref : m[0]; /* nothing moves and no force yet */
+    if (ph->solid) PetscCall(SolidTransitLimit(ph, &m[2])); /* the pressure is frozen over the solid sub-steps: at most about one elastic transit */
+    PetscCall(MPIU_Allreduce(MPI_IN_PLACE, m, 3, MPIU_REAL, MPIU_MIN, ph->comm));
+    lim = m[0] == PETSC_MAX_REAL ? ph->cfl * m[1] / ph->v_ref : m[0]; /* nothing moves and no force yet */
     *dt = PetscMin(lim, m[2]);
   }
   PetscFunctionReturn(PETSC_SUCCESS);
@@ -138,17 +138,17 @@ PetscErrorCode ISPHTimeStep(Sim sim, PetscReal *dt)
 /* Eqs. 45-47: v* = v + dt (g + viscous Eq. 16) at r_t; r* = r + dt v.  Walls get
  * v* = v + dt g, the velocity whose projection with their Neumann pressure (ppe.h) leaves them
  * at rest, so that the velocity divergence sees no spurious source at a wall in hydrostatics. */
-SPH_INLINE PetscErrorCode PredictorD(Sim sim, const PetscInt D)
+SPH_INLINE PetscErrorCode PredictorD(Physics *ph, const PetscInt D)
 {
-  Particles        P = sim->P;
-  Cells            C = sim->cells;
+  Particles        P = ph->P;
+  Cells            C = ph->cells;
   const PetscReal *v = PField(P, FIELD_V), *rho = PField(P, FIELD_RHO), *m = PField(P, FIELD_M), *h = PField(P, FIELD_H), *vw = PField(P, FIELD_VWALL), *fv = PField(P, FIELD_FVIEW);
   PetscReal       *x = PField(P, FIELD_X), *vs = PField(P, FIELD_VSTAR);
-  const PetscReal  dt = sim->dt, mu = sim->fl.mu, alpha = sim->isph->alpha;
+  const PetscReal  dt = ph->dt, mu = ph->fl.mu, alpha = ph->isph->alpha;
 
   PetscFunctionBeginUser;
   for (PetscInt a = 0; a < P->n; a++) {
-    PetscReal ac[3] = {sim->g[0], sim->g[1], sim->g[2]};
+    PetscReal ac[3] = {ph->g[0], ph->g[1], ph->g[2]};
     if (KindIsFluid(P->kind[a]) && (mu > 0 || alpha > 0))
       for (PetscInt k = C->nstart[a]; k < C->nstart[a + 1]; k++) {
         PetscInt         b = C->nbr[k];
@@ -158,9 +158,9 @@ SPH_INLINE PetscErrorCode PredictorD(Sim sim, const PetscInt D)
         VSub(x + D * a, x + D * b, d, D);
         r2 = VDot(d, d, D);
         FluidView(fv, P->kind[b], b, m, rho, NULL, &mb, &rb, &pb);
-        c = LaminarViscosity(mb, mu, rho[a], rb, C->f[k] * r2, r2, hab, sim->fl.eta, sim->fl.lap_kappa);
+        c = LaminarViscosity(mb, mu, rho[a], rb, C->f[k] * r2, r2, hab, ph->fl.eta, ph->fl.lap_kappa);
         VSub(v + D * a, v + D * b, dvab, D);
-        av = alpha > 0 ? mb * ArtificialViscosity(alpha, sim->fl.c0, hab, 0.5 * (rho[a] + rb), VDot(dvab, d, D), r2) * C->f[k] : 0;
+        av = alpha > 0 ? mb * ArtificialViscosity(alpha, ph->fl.c0, hab, 0.5 * (rho[a] + rb), VDot(dvab, d, D), r2) * C->f[k] : 0;
         for (PetscInt i = 0; i < D; i++) ac[i] += c * (v[D * a + i] - vb[i]) - av * d[i];
       }
     for (PetscInt i = 0; i < D; i++) vs[D * a + i] = v[D * a + i] + dt * ac[i];
@@ -171,21 +171,21 @@ SPH_INLINE PetscErrorCode PredictorD(Sim sim, const PetscInt D)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-static PetscErrorCode Predictor(Sim sim) { return SPH_DIM_DISPATCH(sim->dim, PredictorD, sim); }
+static PetscErrorCode Predictor(Physics *ph) { return SPH_DIM_DISPATCH(ph->dim, PredictorD, ph); }
 
 /* rho* by summation (Eq. 17) normalised by the full-lattice sum, walls at rho0; free surface by
  * rho* < beta rho0 (section 2.5) or div r < divr_min; and the PPE source of fluid rows,
  * (1 - w) div v* / dt (Eq. 13 with 1/rho_a, Eq. 48) + w (rho0 - rho*) / (rho0 dt^2) (density
  * invariance, Shao & Lo 2003): one pass, since v* of the neighbours came with the rebuild. */
-SPH_INLINE PetscErrorCode DensityFreeSurfaceSourceD(Sim sim, const PetscInt D)
+SPH_INLINE PetscErrorCode DensityFreeSurfaceSourceD(Physics *ph, const PetscInt D)
 {
-  ISPH             s = sim->isph;
-  Particles        P = sim->P;
-  Cells            C = sim->cells;
+  ISPH             s = ph->isph;
+  Particles        P = ph->P;
+  Cells            C = ph->cells;
   const PetscReal *x = PField(P, FIELD_X), *m = PField(P, FIELD_M), *h = PField(P, FIELD_H), *vs = PField(P, FIELD_VSTAR), *fv = PField(P, FIELD_FVIEW);
   PetscReal       *rho = PField(P, FIELD_RHO), *fs = PField(P, FIELD_FS);
-  const PetscReal  rho0 = sim->fl.rho0, dt = sim->dt, w = s->blend;
-  const PetscBool  confined = sim->confined;
+  const PetscReal  rho0 = ph->fl.rho0, dt = ph->dt, w = s->blend;
+  const PetscBool  confined = ph->confined;
   const FieldId    refresh[] = {FIELD_RHO, FIELD_FS};
   PetscInt         nfree = 0;
 
@@ -203,7 +203,7 @@ SPH_INLINE PetscErrorCode DensityFreeSurfaceSourceD(Sim sim, const PetscInt D)
       continue;
     }
     const PetscReal *wa = CellsPairW(C, P, a);
-    sw = m[a] * KernelW(&sim->kernel, 0, h[a]);
+    sw = m[a] * KernelW(&ph->kernel, 0, h[a]);
     for (PetscInt k = C->nstart[a]; k < C->nstart[a + 1]; k++) {
       PetscInt  b = C->nbr[k];
       PetscReal d[3], dvs[3], F = C->f[k], mb, rb, pb;
@@ -222,12 +222,12 @@ SPH_INLINE PetscErrorCode DensityFreeSurfaceSourceD(Sim sim, const PetscInt D)
     nfree += fs[a] > 0;
     s->src[a] = (1 - w) * div / (rho[a] * dt) + w * (rho0 - rho[a]) / (rho0 * dt * dt);
   }
-  PetscCall(MPIU_Allreduce(&nfree, &s->nfree, 1, MPIU_INT, MPI_SUM, sim->comm));
-  PetscCall(HaloRefresh(sim->halo, P, 2, refresh));
+  PetscCall(MPIU_Allreduce(&nfree, &s->nfree, 1, MPIU_INT, MPI_SUM, ph->comm));
+  PetscCall(HaloRefresh(ph->halo, P, 2, refresh));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-static PetscErrorCode DensityFreeSurfaceSource(Sim sim) { return SPH_DIM_DISPATCH(sim->dim, DensityFreeSurfaceSourceD, sim); }
+static PetscErrorCode DensityFreeSurfaceSource(Physics *ph) { return SPH_DIM_DISPATCH(ph->dim, DensityFreeSurfaceSourceD, ph); }
 
 /* grad P / rho at particle a.  Eq. 14 (symmetric, conserves momentum; its rho_a cancels), or the
  * difference form with the kernel-gradient correction of Bonet & Lok 1999, exact for a linear P
@@ -296,22 +296,22 @@ SPH_INLINE void WallContact(Particles P, Cells C, PetscInt a, PetscReal rho0, Pe
 }
 
 /* Eqs. 49, 51: v = v* - dt grad P / rho; acc = (v - v_t) / dt. */
-SPH_INLINE PetscErrorCode CorrectorD(Sim sim, const PetscInt D)
+SPH_INLINE PetscErrorCode CorrectorD(Physics *ph, const PetscInt D)
 {
-  ISPH             s = sim->isph;
-  Particles        P = sim->P;
-  Cells            C = sim->cells;
+  ISPH             s = ph->isph;
+  Particles        P = ph->P;
+  Cells            C = ph->cells;
   const PetscReal *vs = PField(P, FIELD_VSTAR);
   PetscReal       *v = PField(P, FIELD_V), *acc = PField(P, FIELD_ACC);
-  const PetscReal  dt = sim->dt;
+  const PetscReal  dt = ph->dt;
 
   PetscFunctionBeginUser;
   for (PetscInt a = 0; a < P->n; a++) {
     PetscReal g[3], vn[3];
     if (!KindIsFluid(P->kind[a])) continue;
-    PressureGradient(P, C, a, s->gradient, s->solid_eq14, s->grad_cond, sim->fl.rho0, g, D);
+    PressureGradient(P, C, a, s->gradient, s->solid_eq14, s->grad_cond, ph->fl.rho0, g, D);
     for (PetscInt i = 0; i < D; i++) vn[i] = vs[D * a + i] - dt * g[i];
-    if (s->wall_contact && PField(P, FIELD_FS)[a] > 0) WallContact(P, C, a, sim->fl.rho0, PField(P, FIELD_H)[a] / sim->kernel.h_factor, vn, D);
+    if (s->wall_contact && PField(P, FIELD_FS)[a] > 0) WallContact(P, C, a, ph->fl.rho0, PField(P, FIELD_H)[a] / ph->kernel.h_factor, vn, D);
     for (PetscInt i = 0; i < D; i++) {
       acc[D * a + i] = (vn[i] - v[D * a + i]) / dt;
       v[D * a + i]   = vn[i];
@@ -320,24 +320,24 @@ SPH_INLINE PetscErrorCode CorrectorD(Sim sim, const PetscInt D)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-static PetscErrorCode Corrector(Sim sim) { return SPH_DIM_DISPATCH(sim->dim, CorrectorD, sim); }
+static PetscErrorCode Corrector(Physics *ph) { return SPH_DIM_DISPATCH(ph->dim, CorrectorD, ph); }
 
 /* Position corrections as velocities: XSPH (Eq. 44) and Fickian shifting (shifting.h); a particle
  * is next to the free surface when a fluid neighbour is on it. */
-SPH_INLINE PetscErrorCode DriftD(Sim sim, const PetscInt D)
+SPH_INLINE PetscErrorCode DriftD(Physics *ph, const PetscInt D)
 {
-  ISPH             s = sim->isph;
-  Particles        P = sim->P;
-  Cells            C = sim->cells;
+  ISPH             s = ph->isph;
+  Particles        P = ph->P;
+  Cells            C = ph->cells;
   const PetscReal *x = PField(P, FIELD_X), *m = PField(P, FIELD_M), *rho = PField(P, FIELD_RHO), *v = PField(P, FIELD_V), *h = PField(P, FIELD_H), *fs = PField(P, FIELD_FS);
   PetscReal       *xs = PField(P, FIELD_XSPH);
-  const PetscReal  dt = sim->dt, rho0 = sim->fl.rho0, eps = sim->fl.xsph;
+  const PetscReal  dt = ph->dt, rho0 = ph->fl.rho0, eps = ph->fl.xsph;
   const FieldId    vel[] = {FIELD_V};
   PetscReal       *dv = NULL; /* velocity corrections of shifted particles, applied after the loop (2D) */
 
   PetscFunctionBeginUser;
-  if (s->shift > 0 && sim->fl.shift_correct) PetscCall(PetscCalloc1(D * P->n, &dv));
-  if (eps != 0 || dv) PetscCall(HaloRefresh(sim->halo, P, 1, vel)); /* only XSPH and the shift's velocity correction read the neighbours' v */
+  if (s->shift > 0 && ph->fl.shift_correct) PetscCall(PetscCalloc1(D * P->n, &dv));
+  if (eps != 0 || dv) PetscCall(HaloRefresh(ph->halo, P, 1, vel)); /* only XSPH and the shift's velocity correction read the neighbours' v */
   for (PetscInt a = 0; a < P->n; a++) {
     PetscReal sx[3] = {0, 0, 0}, c[3] = {0, 0, 0};
     PetscBool near_fs = PETSC_FALSE;
@@ -379,15 +379,15 @@ SPH_INLINE PetscErrorCode DriftD(Sim sim, const PetscInt D)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-static PetscErrorCode Drift(Sim sim) { return SPH_DIM_DISPATCH(sim->dim, DriftD, sim); }
+static PetscErrorCode Drift(Physics *ph) { return SPH_DIM_DISPATCH(ph->dim, DriftD, ph); }
 
 /* Eq. 50: r = r_t + dt (v_t + v) / 2 = r* + dt^2 acc / 2, plus the drift corrections. */
-SPH_INLINE PetscErrorCode MoveToEndD(Sim sim, const PetscInt D)
+SPH_INLINE PetscErrorCode MoveToEndD(Physics *ph, const PetscInt D)
 {
-  Particles        P = sim->P;
+  Particles        P = ph->P;
   const PetscReal *acc = PField(P, FIELD_ACC), *xs = PField(P, FIELD_XSPH);
   PetscReal       *x = PField(P, FIELD_X);
-  const PetscReal  dt = sim->dt;
+  const PetscReal  dt = ph->dt;
   for (PetscInt a = 0; a < P->n; a++) {
     if (!KindIsFluid(P->kind[a])) continue;
     for (PetscInt i = 0; i < D; i++) x[D * a + i] += 0.5 * dt * dt * acc[D * a + i] + (xs ? dt * xs[D * a + i] : 0);
@@ -395,49 +395,49 @@ SPH_INLINE PetscErrorCode MoveToEndD(Sim sim, const PetscInt D)
   return PETSC_SUCCESS;
 }
 
-static PetscErrorCode MoveToEnd(Sim sim) { return SPH_DIM_DISPATCH(sim->dim, MoveToEndD, sim); }
+static PetscErrorCode MoveToEnd(Physics *ph) { return SPH_DIM_DISPATCH(ph->dim, MoveToEndD, ph); }
 
-PetscErrorCode ISPHAssemble(Sim sim)
+PetscErrorCode ISPHAssemble(Physics *ph)
 {
-  ISPH s = sim->isph;
+  ISPH s = ph->isph;
   PetscFunctionBeginUser;
-  PetscCall(PPENumber(s->ppe, sim));
-  PetscCall(PPEAssemble(s->ppe, sim, s->src));
+  PetscCall(PPENumber(s->ppe, ph));
+  PetscCall(PPEAssemble(s->ppe, ph, s->src));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode ISPHPressureEquation(Sim sim)
+PetscErrorCode ISPHPressureEquation(Physics *ph)
 {
   PetscFunctionBeginUser;
-  PetscCall(DensityFreeSurfaceSource(sim));
-  PetscCall(ISPHAssemble(sim));
+  PetscCall(DensityFreeSurfaceSource(ph));
+  PetscCall(ISPHAssemble(ph));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode ISPHPredict(Sim sim)
+PetscErrorCode ISPHPredict(Physics *ph)
 {
   PetscFunctionBeginUser;
-  if (sim->has_solid) PetscCall(BoundaryWallVelocity(sim)); /* the solids moved (and may have rebuilt) since the last step */
-  PetscCall(Predictor(sim));
-  PetscCall(NeighbourhoodRebuild(&sim->nbhd, sim->step)); /* neighbours at r* */
-  PetscCall(DensityFreeSurfaceSource(sim));
+  if (ph->has_solid) PetscCall(BoundaryWallVelocity(ph)); /* the solids moved (and may have rebuilt) since the last step */
+  PetscCall(Predictor(ph));
+  PetscCall(NeighbourhoodRebuild(ph->nb, ph->step)); /* neighbours at r* */
+  PetscCall(DensityFreeSurfaceSource(ph));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode ISPHSolve(Sim sim)
+PetscErrorCode ISPHSolve(Physics *ph)
 {
   PetscFunctionBeginUser;
-  PetscCall(PPESolve(sim->isph->ppe, sim));
+  PetscCall(PPESolve(ph->isph->ppe, ph));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode ISPHCorrect(Sim sim)
+PetscErrorCode ISPHCorrect(Physics *ph)
 {
   PetscFunctionBeginUser;
-  PetscCall(Corrector(sim));
-  if (PField(sim->P, FIELD_XSPH)) PetscCall(Drift(sim));
-  PetscCall(MoveToEnd(sim));
-  PetscCall(NeighbourhoodRebuild(&sim->nbhd, sim->step));
-  PetscCall(BoundaryWallVelocity(sim));
+  PetscCall(Corrector(ph));
+  if (PField(ph->P, FIELD_XSPH)) PetscCall(Drift(ph));
+  PetscCall(MoveToEnd(ph));
+  PetscCall(NeighbourhoodRebuild(ph->nb, ph->step));
+  PetscCall(BoundaryWallVelocity(ph));
   PetscFunctionReturn(PETSC_SUCCESS);
 }

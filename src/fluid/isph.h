@@ -2,7 +2,7 @@
  * (Eq. 17), free-surface detection (section 2.5), the pressure Poisson equation (Eqs. 22, 48;
  * ppe.h) and a corrector (Eqs. 49-51, gradient Eq. 14). */
 #pragma once
-#include "run/sim.h"
+#include "physics/physics.h"
 #include "fluid/ppe.h"
 
 typedef enum { ISPH_FS_DENSITY = 0, ISPH_FS_DIVR } ISPHFreeSurface;
@@ -30,27 +30,27 @@ struct _p_ISPH {
   PPE             ppe;
 };
 
-/* Creates sim->isph and reads its options, under the prefix -isph_, after
+/* Creates ph->isph and reads its options, under the prefix -isph_, after
  * FluidMaterialSetFromOptions; then the set-up (the pressure equation, fields), before
  * ParticlesSetUp. */
-PetscErrorCode ISPHSetFromOptions(Sim sim);
-PetscErrorCode ISPHSetUp(Sim sim);
+PetscErrorCode ISPHSetFromOptions(Physics *ph);
+PetscErrorCode ISPHSetUp(Physics *ph);
 /* State of walls after the first rebuild. */
-PetscErrorCode ISPHInitialize(Sim sim);
+PetscErrorCode ISPHInitialize(Physics *ph);
 PetscErrorCode ISPHDestroy(ISPH *isph);
 /* Step from CFL on the flow speed (not a sound speed), force and viscous limits. */
-PetscErrorCode ISPHTimeStep(Sim sim, PetscReal *dt);
-/* At the current positions (r*): rho*, free surface, PPE matrix and right-hand side (needs sim->dt
+PetscErrorCode ISPHTimeStep(Physics *ph, PetscReal *dt);
+/* At the current positions (r*): rho*, free surface, PPE matrix and right-hand side (needs ph->dt
  * and the predicted velocity): the source of ISPHPredict, then ISPHAssemble. */
-PetscErrorCode ISPHPressureEquation(Sim sim);
-/* One predictor-projection-corrector step of length sim->dt is these four in turn (the driver's
+PetscErrorCode ISPHPressureEquation(Physics *ph);
+/* One predictor-projection-corrector step of length ph->dt is these four in turn (the driver's
  * Step, which logs each in its stage):
  *   ISPHPredict   the predictor (v*, r*), the neighbours at r*, rho*, free surface and source;
  *   ISPHAssemble  the PPE's rows and matrix;
  *   ISPHSolve     the pressure;
  *   ISPHCorrect   the corrector, the drift, the move to the end of the step and its neighbours. */
-PetscErrorCode ISPHPredict(Sim sim);
-PetscErrorCode ISPHAssemble(Sim sim);
-PetscErrorCode ISPHSolve(Sim sim);
-PetscErrorCode ISPHCorrect(Sim sim);
-PetscErrorCode ISPHView(Sim sim, PetscViewer v);
+PetscErrorCode ISPHPredict(Physics *ph);
+PetscErrorCode ISPHAssemble(Physics *ph);
+PetscErrorCode ISPHSolve(Physics *ph);
+PetscErrorCode ISPHCorrect(Physics *ph);
+PetscErrorCode ISPHView(Physics *ph, PetscViewer v);

@@ -94,9 +94,9 @@ static PetscBool HasFluidNeighbour(Cells C, Particles P, PetscInt a)
   return PETSC_FALSE;
 }
 
-PetscErrorCode PPENumber(PPE ppe, Sim sim)
+PetscErrorCode PPENumber(PPE ppe, Physics *ph)
 {
-  Particles     P = sim->P;
+  Particles     P = ph->P;
   PetscReal    *row = PField(P, FIELD_ROW), *fs = PField(P, FIELD_FS);
   PetscInt      n = 0, cnt[3], nd = 0;
   const FieldId refresh[] = {FIELD_ROW};
@@ -108,21 +108,21 @@ PetscErrorCode PPENumber(PPE ppe, Sim sim)
     PetscCall(PetscMalloc2(ppe->cap_rows, &ppe->rowpart, ppe->cap_rows, &ppe->hyd));
   }
   for (PetscInt a = 0; a < P->n; a++) {
-    PetscBool r = KindIsFluid(P->kind[a]) || (KindIsBoundary(P->kind[a]) && HasFluidNeighbour(sim->cells, P, a));
+    PetscBool r = KindIsFluid(P->kind[a]) || (KindIsBoundary(P->kind[a]) && HasFluidNeighbour(ph->cells, P, a));
     row[a]      = -1;
     if (!r) continue;
     ppe->rowpart[n++] = a;
     if (fs[a] > 0) nd++;
   }
   ppe->nrow = n;
-  if (sim->decomp->log_stats) PetscCall(DecompLogRows(sim->decomp, n, sim->step));
+  if (ph->decomp->log_stats) PetscCall(DecompLogRows(ph->decomp, n, ph->step));
   PetscCallMPI(MPI_Scan(&n, &ppe->rstart, 1, MPIU_INT, MPI_SUM, ppe->comm));
   ppe->rstart -= n;
   cnt[0] = n; cnt[1] = nd; cnt[2] = n == 0;
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, cnt, 3, MPIU_INT, MPI_SUM, ppe->comm));
   ppe->nrow_global = cnt[0]; ppe->ndirichlet_global = cnt[1]; ppe->nempty = cnt[2];
   for (PetscInt r = 0; r < n; r++) row[ppe->rowpart[r]] = (PetscReal)(ppe->rstart + r);
-  PetscCall(HaloRefresh(sim->halo, P, 1, refresh));
+  PetscCall(HaloRefresh(ph->halo, P, 1, refresh));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -174,7 +174,7 @@ static PetscErrorCode CreateMatrix(PPE ppe, SplitCSR *S, PetscBool pc, Mat *A)
 }
 
 /* A new matrix for this step's rows (the rows are appended in PPEAssemble). */
-static PetscErrorCode Reset(PPE ppe, Sim sim)
+static PetscErrorCode Reset(PPE ppe, Physics *ph)
 {
   PetscFunctionBeginUser;
   /* The neighbour graph changes every step, so does the pattern: reset the KSP (it keeps its type
@@ -209,13 +209,13 @@ static PetscErrorCode Reset(PPE ppe, Sim sim)
   PetscCall(MatDestroy(&ppe->A)); /* before its arrays may move */
   PetscCall(MatDestroy(&ppe->Ap));
   { /* a row has at most its particle's pairs and the diagonal */
-    PetscInt bound = sim->cells->nstart[sim->P->n] + ppe->nrow;
+    PetscInt bound = ph->cells->nstart[ph->P->n] + ppe->nrow;
     PetscCall(SplitCSRBegin(&ppe->csr, ppe->nrow, ppe->rstart, bound));
     if (ppe->pc_qmax > 0) PetscCall(SplitCSRBegin(&ppe->csrp, ppe->nrow, ppe->rstart, bound));
   }
-  if (sim->cells->max_nbr + 1 > ppe->cap_cols) {
+  if (ph->cells->max_nbr + 1 > ppe->cap_cols) {
     PetscCall(PetscFree4(ppe->cols, ppe->vals, ppe->colsp, ppe->valsp));
-    ppe->cap_cols = 2 * sim->cells->max_nbr + 16;
+    ppe->cap_cols = 2 * ph->cells->max_nbr + 16;
     PetscCall(PetscMalloc4(ppe->cap_cols, &ppe->cols, ppe->cap_cols, &ppe->vals, ppe->cap_cols, &ppe->colsp, ppe->cap_cols, &ppe->valsp));
   }
   if (!ppe->x) {
@@ -236,13 +236,13 @@ static PetscErrorCode Reset(PPE ppe, Sim sim)
  * so the fluid's added mass enters the solve.  A solid held at rest during the solve (as a wall)
  * makes the staggered coupling amplify by M_added / m_solid each step, which blows up for the
  * rubber gate (about 10); in equilibrium both agree.  Returns the right-hand side; fills cols/vals. */
-SPH_INLINE PetscReal MovingSolidRow(PPE ppe, Sim sim, PetscInt a, PetscReal va, PetscInt *nc, const PetscInt D)
+SPH_INLINE PetscReal MovingSolidRow(PPE ppe, Physics *ph, PetscInt a, PetscReal va, PetscInt *nc, const PetscInt D)
 {
-  Particles        P = sim->P;
-  Cells            C = sim->cells;
+  Particles        P = ph->P;
+  Cells            C = ph->cells;
   const PetscReal *row = PField(P, FIELD_ROW), *fs = PField(P, FIELD_FS), *x = PField(P, FIELD_X), *am = PField(P, FIELD_AMEAN);
   const PetscReal *rho = PField(P, FIELD_RHO), *m = PField(P, FIELD_M), *h = PField(P, FIELD_H), *fv = PField(P, FIELD_FVIEW), *p = PField(P, FIELD_P);
-  const PetscReal  rho0 = sim->fl.rho0;
+  const PetscReal  rho0 = ph->fl.rho0;
   PetscReal        ma, ra, pa, R[3] = {0, 0, 0}, diag = 0, ediag = 0, kappa, rhs_last = 0, gam[3];
   PetscInt         n = 1;
 
@@ -251,10 +251,10 @@ SPH_INLINE PetscReal MovingSolidRow(PPE ppe, Sim sim, PetscInt a, PetscReal va, 
      * effective mass over the step, m + dt^2 k / 4 (Newmark's, with k ~ (K + 4G/3) dx the stiffness
      * of its bonds): a free particle when the step is short, held by the solid when it is long
      * against the solid's own waves (a stiff plate under water barely moves in a step) */
-    const SolidMaterial *sm = &sim->sl;
-    PetscReal            k = (sm->K + 4.0 * sm->G / 3.0) * h[a] / sim->kernel.h_factor;
-    if (D == 3) k *= h[a] / sim->kernel.h_factor; /* the 2D k is per unit depth and was measured so; a 3D particle is a layer dx deep (a slab repeats the 2D run) */
-    kappa = ma / (m[a] + 0.25 * sim->dt * sim->dt * k);
+    const SolidMaterial *sm = &ph->sl;
+    PetscReal            k = (sm->K + 4.0 * sm->G / 3.0) * h[a] / ph->kernel.h_factor;
+    if (D == 3) k *= h[a] / ph->kernel.h_factor; /* the 2D k is per unit depth and was measured so; a 3D particle is a layer dx deep (a slab repeats the 2D run) */
+    kappa = ma / (m[a] + 0.25 * ph->dt * ph->dt * k);
   }
   for (PetscInt pass = 0; pass < 2; pass++)
     for (PetscInt k = C->nstart[a]; k < C->nstart[a + 1]; k++) {
@@ -263,7 +263,7 @@ SPH_INLINE PetscReal MovingSolidRow(PPE ppe, Sim sim, PetscInt a, PetscReal va, 
       PetscReal d[3], c, e;
       if (role == NBR_SKIP) continue;
       VSub(x + D * a, x + D * b, d, D);
-      c = PPECoefficient(m[b], ra, rho[b], C->f[k], VDot(d, d, D), PairH(h[a], h[b]), sim->fl.eta, sim->fl.lap_kappa);
+      c = PPECoefficient(m[b], ra, rho[b], C->f[k], VDot(d, d, D), PairH(h[a], h[b]), ph->fl.eta, ph->fl.lap_kappa);
       if (!pass) {
         for (PetscInt i = 0; i < D; i++) R[i] += c * d[i];
         continue;
@@ -277,7 +277,7 @@ SPH_INLINE PetscReal MovingSolidRow(PPE ppe, Sim sim, PetscInt a, PetscReal va, 
   rhs_last += ediag * pa / (ra * ra); /* -rho0 R . A(P_last) */
   ppe->vals[0] = diag != 0 ? va * (-diag + ediag / (ra * ra)) : va / (rho0 * h[a] * h[a]);
   *nc          = n;
-  VSub(sim->g, am + D * a, gam, D);
+  VSub(ph->g, am + D * a, gam, D);
   return -va * (rho0 * VDot(gam, R, D) - rhs_last);
 }
 
@@ -314,20 +314,20 @@ SPH_INLINE PetscReal WallApproach(const PetscReal vf[], const PetscReal vw[], co
 }
 
 /* The rows of this rank (Eq. 22 with the free-surface, wall and solid rows of ppe.h) in D dimensions. */
-SPH_INLINE PetscErrorCode AssembleRowsD(PPE ppe, Sim sim, const PetscReal *src, PetscScalar *bb, const PetscInt D)
+SPH_INLINE PetscErrorCode AssembleRowsD(PPE ppe, Physics *ph, const PetscReal *src, PetscScalar *bb, const PetscInt D)
 {
-  Particles        P = sim->P;
-  Cells            C = sim->cells;
+  Particles        P = ph->P;
+  Cells            C = ph->cells;
   const PetscReal *row = PField(P, FIELD_ROW), *fs = PField(P, FIELD_FS), *x = PField(P, FIELD_X);
   const PetscReal *rho = PField(P, FIELD_RHO), *m = PField(P, FIELD_M), *h = PField(P, FIELD_H), *fv = PField(P, FIELD_FVIEW);
-  const PetscReal  rho0 = sim->fl.rho0;
+  const PetscReal  rho0 = ph->fl.rho0;
   const PetscBool  sparse = (PetscBool)(ppe->pc_qmax > 0);
   const PetscReal *vs = PField(P, FIELD_VSTAR);
 
   PetscFunctionBeginUser;
   for (PetscInt r = 0; r < ppe->nrow; r++) {
     PetscInt  a = ppe->rowpart[r], ga = ppe->rstart + r, nc = 1;
-    PetscReal ma, ra, pa, va, diag = 0, hyd = 0, lumped = 0, fa = sparse ? KernelF(&sim->kernel, ppe->pc_qmax * h[a], h[a]) : 0;
+    PetscReal ma, ra, pa, va, diag = 0, hyd = 0, lumped = 0, fa = sparse ? KernelF(&ph->kernel, ppe->pc_qmax * h[a], h[a]) : 0;
     PetscInt  ncp = 1;
     PetscBool wall = KindIsBoundary(P->kind[a]), dir = (PetscBool)(IsDirichlet(fs, a) || ga == ppe->pin);
     PetscBool approach = (PetscBool)(ppe->wall_approach && KindIsWall(P->kind[a])); /* fixed walls; a solid's rows keep rho0 g . n */
@@ -338,7 +338,7 @@ SPH_INLINE PetscErrorCode AssembleRowsD(PPE ppe, Sim sim, const PetscReal *src, 
     if (!ppe->symmetric && P->kind[a] == KIND_SOLID) {
       ppe->cols[0] = ga;
       ppe->hyd[r]  = 0;
-      bb[r]        = MovingSolidRow(ppe, sim, a, va, &nc, D);
+      bb[r]        = MovingSolidRow(ppe, ph, a, va, &nc, D);
       PetscCall(SplitCSRAppendRow(&ppe->csr, nc, ppe->cols, ppe->vals));
       if (sparse) PetscCall(SplitCSRAppendRow(&ppe->csrp, nc, ppe->cols, ppe->vals));
       continue;
@@ -351,10 +351,10 @@ SPH_INLINE PetscErrorCode AssembleRowsD(PPE ppe, Sim sim, const PetscReal *src, 
       FluidView(fv, P->kind[b], b, m, rho, NULL, &mb, &rb, &pb);
       VSub(x + D * a, x + D * b, d, D);
       r2 = VDot(d, d, D);
-      c  = PPECoefficient(mb, ra, rb, C->f[k], r2, PairH(h[a], h[b]), sim->fl.eta, sim->fl.lap_kappa);
+      c  = PPECoefficient(mb, ra, rb, C->f[k], r2, PairH(h[a], h[b]), ph->fl.eta, ph->fl.lap_kappa);
       diag += c;
-      if (wall) hyd += c * rho0 * VDot(sim->g, d, D); /* L_a(rho0 g . r) */
-      if (approach) hyd += c * rho0 * WallApproach(vs + D * b, vs + D * a, nw, d, D) / sim->dt;
+      if (wall) hyd += c * rho0 * VDot(ph->g, d, D); /* L_a(rho0 g . r) */
+      if (approach) hyd += c * rho0 * WallApproach(vs + D * b, vs + D * a, nw, d, D) / ph->dt;
       if (dir || role == NBR_KNOWN) continue; /* free surface: P = 0 */
       ppe->cols[nc] = (PetscInt)row[b]; ppe->vals[nc++] = va * c;
       if (!sparse) continue;
@@ -380,16 +380,16 @@ SPH_INLINE PetscErrorCode AssembleRowsD(PPE ppe, Sim sim, const PetscReal *src, 
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode PPEAssemble(PPE ppe, Sim sim, const PetscReal *src)
+PetscErrorCode PPEAssemble(PPE ppe, Physics *ph, const PetscReal *src)
 {
   const PetscBool  sparse = (PetscBool)(ppe->pc_qmax > 0);
   PetscScalar     *bb;
 
   PetscFunctionBeginUser;
   ppe->pin = ppe->ndirichlet_global ? -1 : 0; /* no free surface: P = 0 at global row 0 (ppe.h) */
-  PetscCall(Reset(ppe, sim));
+  PetscCall(Reset(ppe, ph));
   PetscCall(VecGetArrayWrite(ppe->b, &bb));
-  PetscCall(SPH_DIM_DISPATCH(sim->dim, AssembleRowsD, ppe, sim, src, bb));
+  PetscCall(SPH_DIM_DISPATCH(ph->dim, AssembleRowsD, ppe, ph, src, bb));
   PetscCall(VecRestoreArrayWrite(ppe->b, &bb));
   PetscCall(CreateMatrix(ppe, &ppe->csr, (PetscBool)!sparse, &ppe->A));
   if (sparse) PetscCall(CreateMatrix(ppe, &ppe->csrp, PETSC_TRUE, &ppe->Ap));
@@ -411,9 +411,9 @@ PetscErrorCode PPEAssemble(PPE ppe, Sim sim, const PetscReal *src)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode PPESolve(PPE ppe, Sim sim)
+PetscErrorCode PPESolve(PPE ppe, Physics *ph)
 {
-  Particles          P = sim->P;
+  Particles          P = ph->P;
   PetscReal         *p = PField(P, FIELD_P), *fv = PField(P, FIELD_FVIEW), *fs = PField(P, FIELD_FS);
   PetscScalar       *xx;
   PetscInt           its;
@@ -452,7 +452,7 @@ PetscErrorCode PPESolve(PPE ppe, Sim sim)
   }
   PetscCall(KSPGetConvergedReason(ppe->ksp, &reason));
   PetscCall(KSPGetIterationNumber(ppe->ksp, &its));
-  PetscCheck(reason >= 0, ppe->comm, PETSC_ERR_NOT_CONVERGED, "The pressure Poisson solve did not converge at step %" PetscInt_FMT " (t = %g): KSP reason %s after %" PetscInt_FMT " iterations. Try a smaller -dt/-cfl, a larger -ppe_ksp_max_it, or another -ppe_ksp_type/-ppe_pc_type", sim->step, (double)sim->t, KSPConvergedReasons[reason], its);
+  PetscCheck(reason >= 0, ppe->comm, PETSC_ERR_NOT_CONVERGED, "The pressure Poisson solve did not converge at step %" PetscInt_FMT " (t = %g): KSP reason %s after %" PetscInt_FMT " iterations. Try a smaller -dt/-cfl, a larger -ppe_ksp_max_it, or another -ppe_ksp_type/-ppe_pc_type", ph->step, (double)ph->t, KSPConvergedReasons[reason], its);
   ppe->nsolve++;
   ppe->its_last = its;
   ppe->its_sum += its;
@@ -476,7 +476,7 @@ PetscErrorCode PPESolve(PPE ppe, Sim sim)
     } else p[a] = xx[r];
   }
   PetscCall(VecRestoreArrayRead(ppe->x, (const PetscScalar **)&xx));
-  PetscCall(HaloRefresh(sim->halo, P, fv ? 3 : 2, refresh));
+  PetscCall(HaloRefresh(ph->halo, P, fv ? 3 : 2, refresh));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

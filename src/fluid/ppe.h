@@ -20,7 +20,7 @@
  * divides by a round-off pivot, and the V-cycle amplifies the constant by ~1e22, so that CG's
  * (r, B r) takes the sign of round-off once the residual is small (DIVERGED_INDEFINITE_PC). */
 #pragma once
-#include "run/sim.h"
+#include "physics/physics.h"
 #include "base/csr.h"
 #include <petscksp.h>
 
@@ -59,11 +59,11 @@ PetscErrorCode PPEView(PPE ppe, PetscViewer v);
 PetscErrorCode PPEDestroy(PPE *ppe);
 /* Give every row its global number (FIELD_ROW, ghosts refreshed).  Needs FIELD_FS and FIELD_RHO
  * of ghosts current. */
-PetscErrorCode PPENumber(PPE ppe, Sim sim);
+PetscErrorCode PPENumber(PPE ppe, Physics *ph);
 /* Assemble the matrix and right-hand side; src[a] for owned fluid rows. */
-PetscErrorCode PPEAssemble(PPE ppe, Sim sim, const PetscReal *src);
+PetscErrorCode PPEAssemble(PPE ppe, Physics *ph, const PetscReal *src);
 /* Solve with the current pressure as initial guess; pressure of owned rows set, ghosts refreshed.
  * A solver failure is an error that names the KSP reason. */
-PetscErrorCode PPESolve(PPE ppe, Sim sim);
+PetscErrorCode PPESolve(PPE ppe, Physics *ph);
 /* After a fault: say so when the solve was looser than the default tolerance (collective). */
 PetscErrorCode PPEFaultHint(PPE ppe);

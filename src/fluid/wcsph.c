@@ -7,12 +7,12 @@
 #include "fluid/shifting.h"
 #include "base/dim.h"
 
-PetscErrorCode WCSPHSetFromOptions(Sim sim)
+PetscErrorCode WCSPHSetFromOptions(Physics *ph)
 {
-  FluidMaterial *fl   = &sim->fl;
+  FluidMaterial *fl   = &ph->fl;
   PetscReal      skin = WCSPH_SKIN_DEFAULT;
   PetscFunctionBeginUser;
-  PetscOptionsBegin(sim->comm, "wcsph_", "WCSPH fluid", "WCSPH");
+  PetscOptionsBegin(ph->comm, "wcsph_", "WCSPH fluid", "WCSPH");
   PetscCall(OptDeprecated("-alpha", "-wcsph_alpha"));
   PetscCall(OptDeprecated("-delta", "-wcsph_delta"));
   PetscCall(OptReal("-alpha", "Artificial viscosity coefficient, Eq. 24", "", fl->alpha, &fl->alpha, NULL));
@@ -21,65 +21,65 @@ PetscErrorCode WCSPHSetFromOptions(Sim sim)
   PetscCall(OptBool("-wall_clip", "Clip the wall pressure (Adami extrapolation) at 0: fluid in tension next to a wall is not held on it", "", fl->wall_clip, &fl->wall_clip, NULL));
   PetscCall(OptReal("-skin", "Verlet skin of the neighbour list, in particle spacings: the pairs within 2h + skin are kept and the list is rebuilt only once some particle has moved half the skin; 0 rebuilds at every step", "", skin, &skin, NULL));
   PetscOptionsEnd();
-  PetscCheck(fl->alpha >= 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-wcsph_alpha %g must be >= 0", (double)fl->alpha);
-  PetscCheck(fl->delta >= 0 && fl->delta <= 1, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-wcsph_delta %g must be in [0, 1]", (double)fl->delta);
-  PetscCheck(fl->shift >= 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-wcsph_shift %g must be >= 0", (double)fl->shift);
-  PetscCheck(skin >= 0 && skin <= 2, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-wcsph_skin %g must be in [0, 2] particle spacings", (double)skin);
-  sim->nbhd.skin = skin * sim->dx;
+  PetscCheck(fl->alpha >= 0, ph->comm, PETSC_ERR_ARG_OUTOFRANGE, "-wcsph_alpha %g must be >= 0", (double)fl->alpha);
+  PetscCheck(fl->delta >= 0 && fl->delta <= 1, ph->comm, PETSC_ERR_ARG_OUTOFRANGE, "-wcsph_delta %g must be in [0, 1]", (double)fl->delta);
+  PetscCheck(fl->shift >= 0, ph->comm, PETSC_ERR_ARG_OUTOFRANGE, "-wcsph_shift %g must be >= 0", (double)fl->shift);
+  PetscCheck(skin >= 0 && skin <= 2, ph->comm, PETSC_ERR_ARG_OUTOFRANGE, "-wcsph_skin %g must be in [0, 2] particle spacings", (double)skin);
+  ph->nb->skin = skin * ph->dx;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode WCSPHSetUp(Sim sim)
+PetscErrorCode WCSPHSetUp(Physics *ph)
 {
-  FluidMaterial *fl = &sim->fl;
+  FluidMaterial *fl = &ph->fl;
   PetscFunctionBeginUser;
-  if (sim->nbhd.skin > 0) PetscCall(ParticlesEnableField(sim->P, FIELD_XREB, PETSC_FALSE)); /* the positions at the last rebuild */
+  if (ph->nb->skin > 0) PetscCall(ParticlesEnableField(ph->P, FIELD_XREB, PETSC_FALSE)); /* the positions at the last rebuild */
   /* the solids' sub-steps move them after the list's pairs are computed, and their own list is made
    * then (SolidPrepare): a restart needs those positions too */
-  if (sim->nbhd.skin > 0 && sim->has_solid) PetscCall(ParticlesEnableField(sim->P, FIELD_XLIST, PETSC_FALSE));
-  fl->lat_divr = KernelLatticeSum(&sim->kernel, LATTICE_DIVR, 0);
-  PetscCall(ParticlesEnableField(sim->P, FIELD_ACC, PETSC_FALSE));
-  PetscCall(ParticlesEnableField(sim->P, FIELD_DRHO, PETSC_FALSE));
-  PetscCall(ParticlesEnableField(sim->P, FIELD_VWALL, PETSC_FALSE)); /* ghosts: refreshed by BoundaryWallState */
-  if (fl->xsph > 0 || fl->shift > 0) PetscCall(ParticlesEnableField(sim->P, FIELD_XSPH, PETSC_FALSE));
-  if (fl->shift > 0 && !sim->confined) PetscCall(ParticlesEnableField(sim->P, FIELD_FS, PETSC_TRUE)); /* ghosts: at the rebuild */
+  if (ph->nb->skin > 0 && ph->has_solid) PetscCall(ParticlesEnableField(ph->P, FIELD_XLIST, PETSC_FALSE));
+  fl->lat_divr = KernelLatticeSum(&ph->kernel, LATTICE_DIVR, 0);
+  PetscCall(ParticlesEnableField(ph->P, FIELD_ACC, PETSC_FALSE));
+  PetscCall(ParticlesEnableField(ph->P, FIELD_DRHO, PETSC_FALSE));
+  PetscCall(ParticlesEnableField(ph->P, FIELD_VWALL, PETSC_FALSE)); /* ghosts: refreshed by BoundaryWallState */
+  if (fl->xsph > 0 || fl->shift > 0) PetscCall(ParticlesEnableField(ph->P, FIELD_XSPH, PETSC_FALSE));
+  if (fl->shift > 0 && !ph->confined) PetscCall(ParticlesEnableField(ph->P, FIELD_FS, PETSC_TRUE)); /* ghosts: at the rebuild */
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode WCSPHView(Sim sim, PetscViewer v)
+PetscErrorCode WCSPHView(Physics *ph, PetscViewer v)
 {
-  const FluidMaterial *fl = &sim->fl;
+  const FluidMaterial *fl = &ph->fl;
   PetscFunctionBeginUser;
-  PetscCall(PetscViewerASCIIPrintf(v, "WCSPH: c0 %g m/s, AV alpha %g, delta-SPH %g, XSPH %g, shifting A = %g, wall pressure %s, neighbour skin %g dx\n", (double)fl->c0, (double)fl->alpha, (double)fl->delta, (double)fl->xsph, (double)fl->shift, fl->wall_clip ? "clipped at 0" : "as extrapolated (may be < 0)", (double)(sim->nbhd.skin / sim->dx)));
+  PetscCall(PetscViewerASCIIPrintf(v, "WCSPH: c0 %g m/s, AV alpha %g, delta-SPH %g, XSPH %g, shifting A = %g, wall pressure %s, neighbour skin %g dx\n", (double)fl->c0, (double)fl->alpha, (double)fl->delta, (double)fl->xsph, (double)fl->shift, fl->wall_clip ? "clipped at 0" : "as extrapolated (may be < 0)", (double)(ph->nb->skin / ph->dx)));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode WCSPHPressure(Sim sim)
+PetscErrorCode WCSPHPressure(Physics *ph)
 {
-  Particles  P = sim->P;
+  Particles  P = ph->P;
   PetscReal *rho = PField(P, FIELD_RHO), *p = PField(P, FIELD_P);
   PetscFunctionBeginUser;
   for (PetscInt a = 0; a < P->n + P->ng; a++)
-    if (KindIsFluid(P->kind[a])) p[a] = EOSPressure(&sim->fl, rho[a]);
+    if (KindIsFluid(P->kind[a])) p[a] = EOSPressure(&ph->fl, rho[a]);
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
 /* drho/dt of owned fluid: continuity Eq. 18, optional delta-SPH diffusion (Molteni & Colagrossi
  * 2009, hydrostatic part removed); and the XSPH velocity correction Eq. 44 plus the shifting
- * velocity (shifting.h) over the coming step sim->dt.  With shifting, the free-surface flags (div r)
+ * velocity (shifting.h) over the coming step ph->dt.  With shifting, the free-surface flags (div r)
  * of the neighbours are those of the last call, which the rebuild gave the ghosts; the new flags
  * are written after the loop, so the result does not depend on the order of the particles.  A
  * confined flow has no free surface: a void that opens in it (div r < 1.5 of 2) is shifted shut. */
-SPH_INLINE PetscErrorCode ContinuityD(Sim sim, const PetscInt D)
+SPH_INLINE PetscErrorCode ContinuityD(Physics *ph, const PetscInt D)
 {
-  Particles            P = sim->P;
-  Cells                C = sim->cells;
+  Particles            P = ph->P;
+  Cells                C = ph->cells;
   const PetscReal     *x = PField(P, FIELD_X), *v = PField(P, FIELD_V), *rho = PField(P, FIELD_RHO);
-  const PetscReal     *m = PField(P, FIELD_M), *h = PField(P, FIELD_H), *g = sim->g;
+  const PetscReal     *m = PField(P, FIELD_M), *h = PField(P, FIELD_H), *g = ph->g;
   PetscReal           *drho = PField(P, FIELD_DRHO), *xs = PField(P, FIELD_XSPH), *fs = PField(P, FIELD_FS);
   PetscBool           *surface = NULL;
   PetscReal           *dv = NULL; /* velocity corrections of shifted particles, applied after the loop (2D) */
-  const FluidMaterial *fl   = &sim->fl;
+  const FluidMaterial *fl   = &ph->fl;
   const PetscReal      dcoef = fl->delta * fl->c0, dhyd = fl->rho0 / (fl->c0 * fl->c0);
   const PetscBool      shift = (PetscBool)(fl->shift > 0), surf = (PetscBool)(shift && fs);
 
@@ -124,8 +124,8 @@ SPH_INLINE PetscErrorCode ContinuityD(Sim sim, const PetscInt D)
     if (shift) {
       PetscReal s0[3], dr[3];
       for (PetscInt i = 0; i < D; i++) s0[i] = xs[D * a + i];
-      ShiftVelocity(fl->shift, surf && surface[a] ? SHIFT_SURFACE : near ? SHIFT_NEAR_SURFACE : SHIFT_BULK, h[a], v + D * a, sim->dt, c, xs + D * a, D);
-      for (PetscInt i = 0; i < D; i++) dr[i] = sim->dt * (xs[D * a + i] - s0[i]);
+      ShiftVelocity(fl->shift, surf && surface[a] ? SHIFT_SURFACE : near ? SHIFT_NEAR_SURFACE : SHIFT_BULK, h[a], v + D * a, ph->dt, c, xs + D * a, D);
+      for (PetscInt i = 0; i < D; i++) dr[i] = ph->dt * (xs[D * a + i] - s0[i]);
       if (dv) ShiftCorrectVelocity(&sg, dr, dv + D * a, D);
     }
   }
@@ -141,20 +141,20 @@ SPH_INLINE PetscErrorCode ContinuityD(Sim sim, const PetscInt D)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-static PetscErrorCode Continuity(Sim sim) { return SPH_DIM_DISPATCH(sim->dim, ContinuityD, sim); }
+static PetscErrorCode Continuity(Physics *ph) { return SPH_DIM_DISPATCH(ph->dim, ContinuityD, ph); }
 
 /* Acceleration of owned fluid: pressure Eq. 19 with artificial viscosity Eq. 24, laminar viscosity
  * Eq. 16 (walls and solids with their no-slip velocity), gravity; solids as the fluid sees them
  * (boundary.h) and, when on, the repulsive force Eq. 41 along their normals. */
-SPH_INLINE PetscErrorCode MomentumD(Sim sim, const PetscInt D)
+SPH_INLINE PetscErrorCode MomentumD(Physics *ph, const PetscInt D)
 {
-  Particles            P = sim->P;
-  Cells                C = sim->cells;
+  Particles            P = ph->P;
+  Cells                C = ph->cells;
   const PetscReal     *x = PField(P, FIELD_X), *v = PField(P, FIELD_V), *rho = PField(P, FIELD_RHO), *p = PField(P, FIELD_P);
   const PetscReal     *m = PField(P, FIELD_M), *h = PField(P, FIELD_H), *vw = PField(P, FIELD_VWALL), *fv = PField(P, FIELD_FVIEW);
-  const PetscReal     *nrm = sim->solid && sim->solid->repulsion ? PField(P, FIELD_NORMAL) : NULL;
+  const PetscReal     *nrm = ph->solid && ph->solid->repulsion ? PField(P, FIELD_NORMAL) : NULL;
   PetscReal           *acc = PField(P, FIELD_ACC);
-  const FluidMaterial *fl  = &sim->fl;
+  const FluidMaterial *fl  = &ph->fl;
 
   PetscFunctionBeginUser;
   for (PetscInt a = 0; a < P->n; a++) {
@@ -172,49 +172,49 @@ SPH_INLINE PetscErrorCode MomentumD(Sim sim, const PetscInt D)
       pterm = pa + pb / (rb * rb) + ArtificialViscosity(fl->alpha, fl->c0, hab, 0.5 * (ra + rb), VDot(dvab, d, D), r2);
       visc  = LaminarViscosity(mb, fl->mu, ra, rb, F * r2, r2, hab, fl->eta, fl->lap_kappa);
       if (nrm && KindIsSolid(P->kind[b])) {
-        PetscReal f = FSIRepulsion(VDot(dvab, nrm + D * b, D), PetscSqrtReal(r2) / (2 * hab), sim->dt);
-        f *= sim->solid->repulsion_scale; /* to the paper's 2D sum at 1.3 dx (solid.c); 1 there */
+        PetscReal f = FSIRepulsion(VDot(dvab, nrm + D * b, D), PetscSqrtReal(r2) / (2 * hab), ph->dt);
+        f *= ph->solid->repulsion_scale; /* to the paper's 2D sum at 1.3 dx (solid.c); 1 there */
         for (PetscInt i = 0; i < D; i++) ac[i] += f * nrm[D * b + i];
       }
       if (KindIsBoundary(P->kind[b])) VSub(va, vw + D * b, dvab, D);
       for (PetscInt i = 0; i < D; i++) ac[i] += (visc * dvab[i] - mb * pterm * F * d[i]);
     }
-    for (PetscInt i = 0; i < D; i++) acc[D * a + i] = ac[i] + sim->g[i];
+    for (PetscInt i = 0; i < D; i++) acc[D * a + i] = ac[i] + ph->g[i];
   }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-static PetscErrorCode Momentum(Sim sim) { return SPH_DIM_DISPATCH(sim->dim, MomentumD, sim); }
+static PetscErrorCode Momentum(Physics *ph) { return SPH_DIM_DISPATCH(ph->dim, MomentumD, ph); }
 
 /* Pressure of fluid (EOS) and walls, then accelerations: the state after a rebuild. */
-PetscErrorCode WCSPHRates(Sim sim)
+PetscErrorCode WCSPHRates(Physics *ph)
 {
   PetscFunctionBeginUser;
-  PetscCall(WCSPHPressure(sim));
-  PetscCall(BoundaryWallState(sim));
-  PetscCall(Momentum(sim));
+  PetscCall(WCSPHPressure(ph));
+  PetscCall(BoundaryWallState(ph));
+  PetscCall(Momentum(ph));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode WCSPHTimeStep(Sim sim, PetscReal *dt)
+PetscErrorCode WCSPHTimeStep(Physics *ph, PetscReal *dt)
 {
-  Particles        P = sim->P;
+  Particles        P = ph->P;
   const PetscReal *v = PField(P, FIELD_V), *acc = PField(P, FIELD_ACC), *h = PField(P, FIELD_H), *rho = PField(P, FIELD_RHO);
   PetscReal        lim = PETSC_MAX_REAL;
 
   PetscFunctionBeginUser;
   for (PetscInt a = 0; a < P->n; a++) {
     if (!KindIsFluid(P->kind[a])) continue;
-    lim = PetscMin(lim, AcousticStepLimit(sim->cfl, h[a], sim->fl.c0, v + P->dim * a, acc + P->dim * a, P->dim)); /* CFL, force */
-    if (sim->fl.mu > 0) lim = PetscMin(lim, 0.125 * h[a] * h[a] * rho[a] / sim->fl.mu); /* viscous */
+    lim = PetscMin(lim, AcousticStepLimit(ph->cfl, h[a], ph->fl.c0, v + P->dim * a, acc + P->dim * a, P->dim)); /* CFL, force */
+    if (ph->fl.mu > 0) lim = PetscMin(lim, 0.125 * h[a] * h[a] * rho[a] / ph->fl.mu); /* viscous */
   }
-  PetscCall(MPIU_Allreduce(&lim, dt, 1, MPIU_REAL, MPIU_MIN, sim->comm));
+  PetscCall(MPIU_Allreduce(&lim, dt, 1, MPIU_REAL, MPIU_MIN, ph->comm));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-static void KickVelocity(Sim sim, PetscReal dt)
+static void KickVelocity(Physics *ph, PetscReal dt)
 {
-  Particles  P = sim->P;
+  Particles  P = ph->P;
   PetscReal *v = PField(P, FIELD_V), *acc = PField(P, FIELD_ACC);
   PetscInt   D = P->dim;
   for (PetscInt a = 0; a < P->n; a++) {
@@ -226,16 +226,16 @@ static void KickVelocity(Sim sim, PetscReal dt)
 /* Velocity Verlet with density as a position-like variable (symplectic for the acoustic pair):
  * v+ = v + dt/2 a;  rho' = rho + dt drho(x, v+);  x' = x + dt (v+ + xsph);  a' = a(x', rho');
  * v' = v+ + dt/2 a'. */
-PetscErrorCode WCSPHStep(Sim sim)
+PetscErrorCode WCSPHStep(Physics *ph)
 {
-  Particles     P  = sim->P;
-  const PetscReal dt = sim->dt;
+  Particles     P  = ph->P;
+  const PetscReal dt = ph->dt;
   const FieldId vel[] = {FIELD_V};
 
   PetscFunctionBeginUser;
-  KickVelocity(sim, 0.5 * dt);
-  PetscCall(HaloRefresh(sim->halo, P, 1, vel));
-  PetscCall(Continuity(sim));
+  KickVelocity(ph, 0.5 * dt);
+  PetscCall(HaloRefresh(ph->halo, P, 1, vel));
+  PetscCall(Continuity(ph));
   {
     PetscReal *x = PField(P, FIELD_X), *v = PField(P, FIELD_V), *xs = PField(P, FIELD_XSPH), *rho = PField(P, FIELD_RHO), *drho = PField(P, FIELD_DRHO);
     PetscInt   D = P->dim;
@@ -245,8 +245,8 @@ PetscErrorCode WCSPHStep(Sim sim)
       for (PetscInt i = 0; i < D; i++) x[D * a + i] += dt * (v[D * a + i] + (xs ? xs[D * a + i] : 0));
     }
   }
-  PetscCall(NeighbourhoodUpdate(&sim->nbhd, sim->step));
-  PetscCall(WCSPHRates(sim));
-  KickVelocity(sim, 0.5 * dt);
+  PetscCall(NeighbourhoodUpdate(ph->nb, ph->step));
+  PetscCall(WCSPHRates(ph));
+  KickVelocity(ph, 0.5 * dt);
   PetscFunctionReturn(PETSC_SUCCESS);
 }

@@ -21,15 +21,15 @@ static const char *const IntNames[STATE_NINT]   = {"step", "particles", "next_id
 /* Pointers to the scalars; modules the scene lacks point to a dummy. */
 static void Slots(Sim sim, PetscReal *r[STATE_NREAL], PetscInt *i[STATE_NINT], PetscReal *rd, PetscInt *id)
 {
-  PPE   ppe = sim->isph ? sim->isph->ppe : NULL;
-  Solid s   = sim->solid;
-  r[0] = &sim->t; r[1] = &sim->dt; r[2] = &sim->next_out; r[3] = &sim->next_probe; r[4] = &sim->next_ckpt;
+  PPE   ppe = sim->phys.isph ? sim->phys.isph->ppe : NULL;
+  Solid s   = sim->phys.solid;
+  r[0] = &sim->phys.t; r[1] = &sim->phys.dt; r[2] = &sim->next_out; r[3] = &sim->next_probe; r[4] = &sim->next_ckpt;
   r[5] = &sim->mass0; r[6] = &sim->nbhd.mass_out; r[7] = &sim->particle_steps; r[8] = &sim->wall_used;
   r[9] = &sim->guard->dt_first[0]; r[10] = &sim->guard->dt_first[1]; r[11] = ppe ? &ppe->its_sum : rd;
-  i[0] = &sim->step; i[1] = &sim->nbhd.nparticles; i[2] = &sim->next_id; i[3] = &sim->decomp->nrepartition;
+  i[0] = &sim->phys.step; i[1] = &sim->nbhd.nparticles; i[2] = &sim->next_id; i[3] = &sim->decomp->nrepartition;
   i[4] = s ? &s->nsub_last : id; i[5] = s ? &s->nsub_max : id; i[6] = s ? &s->nrebuild : id;
   i[7] = ppe ? &ppe->nsolve : id; i[8] = ppe ? &ppe->its_max : id; i[9] = ppe ? &ppe->its_last : id;
-  i[10] = sim->isph ? &sim->isph->nfree : id; i[11] = &sim->snap;
+  i[10] = sim->phys.isph ? &sim->phys.isph->nfree : id; i[11] = &sim->snap;
 }
 
 static PetscErrorCode StateScalars(Sim sim, SimState *s)
@@ -122,7 +122,7 @@ PetscErrorCode CheckpointWrite(Sim sim, const SimState *s, const char *path)
   PetscViewer v;
   char        tmp[PETSC_MAX_PATH_LEN], fields[1024], name[64];
   PetscInt    version = CHECKPOINT_VERSION, ranks = sim->size, ncol = 1 + sim->scene->nprobes, *owner = NULL;
-  const char *fluid = sim->has_fluid ? FluidSchemes[sim->fluid] : "none";
+  const char *fluid = sim->phys.has_fluid ? FluidSchemes[sim->phys.fluid] : "none";
 
   PetscFunctionBeginUser;
   PetscCall(PetscLogStagePush(sim->stage[STAGE_OUTPUT]));
@@ -135,7 +135,7 @@ PetscErrorCode CheckpointWrite(Sim sim, const SimState *s, const char *path)
   PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "fluid", PETSC_STRING, fluid));
   PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "fields", PETSC_STRING, fields));
   PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "ranks", PETSC_INT, &ranks));
-  PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "dx", PETSC_REAL, &sim->dx));
+  PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "dx", PETSC_REAL, &sim->phys.dx));
   PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "cells", PETSC_INT, &s->ncell));
   PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "probe_columns", PETSC_INT, &ncol));
   PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "probe_rows", PETSC_INT, &s->nrows));
@@ -202,7 +202,7 @@ PetscErrorCode CheckpointSave(Sim sim)
   if (sim->io_fault.set) PetscFunctionReturn(PETSC_SUCCESS); /* not renamed into place */
   sim->nckpt++;
   if (sim->ckpt_interval > 0)
-    while (sim->next_ckpt <= sim->t + 1e-12 * sim->t_end) sim->next_ckpt += sim->ckpt_interval;
+    while (sim->next_ckpt <= sim->phys.t + 1e-12 * sim->t_end) sim->next_ckpt += sim->ckpt_interval;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -245,9 +245,9 @@ static PetscErrorCode CheckHeader(Sim sim, PetscViewer v, PetscInt *ranks, Petsc
   PetscCall(ReadString(v, "case", buf, sizeof(buf)));
   PetscCheck(!strcmp(buf, sim->scene->name), sim->comm, PETSC_ERR_USER_INPUT, "-restart %s is a checkpoint of scene %s, not of -case %s: restart with -case %s (its options file)", path, buf, sim->scene->name, buf);
   PetscCall(ReadString(v, "fluid", buf, sizeof(buf)));
-  PetscCheck(!strcmp(buf, sim->has_fluid ? FluidSchemes[sim->fluid] : "none"), sim->comm, PETSC_ERR_USER_INPUT, "-restart %s was written with -fluid %s, this run has -fluid %s: restart with -fluid %s", path, buf, FluidSchemes[sim->fluid], buf);
+  PetscCheck(!strcmp(buf, sim->phys.has_fluid ? FluidSchemes[sim->phys.fluid] : "none"), sim->comm, PETSC_ERR_USER_INPUT, "-restart %s was written with -fluid %s, this run has -fluid %s: restart with -fluid %s", path, buf, FluidSchemes[sim->phys.fluid], buf);
   PetscCall(PetscViewerHDF5ReadAttribute(v, "/", "dx", PETSC_REAL, NULL, &dx));
-  PetscCheck(PetscAbsReal(dx - sim->dx) <= 1e-12 * dx, sim->comm, PETSC_ERR_USER_INPUT, "-restart %s was written with -dx %g, this run has -dx %g: a restart keeps the resolution (drop -dx or give %g)", path, (double)dx, (double)sim->dx, (double)dx);
+  PetscCheck(PetscAbsReal(dx - sim->phys.dx) <= 1e-12 * dx, sim->comm, PETSC_ERR_USER_INPUT, "-restart %s was written with -dx %g, this run has -dx %g: a restart keeps the resolution (drop -dx or give %g)", path, (double)dx, (double)sim->phys.dx, (double)dx);
   PetscCall(ReadString(v, "fields", buf, sizeof(buf)));
   PetscCall(FieldList(sim->P, fields, sizeof(fields)));
   PetscCheck(!strcmp(buf, fields), sim->comm, PETSC_ERR_USER_INPUT, "-restart %s holds the particle fields {%s}, this run allocates {%s}: restart with the options the checkpoint was written with (e.g. -fluid_xsph, -isph_shift, -wcsph_shift, -solid_gradient, -fsi_*)", path, buf, fields);
@@ -432,7 +432,7 @@ PetscErrorCode CheckpointRestart(Sim sim)
   PetscCall(CheckHeader(sim, v, &ranks, &ncell));
   PetscCall(CompareOptions(sim, v));
   PetscCall(ReadRunState(sim, v));
-  PetscCheck(sim->t < sim->t_end * (1 - 1e-12), sim->comm, PETSC_ERR_USER_INPUT, "-restart %s is at t = %g, not before -t_end %g: give a later -t_end to continue the run", sim->restart, (double)sim->t, (double)sim->t_end);
+  PetscCheck(sim->phys.t < sim->t_end * (1 - 1e-12), sim->comm, PETSC_ERR_USER_INPUT, "-restart %s is at t = %g, not before -t_end %g: give a later -t_end to continue the run", sim->restart, (double)sim->phys.t, (double)sim->t_end);
   PetscCall(ReadParticles(sim, v, ranks));
   /* the run's last rebuild, at the positions it had then */
   SwapPositions(sim->P, FIELD_XREB);
@@ -445,8 +445,8 @@ PetscErrorCode CheckpointRestart(Sim sim)
     PetscCallMPI(MPI_Bcast(sim->decomp->owner, (PetscMPIInt)ncell, MPI_INT, 0, sim->comm));
   } else PetscCall(DecompPartition(sim->decomp, sim->P));
   PetscCall(PetscViewerDestroy(&v));
-  PetscCall(NeighbourhoodRebuildKeepPartition(&sim->nbhd, sim->step));
-  if (sim->solid && !sim->P->f[FIELD_XLIST].on) PetscCall(SolidPrepare(sim)); /* as after every rebuild: the solids' list, xref */
+  PetscCall(NeighbourhoodRebuildKeepPartition(&sim->nbhd, sim->phys.step));
+  if (sim->phys.solid && !sim->P->f[FIELD_XLIST].on) PetscCall(SolidPrepare(&sim->phys)); /* as after every rebuild: the solids' list, xref */
   SwapPositions(sim->P, FIELD_XREB);
   /* ghosts take every field's current value */
   for (PetscInt f = 0; f < FIELD_COUNT; f++)
@@ -455,11 +455,11 @@ PetscErrorCode CheckpointRestart(Sim sim)
   if (sim->P->f[FIELD_XLIST].on) { /* WCSPH's skin with solids: the main list's pairs and the solids' list where the run made them */
     SwapPositions(sim->P, FIELD_XLIST);
     PetscCall(CellsRefreshPairs(sim->cells, sim->P));
-    PetscCall(SolidPrepare(sim));
+    PetscCall(SolidPrepare(&sim->phys));
     SwapPositions(sim->P, FIELD_XLIST);
   } else if (sim->nbhd.skin > 0) PetscCall(CellsRefreshPairs(sim->cells, sim->P)); /* the main list's pairs now (-wcsph_skin) */
-  if (sim->solid) PetscCall(CellsUpdatePairs(sim->solid->nl, sim->P)); /* solid pairs: their current kernel values */
-  sim->ckpt_t = sim->t; /* the state the last checkpoint holds (summary.json) */
-  PetscCall(PetscPrintf(sim->comm, "sphfsi: restarted from %s (written on %d rank(s)) at step %" PetscInt_FMT ", t = %g\n", sim->restart, (int)ranks, sim->step, (double)sim->t));
+  if (sim->phys.solid) PetscCall(CellsUpdatePairs(sim->phys.solid->nl, sim->P)); /* solid pairs: their current kernel values */
+  sim->ckpt_t = sim->phys.t; /* the state the last checkpoint holds (summary.json) */
+  PetscCall(PetscPrintf(sim->comm, "sphfsi: restarted from %s (written on %d rank(s)) at step %" PetscInt_FMT ", t = %g\n", sim->restart, (int)ranks, sim->phys.step, (double)sim->phys.t));
   PetscFunctionReturn(PETSC_SUCCESS);
 }

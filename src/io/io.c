@@ -77,11 +77,11 @@ PetscErrorCode IOFinalize(Sim sim)
 static PetscErrorCode WriteDomain(PetscViewer v, Sim sim)
 {
   hid_t     file, space, attr;
-  hsize_t   n = 2 * sim->dim;
+  hsize_t   n = 2 * sim->phys.dim;
   PetscReal dom[6];
   PetscFunctionBeginUser;
-  PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "dx", PETSC_REAL, &sim->dx));
-  for (PetscInt d = 0; d < sim->dim; d++) { dom[d] = sim->dom_lo[d]; dom[sim->dim + d] = sim->dom_hi[d]; }
+  PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "dx", PETSC_REAL, &sim->phys.dx));
+  for (PetscInt d = 0; d < sim->phys.dim; d++) { dom[d] = sim->dom_lo[d]; dom[sim->phys.dim + d] = sim->dom_hi[d]; }
   PetscCall(PetscViewerHDF5GetFileId(v, &file));
   PetscCheck((space = H5Screate_simple(1, &n, NULL)) >= 0, PETSC_COMM_SELF, PETSC_ERR_LIB, "HDF5 could not make the domain attribute's space");
   PetscCheck((attr = H5Acreate2(file, "domain", H5T_NATIVE_DOUBLE, space, H5P_DEFAULT, H5P_DEFAULT)) >= 0, PETSC_COMM_SELF, PETSC_ERR_LIB, "HDF5 could not create the domain attribute");
@@ -114,8 +114,8 @@ PetscErrorCode IOWriteParticles(Sim sim, const char *path)
     PetscCall(PetscFree(vertex));
   }
   for (PetscInt k = 0; k < nout; k++) PetscCall(DatasetWriteReals(v, sim->comm, P->f[out[k]].name, P->n, P->f[out[k]].width, P->f[out[k]].a));
-  PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "time", PETSC_REAL, &sim->t));
-  PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "step", PETSC_INT, &sim->step));
+  PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "time", PETSC_REAL, &sim->phys.t));
+  PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "step", PETSC_INT, &sim->phys.step));
   PetscCall(WriteDomain(v, sim));
   PetscCall(PetscViewerDestroy(&v));
   PetscCall(IORenameOnRoot(sim, tmp, path));
@@ -161,7 +161,7 @@ static PetscErrorCode WriteXDMF(Sim sim, const char *xmf, PetscInt n, const char
 {
   char           path[PETSC_MAX_PATH_LEN], tmp[PETSC_MAX_PATH_LEN];
   FILE          *f;
-  const PetscInt D = sim->dim;
+  const PetscInt D = sim->phys.dim;
   FieldId        out[FIELD_COUNT];
   const PetscInt nout = ParticlesSnapshotFields(sim->P, out);
 
@@ -219,11 +219,11 @@ PetscErrorCode IOSnapshot(Sim sim)
   PetscCall(IOSpaceReserve(sim, path, bytes, &ok));
   if (!ok) PetscFunctionReturn(PETSC_SUCCESS);
   PetscCall(PetscLogStagePush(sim->stage[STAGE_OUTPUT]));
-  if (!sim->isph) { /* WCSPH: the pressure of the stored density, by the equation of state (Eq. 20) */
+  if (!sim->phys.isph) { /* WCSPH: the pressure of the stored density, by the equation of state (Eq. 20) */
     const PetscReal *rho = PField(sim->P, FIELD_RHO);
     PetscReal       *p   = PField(sim->P, FIELD_P);
     for (PetscInt a = 0; a < sim->P->n + sim->P->ng; a++)
-      if (KindIsFluid(sim->P->kind[a])) p[a] = EOSPressure(&sim->fl, rho[a]);
+      if (KindIsFluid(sim->P->kind[a])) p[a] = EOSPressure(&sim->phys.fl, rho[a]);
   }
   PetscCall(PetscSNPrintf(path, sizeof(path), "%s/particles_%05" PetscInt_FMT ".h5", sim->outdir, sim->snap));
   PetscCall(IOSpacePushWrite(path));
@@ -237,11 +237,11 @@ PetscErrorCode IOSnapshot(Sim sim)
     PetscCall(PetscFree(sim->snaps));
     sim->snaps = t;
   }
-  sim->snaps[2 * sim->snap]     = sim->t;
+  sim->snaps[2 * sim->snap]     = sim->phys.t;
   sim->snaps[2 * sim->snap + 1] = (PetscReal)sim->nbhd.nparticles;
   sim->snap++;
   PetscCall(WriteXDMF(sim, "particles.xmf", sim->snap, NULL, sim->snaps));
-  while (sim->next_out <= sim->t + 1e-12 * sim->t_end) sim->next_out += sim->out_interval;
+  while (sim->next_out <= sim->phys.t + 1e-12 * sim->t_end) sim->next_out += sim->out_interval;
   PetscCall(PetscLogStagePop());
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -254,7 +254,7 @@ PetscErrorCode IOProbes(Sim sim)
   PetscCall(PetscLogStagePush(sim->stage[STAGE_OUTPUT]));
   PetscCall(sim->scene->probe(sim, vals));
   for (PetscInt k = 0; k < sim->scene->nprobes; k++) /* the state is finite (guard.h); a probe may still not be */
-    if (PetscIsInfOrNanReal(vals[k])) PetscCall(PetscPrintf(sim->comm, "sphfsi: warning: probe %s is %g at t = %g (written so to probes.csv)\n", sim->scene->probe_names[k], (double)vals[k], (double)sim->t));
+    if (PetscIsInfOrNanReal(vals[k])) PetscCall(PetscPrintf(sim->comm, "sphfsi: warning: probe %s is %g at t = %g (written so to probes.csv)\n", sim->scene->probe_names[k], (double)vals[k], (double)sim->phys.t));
   if (!sim->rank) {
     PetscReal *row;
     if (sim->nprobe_rows == sim->cap_probe_rows) {
@@ -266,12 +266,12 @@ PetscErrorCode IOProbes(Sim sim)
       sim->probe_rows = rows;
     }
     row    = sim->probe_rows + sim->nprobe_rows * ncol;
-    row[0] = sim->t;
+    row[0] = sim->phys.t;
     PetscCall(PetscArraycpy(row + 1, vals, sim->scene->nprobes));
   }
   sim->nprobe_rows++;
   if (sim->probe_interval > 0)
-    while (sim->next_probe <= sim->t + 1e-12 * sim->t_end) sim->next_probe += sim->probe_interval;
+    while (sim->next_probe <= sim->phys.t + 1e-12 * sim->t_end) sim->next_probe += sim->probe_interval;
   PetscCall(PetscLogStagePop());
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -323,11 +323,11 @@ static double PeakResidentBytes(void)
 static void JsonModules(FILE *f, Sim sim)
 {
   fprintf(f, "  \"modules\": [");
-  if (sim->has_fluid) fprintf(f, "\"%s\"", FluidSchemes[sim->fluid]);
-  if (sim->isph) fprintf(f, ", \"pressure_matrix\"");
-  if (sim->solid) fprintf(f, "%s\"solid\"", sim->has_fluid ? ", " : "");
-  if (sim->solid && sim->isph && sim->solid->implicit) fprintf(f, ", \"implicit_interface\"");
-  fprintf(f, "],\n  \"pressure_matrix\": %s,\n", sim->isph ? "true" : "false");
+  if (sim->phys.has_fluid) fprintf(f, "\"%s\"", FluidSchemes[sim->phys.fluid]);
+  if (sim->phys.isph) fprintf(f, ", \"pressure_matrix\"");
+  if (sim->phys.solid) fprintf(f, "%s\"solid\"", sim->phys.has_fluid ? ", " : "");
+  if (sim->phys.solid && sim->phys.isph && sim->phys.solid->implicit) fprintf(f, ", \"implicit_interface\"");
+  fprintf(f, "],\n  \"pressure_matrix\": %s,\n", sim->phys.isph ? "true" : "false");
 }
 
 PetscErrorCode IOSummary(Sim sim)
@@ -346,7 +346,7 @@ PetscErrorCode IOSummary(Sim sim)
   PetscCall(RootCheck(sim, err, "summary.json"));
   if (!sim->rank) {
     fprintf(f, "{\n  \"version\": \"%s\",\n  \"commit\": \"%s\",\n", SphfsiVersion(), SphfsiCommit());
-    fprintf(f, "  \"case\": \"%s\",\n  \"dim\": %d,\n  \"fluid\": \"%s\",\n  \"ranks\": %d,\n", sim->scene->name, (int)sim->dim, sim->has_fluid ? FluidSchemes[sim->fluid] : "none", sim->size);
+    fprintf(f, "  \"case\": \"%s\",\n  \"dim\": %d,\n  \"fluid\": \"%s\",\n  \"ranks\": %d,\n", sim->scene->name, (int)sim->phys.dim, sim->phys.has_fluid ? FluidSchemes[sim->phys.fluid] : "none", sim->size);
     JsonString(f, "status", sim->io_fault.set ? "io_error" : (const char *[]){"completed", "stopped", "fault", "io_error"}[sim->guard->state]);
     if (sim->io_fault.set) JsonString(f, "message", sim->io_fault.msg);
     else if (sim->guard->state) JsonString(f, "message", sim->guard->msg);
@@ -354,17 +354,17 @@ PetscErrorCode IOSummary(Sim sim)
     fprintf(f, "  \"checkpoints\": %d,\n", (int)sim->nckpt);
     if (sim->ckpt_t >= 0) JsonReal(f, "checkpoint_t", sim->ckpt_t); /* what checkpoint.h5 holds now */
     else fprintf(f, "  \"checkpoint_t\": null,\n");
-    fprintf(f, "  \"particles\": %d,\n  \"steps\": %d,\n", (int)sim->nbhd.nparticles, (int)sim->step);
-    JsonReal(f, "t_end", sim->t);
-    JsonReal(f, "dx", sim->dx);
+    fprintf(f, "  \"particles\": %d,\n  \"steps\": %d,\n", (int)sim->nbhd.nparticles, (int)sim->phys.step);
+    JsonReal(f, "t_end", sim->phys.t);
+    JsonReal(f, "dx", sim->phys.dx);
     JsonReal(f, "wall_s", sim->wall_used + sim->wall_loop);
     JsonReal(f, "particle_steps_per_s", sim->particle_steps / PetscMax(sim->wall_used + sim->wall_loop, 1e-9));
-    if (sim->isph && sim->isph->ppe->nsolve) fprintf(f, "  \"ksp_its_mean\": %.4g,\n  \"ksp_its_max\": %d,\n", (double)(sim->isph->ppe->its_sum / sim->isph->ppe->nsolve), (int)sim->isph->ppe->its_max);
+    if (sim->phys.isph && sim->phys.isph->ppe->nsolve) fprintf(f, "  \"ksp_its_mean\": %.4g,\n  \"ksp_its_max\": %d,\n", (double)(sim->phys.isph->ppe->its_sum / sim->phys.isph->ppe->nsolve), (int)sim->phys.isph->ppe->its_max);
     else fprintf(f, "  \"ksp_its_mean\": null,\n  \"ksp_its_max\": null,\n");
     JsonReal(f, "mass_rel_drift", sim->mass0 > 0 ? (sim->mass - sim->mass0) / sim->mass0 : 0);
-    if (sim->solid) fprintf(f, "  \"c0_solid\": %.6g,\n  \"solid_substeps_max\": %d,\n  \"solid_formulation\": \"%s\",\n", (double)sim->sl.c0, (int)sim->solid->nsub_max, SolidFormulations[sim->solid->formulation]);
-    if (sim->nbhd.skin > 0) fprintf(f, "  \"neighbour_skin_dx\": %.6g,\n  \"neighbour_rebuilds\": %d,\n", (double)(sim->nbhd.skin / sim->dx), (int)sim->nbhd.nrebuild); /* this run's (-wcsph_skin) */
-    if (sim->has_fluid) fprintf(f, "  \"c0\": %.6g,\n", (double)sim->fl.c0);
+    if (sim->phys.solid) fprintf(f, "  \"c0_solid\": %.6g,\n  \"solid_substeps_max\": %d,\n  \"solid_formulation\": \"%s\",\n", (double)sim->phys.sl.c0, (int)sim->phys.solid->nsub_max, SolidFormulations[sim->phys.solid->formulation]);
+    if (sim->nbhd.skin > 0) fprintf(f, "  \"neighbour_skin_dx\": %.6g,\n  \"neighbour_rebuilds\": %d,\n", (double)(sim->nbhd.skin / sim->phys.dx), (int)sim->nbhd.nrebuild); /* this run's (-wcsph_skin) */
+    if (sim->phys.has_fluid) fprintf(f, "  \"c0\": %.6g,\n", (double)sim->phys.fl.c0);
     else fprintf(f, "  \"c0\": null,\n");
     JsonModules(f, sim);
     fprintf(f, "  \"bytes_per_particle\": %d,\n  \"repartitions\": %d,\n", (int)ParticlesBytesPerParticle(sim->P), (int)sim->decomp->nrepartition);

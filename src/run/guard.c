@@ -84,7 +84,7 @@ PetscErrorCode GuardStepBegin(Sim sim)
   Guard g = sim->guard;
   PetscFunctionBeginUser;
   PetscCall(PetscTime(&g->step_start));
-  if (!g->have_good || sim->step % GUARD_KEEP_EVERY == 0) {
+  if (!g->have_good || sim->phys.step % GUARD_KEEP_EVERY == 0) {
     PetscCall(PetscLogStagePush(sim->stage[STAGE_GUARD]));
     PetscCall(StateCopy(sim, &g->good));
     g->have_good = PETSC_TRUE;
@@ -139,8 +139,8 @@ PetscErrorCode GuardStep(Sim sim, PetscErrorCode (*step)(Sim))
     PetscCall(PetscLogStagePop());
     PetscCall(CurrentStage(&stage));
   }
-  PetscCheck(ierr == PETSC_ERR_NOT_CONVERGED, PETSC_COMM_SELF, ierr, "In step %" PetscInt_FMT " (t = %g): %s", sim->step, (double)sim->t, msg);
-  PetscCall(GuardFault(sim, PETSC_FALSE, "in step %" PetscInt_FMT " (from t = %g): %s", sim->step + 1, (double)sim->t, msg));
+  PetscCheck(ierr == PETSC_ERR_NOT_CONVERGED, PETSC_COMM_SELF, ierr, "In step %" PetscInt_FMT " (t = %g): %s", sim->phys.step, (double)sim->phys.t, msg);
+  PetscCall(GuardFault(sim, PETSC_FALSE, "in step %" PetscInt_FMT " (from t = %g): %s", sim->phys.step + 1, (double)sim->phys.t, msg));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -151,7 +151,7 @@ typedef struct {
 #define WHERE_REALS 7
 
 /* "(x, y)" or "(x, y, z)" of a report */
-static const char *WherePoint(Sim sim, const Where *w, char buf[96]) { return GridFormatPoint(buf, 96, sim->dim, w->x); }
+static const char *WherePoint(Sim sim, const Where *w, char buf[96]) { return GridFormatPoint(buf, 96, sim->phys.dim, w->x); }
 
 static void WhereOf(Sim sim, PetscInt a, PetscInt field, PetscReal val, Where *w)
 {
@@ -159,7 +159,7 @@ static void WhereOf(Sim sim, PetscInt a, PetscInt field, PetscReal val, Where *w
   memset(w, 0, sizeof(*w));
   if (a < 0) { w->id = -1; return; }
   w->val = val; w->id = (PetscReal)sim->P->id[a]; w->kind = (PetscReal)sim->P->kind[a];
-  for (PetscInt d = 0; d < sim->dim; d++) w->x[d] = x[sim->dim * a + d];
+  for (PetscInt d = 0; d < sim->phys.dim; d++) w->x[d] = x[sim->phys.dim * a + d];
   w->field = (PetscReal)field;
 }
 
@@ -192,12 +192,12 @@ PetscErrorCode GuardCheckDt(Sim sim, PetscInt medium, PetscReal dt)
   floor = g->dt_min > 0 ? g->dt_min : 1e-3 * g->dt_first[medium];
   if (dt >= floor) PetscFunctionReturn(PETSC_SUCCESS);
   if (PetscIsInfOrNanReal(dt)) { /* a state the end-of-step check passed cannot give this: a parameter */
-    PetscCall(GuardFault(sim, PETSC_TRUE, "the %s time step is not finite at step %" PetscInt_FMT ", t = %g", medium ? "solid" : "fluid", sim->step, (double)sim->t));
+    PetscCall(GuardFault(sim, PETSC_TRUE, "the %s time step is not finite at step %" PetscInt_FMT ", t = %g", medium ? "solid" : "fluid", sim->phys.step, (double)sim->phys.t));
     PetscFunctionReturn(PETSC_SUCCESS);
   }
   /* where: the owned particle of this medium with the largest acceleration */
   for (PetscInt a = 0; a < P->n && acc; a++) {
-    PetscReal an = PetscSqrtReal(VDot(acc + sim->dim * a, acc + sim->dim * a, sim->dim));
+    PetscReal an = PetscSqrtReal(VDot(acc + sim->phys.dim * a, acc + sim->phys.dim * a, sim->phys.dim));
     if ((medium ? P->kind[a] == KIND_SOLID : KindIsFluid(P->kind[a])) && an > amax) { amax = an; worst = a; }
   }
   {
@@ -212,10 +212,10 @@ PetscErrorCode GuardCheckDt(Sim sim, PetscInt medium, PetscReal dt)
     for (PetscInt b = 0; b < P->n; b++)
       if (P->id[b] == (PetscInt)w.id) a = b;
     char      at[96];
-    if (a >= 0) vn = PetscSqrtReal(VDot(v + sim->dim * a, v + sim->dim * a, sim->dim));
+    if (a >= 0) vn = PetscSqrtReal(VDot(v + sim->phys.dim * a, v + sim->phys.dim * a, sim->phys.dim));
     PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &vn, 1, MPIU_REAL, MPIU_MAX, sim->comm));
-    PetscCall(GuardFault(sim, PETSC_TRUE, "the %s time step %g s fell below its floor %g s (%s) at step %" PetscInt_FMT ", t = %g; largest acceleration %g m/s^2 (speed %g m/s) at particle id %d (%s) at %s: the run is unstable (try a smaller -cfl; -dt_min sets the floor)", medium ? "solid" : "fluid", (double)dt, (double)floor, g->dt_min > 0 ? "-dt_min" : "1e-3 of the first step", sim->step, (double)sim->t, (double)w.val, (double)vn, (int)w.id, ParticleKindNames[(PetscInt)w.kind], WherePoint(sim, &w, at)));
-  } else PetscCall(GuardFault(sim, PETSC_TRUE, "the %s time step %g s fell below its floor %g s at step %" PetscInt_FMT ", t = %g: the run is unstable (try a smaller -cfl)", medium ? "solid" : "fluid", (double)dt, (double)floor, sim->step, (double)sim->t));
+    PetscCall(GuardFault(sim, PETSC_TRUE, "the %s time step %g s fell below its floor %g s (%s) at step %" PetscInt_FMT ", t = %g; largest acceleration %g m/s^2 (speed %g m/s) at particle id %d (%s) at %s: the run is unstable (try a smaller -cfl; -dt_min sets the floor)", medium ? "solid" : "fluid", (double)dt, (double)floor, g->dt_min > 0 ? "-dt_min" : "1e-3 of the first step", sim->phys.step, (double)sim->phys.t, (double)w.val, (double)vn, (int)w.id, ParticleKindNames[(PetscInt)w.kind], WherePoint(sim, &w, at)));
+  } else PetscCall(GuardFault(sim, PETSC_TRUE, "the %s time step %g s fell below its floor %g s at step %" PetscInt_FMT ", t = %g: the run is unstable (try a smaller -cfl)", medium ? "solid" : "fluid", (double)dt, (double)floor, sim->phys.step, (double)sim->phys.t));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -248,8 +248,8 @@ static PetscErrorCode NonFinite(Sim sim, PetscInt bad, PetscInt field, PetscReal
   PetscFunctionBeginUser;
   WhereOf(sim, bad, field, val, &mine);
   PetscCall(Gather(sim, &mine, &w, &found));
-  if (initial) PetscCall(PetscSNPrintf(when, sizeof(when), "in the initial state at step %" PetscInt_FMT " (t = %g): check the scene's options or the checkpoint", sim->step, (double)sim->t));
-  else PetscCall(PetscSNPrintf(when, sizeof(when), "after step %" PetscInt_FMT " (t = %g): the run is unstable (reduce -dt or -cfl)", sim->step, (double)sim->t));
+  if (initial) PetscCall(PetscSNPrintf(when, sizeof(when), "in the initial state at step %" PetscInt_FMT " (t = %g): check the scene's options or the checkpoint", sim->phys.step, (double)sim->phys.t));
+  else PetscCall(PetscSNPrintf(when, sizeof(when), "after step %" PetscInt_FMT " (t = %g): the run is unstable (reduce -dt or -cfl)", sim->phys.step, (double)sim->phys.t));
   snprintf(value, sizeof(value), "%g", (double)w.val); /* "nan", not PETSc's "nan." */
   PetscCall(GuardFault(sim, PETSC_FALSE, "%s = %s at particle id %d (%s) at %s %s", sim->P->f[(PetscInt)w.field].name, value, (int)w.id, ParticleKindNames[(PetscInt)w.kind], WherePoint(sim, &w, at), when));
   PetscFunctionReturn(PETSC_SUCCESS);
@@ -322,7 +322,7 @@ PetscErrorCode GuardCheckSetUp(Sim sim, const char *when)
 PetscErrorCode GuardAnnounceStop(Sim sim)
 {
   PetscFunctionBeginUser;
-  PetscCall(PetscPrintf(sim->comm, "sphfsi: stopped at step %" PetscInt_FMT ", t = %g: %s.\n", sim->step, (double)sim->t, sim->guard->msg));
+  PetscCall(PetscPrintf(sim->comm, "sphfsi: stopped at step %" PetscInt_FMT ", t = %g: %s.\n", sim->phys.step, (double)sim->phys.t, sim->guard->msg));
   if (!sim->rank) fflush(PETSC_STDOUT); /* before a launcher's kill can take it */
   PetscFunctionReturn(PETSC_SUCCESS);
 }

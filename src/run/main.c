@@ -146,7 +146,7 @@ static PetscErrorCode SetUp(Sim *sim)
   PetscCall(SimCreate(PETSC_COMM_WORLD, sim));
   PetscCall(SimSetFromOptions(*sim));
   PetscCall(SimSetUp(*sim));
-  if (!(*sim)->help && (*sim)->ready) PetscCall(CheckUnusedOptions(PETSC_COMM_WORLD, (*sim)->fluid));
+  if (!(*sim)->help && (*sim)->ready) PetscCall(CheckUnusedOptions(PETSC_COMM_WORLD, (*sim)->phys.fluid));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -211,10 +211,10 @@ int main(int argc, char **argv)
     char header[256], chosen[512];
     PetscCall(PetscSNPrintf(header, sizeof(header), "sphfsi %s (commit %s): the options of this run, given, chosen and defaulted; -options_file this file repeats it (PETSc's own solver options not listed keep this PETSc version's defaults)", SphfsiVersion(), SphfsiCommit()));
     /* the scene's values and -fluid_c0 (10x its speed) at full precision */
-    PetscCall(PetscSNPrintf(chosen, sizeof(chosen), "-t_end %.17g\n-gravity %.17g,%.17g", (double)sim->t_end, (double)sim->g[0], (double)sim->g[1]));
-    if (sim->dim == 3) PetscCall(PetscSNPrintf(chosen + strlen(chosen), sizeof(chosen) - strlen(chosen), ",%.17g", (double)sim->g[2]));
-    PetscCall(PetscSNPrintf(chosen + strlen(chosen), sizeof(chosen) - strlen(chosen), "\n# -dx %.17g (from the scene's options)\n", (double)sim->dx));
-    if (sim->has_fluid) PetscCall(PetscSNPrintf(chosen + strlen(chosen), sizeof(chosen) - strlen(chosen), "-fluid_c0 %.17g\n", (double)sim->fl.c0));
+    PetscCall(PetscSNPrintf(chosen, sizeof(chosen), "-t_end %.17g\n-gravity %.17g,%.17g", (double)sim->t_end, (double)sim->phys.g[0], (double)sim->phys.g[1]));
+    if (sim->phys.dim == 3) PetscCall(PetscSNPrintf(chosen + strlen(chosen), sizeof(chosen) - strlen(chosen), ",%.17g", (double)sim->phys.g[2]));
+    PetscCall(PetscSNPrintf(chosen + strlen(chosen), sizeof(chosen) - strlen(chosen), "\n# -dx %.17g (from the scene's options)\n", (double)sim->phys.dx));
+    if (sim->phys.has_fluid) PetscCall(PetscSNPrintf(chosen + strlen(chosen), sizeof(chosen) - strlen(chosen), "-fluid_c0 %.17g\n", (double)sim->phys.fl.c0));
     PetscCall(OptionsUsedWrite(PETSC_COMM_WORLD, sim->outdir, header, chosen));
   }
   if (ierr && bad_input.quiet) { /* every rank has it: one line from rank 0, then a clean exit */

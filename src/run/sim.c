@@ -24,29 +24,32 @@ PetscErrorCode SimCreate(MPI_Comm comm, Sim *sim)
   s->comm = comm;
   PetscCallMPI(MPI_Comm_rank(comm, &s->rank));
   PetscCallMPI(MPI_Comm_size(comm, &s->size));
-  s->dim            = 2;
-  s->fluid          = FLUID_WCSPH;
-  s->cfl            = 0.25;
   s->t_end          = -1;
-  s->dx             = -1;
   s->max_steps      = PETSC_MAX_INT;
   s->progress_every = 5;
   s->ckpt_step      = -1;
   s->ckpt_t         = -1;
-  s->fl.rho0        = 1000.0;
-  s->fl.mu          = 1.0e-3;
-  s->fl.eta         = 0.1; /* the paper's */
-  s->fl.lap_kappa   = 1;
-  s->fl.alpha       = 0.02;
-  s->fl.xsph        = 0.0;
-  s->fl.wall_clip   = PETSC_TRUE; /* WCSPH walls push, never pull (boundary.c) */
-  s->g[1]           = -9.81;
-  KernelInit(&s->kernel, KERNEL_CUBIC, 2, SPH_H_FACTOR);
-  s->has_fluid      = PETSC_TRUE;
-  s->sl.rho0        = 1000.0;
-  s->sl.alpha       = 1.0;
-  s->sl.eps         = 0.3;
-  s->sl.n           = 4.0;
+  { /* the physics' defaults, before the scene's (physics.h) */
+    Physics *ph       = &s->phys;
+    ph->dim           = 2;
+    ph->fluid         = FLUID_WCSPH;
+    ph->cfl           = 0.25;
+    ph->dx            = -1;
+    ph->fl.rho0       = 1000.0;
+    ph->fl.mu         = 1.0e-3;
+    ph->fl.eta        = 0.1; /* the paper's */
+    ph->fl.lap_kappa  = 1;
+    ph->fl.alpha      = 0.02;
+    ph->fl.xsph       = 0.0;
+    ph->fl.wall_clip  = PETSC_TRUE; /* WCSPH walls push, never pull (boundary.c) */
+    ph->g[1]          = -9.81;
+    ph->has_fluid     = PETSC_TRUE;
+    ph->sl.rho0       = 1000.0;
+    ph->sl.alpha      = 1.0;
+    ph->sl.eps        = 0.3;
+    ph->sl.n          = 4.0;
+    KernelInit(&ph->kernel, KERNEL_CUBIC, 2, SPH_H_FACTOR);
+  }
   {
     const char *names[STAGE_COUNT] = {"Neighbours", "Halo+migrate", "Physics", "PPE assembly", "PPE solve", "Solid", "Output", "Guard"};
     for (PetscInt k = 0; k < STAGE_COUNT; k++) { /* a second Sim in one program shares the stages */
@@ -58,6 +61,11 @@ PetscErrorCode SimCreate(MPI_Comm comm, Sim *sim)
   PetscCall(ParticlesCreate(comm, &s->P));
   PetscCall(DecompCreate(comm, &s->decomp));
   PetscCall(HaloCreate(comm, &s->halo));
+  s->phys.comm   = comm; /* the physics' handles of the machinery (physics.h) */
+  s->phys.P      = s->P;
+  s->phys.decomp = s->decomp;
+  s->phys.halo   = s->halo;
+  s->phys.nb     = &s->nbhd;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -69,8 +77,8 @@ PetscErrorCode SimDestroy(Sim *sim)
   if (s->scene && s->scene->destroy) PetscCall(s->scene->destroy(s));
   PetscCall(OutDirClose(s));
   PetscCall(IOFinalize(s));
-  PetscCall(ISPHDestroy(&s->isph));
-  PetscCall(SolidDestroy(&s->solid));
+  PetscCall(ISPHDestroy(&s->phys.isph));
+  PetscCall(SolidDestroy(&s->phys.solid));
   PetscCall(CellsDestroy(&s->cells));
   PetscCall(HaloDestroy(&s->halo));
   PetscCall(DecompDestroy(&s->decomp));
@@ -88,7 +96,7 @@ PetscErrorCode SimSetFromOptions(Sim sim)
 {
   char      name[64] = "", names[512];
   PetscBool set, dx_set, t_set;
-  PetscInt  fluid = sim->fluid, ktype;
+  PetscInt  fluid = sim->phys.fluid, ktype;
   PetscReal hfac;
 
   PetscFunctionBeginUser;
@@ -97,7 +105,7 @@ PetscErrorCode SimSetFromOptions(Sim sim)
   PetscCall(SceneListNames(names, sizeof(names)));
   PetscOptionsBegin(sim->comm, NULL, "sphfsi: SPH for fluid-structure interaction", "Sim");
   PetscCall(PetscOptionsString("-case", "Scene to run", "", name, name, sizeof(name), &set));
-  PetscCall(OptEList("-fluid", "Fluid pressure scheme", "", FluidSchemes, 2, FluidSchemes[sim->fluid], &fluid, NULL));
+  PetscCall(OptEList("-fluid", "Fluid pressure scheme", "", FluidSchemes, 2, FluidSchemes[sim->phys.fluid], &fluid, NULL));
   /* Defaults by measurement (docs/convergence.md): WCSPH's square start lattice is unstable under
    * its own pressure with the cubic spline at 1.3 dx and stable with Wendland C2 at 1.4 dx
    * (tools/lattice_stability.py), at the same cost; ISPH keeps the paper's kernel, whose still tank
@@ -106,10 +114,10 @@ PetscErrorCode SimSetFromOptions(Sim sim)
   PetscCall(OptEList("-kernel", "Smoothing kernel of every scheme and the solid: cubic (Eq. 12), wendland_c2, wendland_c4 (Dehnen & Aly 2012); support 2h; default: wendland_c2 with -fluid wcsph, cubic with isph", "", KernelTypes, 3, KernelTypes[ktype], &ktype, NULL));
   hfac = KernelDefaultHFactor((KernelType)ktype);
   PetscCall(OptReal("-h_factor", "Smoothing length over particle spacing, h / dx; default 1.4 for wendland_c2 (its lattice-stable value), else the paper's 1.3; wall rows default to cover 2h", "", hfac, &hfac, NULL));
-  PetscCall(OptReal("-dx", "Particle spacing of the finest particles (m); default: the scene's", "", sim->dx, &sim->dx, &dx_set));
+  PetscCall(OptReal("-dx", "Particle spacing of the finest particles (m); default: the scene's", "", sim->phys.dx, &sim->phys.dx, &dx_set));
   PetscCall(OptReal("-t_end", "Physical end time (s); default: the scene's", "", sim->t_end, &sim->t_end, &t_set));
   PetscCall(OptReal("-dt", "Fixed time step (s); 0 = adaptive", "", sim->dt_fixed, &sim->dt_fixed, NULL));
-  PetscCall(OptReal("-cfl", "Courant number of the adaptive time step", "", sim->cfl, &sim->cfl, NULL));
+  PetscCall(OptReal("-cfl", "Courant number of the adaptive time step", "", sim->phys.cfl, &sim->phys.cfl, NULL));
   PetscCall(OptInt("-max_steps", "Stop after this many steps", "", sim->max_steps, &sim->max_steps, NULL));
   PetscCall(PetscOptionsString("-output_dir", "Output directory (default out/CASE; with -restart, the checkpoint's directory)", "", sim->outdir, sim->outdir, sizeof(sim->outdir), NULL));
   PetscCall(OptBool("-overwrite", "A new run into a directory that holds an earlier run's output removes that output (snapshots, probes, summary, checkpoints); without it the run refuses to start", "", sim->overwrite, &sim->overwrite, NULL));
@@ -120,16 +128,16 @@ PetscErrorCode SimSetFromOptions(Sim sim)
   PetscCall(PetscOptionsString("-restart", "Continue the run of this checkpoint (OUTDIR/checkpoint.h5 or last_good.h5): the scene and every option come from the checkpoint, options given now override them, output goes on in the checkpoint's directory", "", sim->restart, sim->restart, sizeof(sim->restart), NULL));
   PetscCall(PetscOptionsString("-refdata_dir", "Reference data for the errors in summary.json (default $SPHFSI_REFDATA, else per file the first of PREFIX/share/sphfsi/refdata, EXEDIR/refdata, the build's SRCDIR/../shared/refdata, ../shared/refdata from the current directory)", "", sim->refdata_dir, sim->refdata_dir, sizeof(sim->refdata_dir), NULL));
   PetscOptionsEnd();
-  sim->fluid = (FluidScheme)fluid;
+  sim->phys.fluid = (FluidScheme)fluid;
   PetscCheck(hfac >= 1 && hfac <= 3, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-h_factor %g must be in [1, 3] (h / dx; 1.3 for the cubic spline, 1.5-2.5 for the Wendland kernels)", (double)hfac);
-  KernelInit(&sim->kernel, (KernelType)ktype, 2, hfac);
+  KernelInit(&sim->phys.kernel, (KernelType)ktype, 2, hfac);
   PetscCheck(set && name[0], sim->comm, PETSC_ERR_USER_INPUT, "No scene given: use -case NAME with NAME one of: %s (or -options_file cases/NAME.opts)", names);
   PetscCall(SceneFind(name, &sim->scene));
   PetscCheck(sim->scene, sim->comm, PETSC_ERR_USER_INPUT, "Unknown -case %s: choose one of %s", name, names);
-  PetscCheck(!dx_set || sim->dx > 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dx %g must be > 0", (double)sim->dx);
+  PetscCheck(!dx_set || sim->phys.dx > 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dx %g must be > 0", (double)sim->phys.dx);
   PetscCheck(!t_set || sim->t_end > 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-t_end %g must be > 0", (double)sim->t_end);
   PetscCheck(sim->dt_fixed >= 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dt %g must be > 0 (or 0 for an adaptive step)", (double)sim->dt_fixed);
-  PetscCheck(sim->cfl > 0 && sim->cfl <= 1, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-cfl %g must be in (0, 1]", (double)sim->cfl);
+  PetscCheck(sim->phys.cfl > 0 && sim->phys.cfl <= 1, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-cfl %g must be in (0, 1]", (double)sim->phys.cfl);
   PetscCheck(sim->out_interval >= 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-output_interval %g must be >= 0", (double)sim->out_interval);
   PetscCheck(sim->probe_interval >= 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-probe_interval %g must be >= 0", (double)sim->probe_interval);
   PetscCheck(sim->max_steps >= 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-max_steps must be >= 0");
@@ -144,6 +152,15 @@ PetscErrorCode SimSetFromOptions(Sim sim)
   }
   if (!sim->outdir[0]) PetscCall(PetscSNPrintf(sim->outdir, sizeof(sim->outdir), "out/%s", sim->scene->name));
   PetscCall(DecompSetFromOptions(sim->decomp));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* The scene's prescribed motion, for the solid's steps (physics.h: the physics does not know the scene). */
+static PetscErrorCode ScenePrescribe(void *ctx)
+{
+  Sim sim = (Sim)ctx;
+  PetscFunctionBeginUser;
+  PetscCall(sim->scene->prescribe(sim));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -177,13 +194,13 @@ static PetscErrorCode HelpOtherModules(Sim sim)
 {
   PetscBool store;
   PetscFunctionBeginUser;
-  if (sim->has_fluid && sim->fluid == FLUID_ISPH) {
-    PetscCall(WCSPHSetFromOptions(sim));
-    PetscCall(WCSPHSetUp(sim));
-  } else if (sim->has_fluid) {
-    PetscCall(ISPHSetFromOptions(sim));
-    PetscCall(ISPHSetUp(sim));
-    PetscCall(ISPHDestroy(&sim->isph));
+  if (sim->phys.has_fluid && sim->phys.fluid == FLUID_ISPH) {
+    PetscCall(WCSPHSetFromOptions(&sim->phys));
+    PetscCall(WCSPHSetUp(&sim->phys));
+  } else if (sim->phys.has_fluid) {
+    PetscCall(ISPHSetFromOptions(&sim->phys));
+    PetscCall(ISPHSetUp(&sim->phys));
+    PetscCall(ISPHDestroy(&sim->phys.isph));
   }
   PetscCall(NeighbourListOptions(sim, &store));
   PetscFunctionReturn(PETSC_SUCCESS);
@@ -192,21 +209,21 @@ static PetscErrorCode HelpOtherModules(Sim sim)
 /* A phase of a step, logged in its stage (-log_view).  The stages are the driver's: the physics
  * pushes none; the neighbourhood's work and the ghost refreshes inside a phase log in their own
  * stages (NeighbourhoodWire).  A fault inside leaves the stage pushed: GuardStep pops it. */
-static PetscErrorCode Staged(Sim sim, SimStage stage, PetscErrorCode (*phase)(Sim))
+static PetscErrorCode Staged(Sim sim, SimStage stage, PetscErrorCode (*phase)(Physics *))
 {
   PetscFunctionBeginUser;
   PetscCall(PetscLogStagePush(sim->stage[stage]));
-  PetscCall(phase(sim));
+  PetscCall(phase(&sim->phys));
   PetscCall(PetscLogStagePop());
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
 /* The solid's state after the particles moved (its list, loads and rates). */
-static PetscErrorCode SolidAfterRebuild(Sim sim)
+static PetscErrorCode SolidAfterRebuild(Physics *ph)
 {
   PetscFunctionBeginUser;
-  PetscCall(SolidPrepare(sim));
-  PetscCall(SolidRates(sim));
+  PetscCall(SolidPrepare(ph));
+  PetscCall(SolidRates(ph));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -214,44 +231,44 @@ PetscErrorCode SimSetUp(Sim sim)
 {
   PetscFunctionBeginUser;
   PetscCall(sim->scene->create(sim));
-  PetscCheck(sim->dx > 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dx %g must be > 0", (double)sim->dx);
-  PetscCheck(sim->dim == 2 || sim->dim == 3, sim->comm, PETSC_ERR_PLIB, "Scene %s set dimension %" PetscInt_FMT, sim->scene->name, sim->dim);
+  PetscCheck(sim->phys.dx > 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dx %g must be > 0", (double)sim->phys.dx);
+  PetscCheck(sim->phys.dim == 2 || sim->phys.dim == 3, sim->comm, PETSC_ERR_PLIB, "Scene %s set dimension %" PetscInt_FMT, sim->scene->name, sim->phys.dim);
   { /* a -dx so fine that the lattice counts overflow would leave an empty scene: say so first */
     PetscReal lattice = 1;
     char      box[128] = "";
-    for (PetscInt d = 0; d < sim->dim; d++) {
-      lattice *= (sim->dom_hi[d] - sim->dom_lo[d]) / sim->dx;
+    for (PetscInt d = 0; d < sim->phys.dim; d++) {
+      lattice *= (sim->dom_hi[d] - sim->dom_lo[d]) / sim->phys.dx;
       PetscCall(PetscSNPrintf(box + strlen(box), sizeof(box) - strlen(box), "%s%g", d ? " x " : "", (double)(sim->dom_hi[d] - sim->dom_lo[d])));
     }
-    PetscCheck(lattice < 1e12, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dx %g would make more than 1e12 particles in the %s m domain: choose a larger -dx", (double)sim->dx, box);
+    PetscCheck(lattice < 1e12, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dx %g would make more than 1e12 particles in the %s m domain: choose a larger -dx", (double)sim->phys.dx, box);
   }
   PetscCheck(sim->t_end > 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-t_end %g must be > 0", (double)sim->t_end);
-  PetscCheck(sim->has_fluid || sim->has_solid, sim->comm, PETSC_ERR_PLIB, "Scene %s has neither fluid nor solid", sim->scene->name);
+  PetscCheck(sim->phys.has_fluid || sim->phys.has_solid, sim->comm, PETSC_ERR_PLIB, "Scene %s has neither fluid nor solid", sim->scene->name);
   PetscOptionsBegin(sim->comm, NULL, "Body force", "Sim");
   {
-    PetscReal g[3] = {sim->g[0], sim->g[1], sim->g[2]};
+    PetscReal g[3] = {sim->phys.g[0], sim->phys.g[1], sim->phys.g[2]};
     PetscInt  ng   = 3;
     PetscBool set;
     PetscCall(PetscOptionsRealArray("-gravity", "Gravity vector gx,gy (2D) or gx,gy,gz (3D) (m/s^2)", "", g, &ng, &set));
-    PetscCheck(!set || ng == sim->dim, sim->comm, PETSC_ERR_ARG_WRONG, "-gravity takes %" PetscInt_FMT " components in this %" PetscInt_FMT "D scene (%s), %" PetscInt_FMT " given", sim->dim, sim->dim, sim->dim == 3 ? "gx,gy,gz" : "gx,gy", ng);
-    if (set) PetscCall(PetscArraycpy(sim->g, g, sim->dim));
+    PetscCheck(!set || ng == sim->phys.dim, sim->comm, PETSC_ERR_ARG_WRONG, "-gravity takes %" PetscInt_FMT " components in this %" PetscInt_FMT "D scene (%s), %" PetscInt_FMT " given", sim->phys.dim, sim->phys.dim, sim->phys.dim == 3 ? "gx,gy,gz" : "gx,gy", ng);
+    if (set) PetscCall(PetscArraycpy(sim->phys.g, g, sim->phys.dim));
   }
   PetscOptionsEnd();
-  for (PetscInt d = 0; d < sim->dim; d++) PetscCheck(!PetscIsInfOrNanReal(sim->g[d]), sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-gravity: component %" PetscInt_FMT " is not finite", d + 1);
-  KernelInit(&sim->kernel, sim->kernel.type, sim->dim, sim->kernel.h_factor); /* the normalisation of the scene's dimension */
-  PetscCall(ParticlesSetDimension(sim->P, sim->dim));
-  if (sim->has_fluid) PetscCall(FluidMaterialSetFromOptions(sim->comm, &sim->kernel, sim->dim, sim->v_ref, &sim->fl, &sim->start_jitter)); /* after the scene's defaults */
-  if (sim->has_solid) {
-    PetscCall(SolidSetFromOptions(sim));
-    PetscCall(SolidSetUp(sim)); /* before ISPH: the coupling decides the PPE's symmetry */
+  for (PetscInt d = 0; d < sim->phys.dim; d++) PetscCheck(!PetscIsInfOrNanReal(sim->phys.g[d]), sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-gravity: component %" PetscInt_FMT " is not finite", d + 1);
+  KernelInit(&sim->phys.kernel, sim->phys.kernel.type, sim->phys.dim, sim->phys.kernel.h_factor); /* the normalisation of the scene's dimension */
+  PetscCall(ParticlesSetDimension(sim->P, sim->phys.dim));
+  if (sim->phys.has_fluid) PetscCall(FluidMaterialSetFromOptions(sim->comm, &sim->phys.kernel, sim->phys.dim, sim->phys.v_ref, &sim->phys.fl, &sim->start_jitter)); /* after the scene's defaults */
+  if (sim->phys.has_solid) {
+    PetscCall(SolidSetFromOptions(&sim->phys));
+    PetscCall(SolidSetUp(&sim->phys)); /* before ISPH: the coupling decides the PPE's symmetry */
     PetscCall(ParticlesEnableField(sim->P, FIELD_XREB, PETSC_FALSE)); /* solids move after a rebuild */
   }
-  if (sim->has_fluid && sim->fluid == FLUID_ISPH) {
-    PetscCall(ISPHSetFromOptions(sim));
-    PetscCall(ISPHSetUp(sim));
-  } else if (sim->has_fluid) {
-    PetscCall(WCSPHSetFromOptions(sim));
-    PetscCall(WCSPHSetUp(sim));
+  if (sim->phys.has_fluid && sim->phys.fluid == FLUID_ISPH) {
+    PetscCall(ISPHSetFromOptions(&sim->phys));
+    PetscCall(ISPHSetUp(&sim->phys));
+  } else if (sim->phys.has_fluid) {
+    PetscCall(WCSPHSetFromOptions(&sim->phys));
+    PetscCall(WCSPHSetUp(&sim->phys));
   }
   if (sim->help) PetscCall(HelpOtherModules(sim));
   PetscCall(ParticlesSetUp(sim->P));
@@ -264,21 +281,21 @@ PetscErrorCode SimSetUp(Sim sim)
   PetscCall(GuardCheckSetUp(sim, "after the particles were made"));
   if (sim->guard->state) PetscFunctionReturn(PETSC_SUCCESS);
   PetscCall(ParticlesGlobalCount(sim->P, &sim->nbhd.nparticles));
-  if (sim->solid) { /* the solids' extent as built (a restart reads its state after this) */
+  if (sim->phys.solid) { /* the solids' extent as built (a restart reads its state after this) */
     PetscReal dt_transit;
-    PetscCall(SolidTransitLimit(sim, &dt_transit));
+    PetscCall(SolidTransitLimit(&sim->phys, &dt_transit));
   }
   { /* the largest smoothing length sets the cells (scenes may mix particle sizes) */
     const PetscReal *h = PField(sim->P, FIELD_H);
-    sim->h_max = sim->kernel.h_factor * sim->dx;
-    for (PetscInt a = 0; a < sim->P->n; a++) sim->h_max = PetscMax(sim->h_max, h[a]);
-    PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &sim->h_max, 1, MPIU_REAL, MPIU_MAX, sim->comm));
+    sim->phys.h_max = sim->phys.kernel.h_factor * sim->phys.dx;
+    for (PetscInt a = 0; a < sim->P->n; a++) sim->phys.h_max = PetscMax(sim->phys.h_max, h[a]);
+    PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &sim->phys.h_max, 1, MPIU_REAL, MPIU_MAX, sim->comm));
   }
-  if (sim->has_fluid) {
+  if (sim->phys.has_fluid) {
     PetscInt nfluid = 0;
     for (PetscInt a = 0; a < sim->P->n; a++) nfluid += KindIsFluid(sim->P->kind[a]);
     PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &nfluid, 1, MPIU_INT, MPI_SUM, sim->comm));
-    PetscCheck(nfluid > 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "The geometry leaves no fluid particle at -dx %g: the water region is thinner than one -dx; choose a smaller -dx or a larger water region", (double)sim->dx);
+    PetscCheck(nfluid > 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "The geometry leaves no fluid particle at -dx %g: the water region is thinner than one -dx; choose a smaller -dx or a larger water region", (double)sim->phys.dx);
   }
   /* a periodic length holds three cells: a skin that does not fit is made smaller (a short
    * periodic channel), down to none, rather than refuse a run that fits without it */
@@ -286,14 +303,19 @@ PetscErrorCode SimSetUp(Sim sim)
    * wide enough for both skins, since the solids' list is built from bins up to half the fluid's
    * skin old (SolidPrepare after every fluid step) */
   {
-    const PetscReal reach = 2.0 * sim->h_max + (sim->solid ? sim->solid->skin * sim->dx : 0); /* the cell without the fluid's skin */
-    for (PetscInt d = 0; d < sim->dim && sim->nbhd.skin > 0; d++)
+    const PetscReal reach = 2.0 * sim->phys.h_max + (sim->phys.solid ? sim->phys.solid->skin * sim->phys.dx : 0); /* the cell without the fluid's skin */
+    for (PetscInt d = 0; d < sim->phys.dim && sim->nbhd.skin > 0; d++)
       if (sim->periodic[d]) sim->nbhd.skin = PetscMin(sim->nbhd.skin, PetscMax(0, (1 - 1e-9) * (sim->dom_hi[d] - sim->dom_lo[d]) / 3 - reach));
-    PetscCall(GridSetUp(&sim->grid, sim->dim, sim->dom_lo, sim->dom_hi, reach + sim->nbhd.skin, sim->periodic));
+    PetscCall(GridSetUp(&sim->grid, sim->phys.dim, sim->dom_lo, sim->dom_hi, reach + sim->nbhd.skin, sim->periodic));
   }
-  sim->decomp->split_solids = (PetscBool)(sim->decomp->split_solids && sim->has_fluid && sim->has_solid);
+  sim->decomp->split_solids = (PetscBool)(sim->decomp->split_solids && sim->phys.has_fluid && sim->phys.has_solid);
   PetscCall(DecompSetUp(sim->decomp, &sim->grid));
-  PetscCall(CellsCreate(&sim->grid, &sim->kernel, &sim->cells));
+  PetscCall(CellsCreate(&sim->grid, &sim->phys.kernel, &sim->cells));
+  sim->phys.cells = sim->cells;
+  if (sim->scene->prescribe) {
+    sim->phys.prescribe     = ScenePrescribe;
+    sim->phys.prescribe_ctx = sim;
+  }
   sim->cells->skin = sim->nbhd.skin;
   PetscCall(NeighbourhoodWire(&sim->nbhd, sim->comm, sim->P, &sim->grid, sim->decomp, sim->halo, sim->cells, sim->periodic, sim->outflow, sim->stage[STAGE_HALO], sim->stage[STAGE_NEIGHBOUR]));
   {
@@ -309,11 +331,11 @@ PetscErrorCode SimSetUp(Sim sim)
   else {
     PetscCall(DecompPartition(sim->decomp, sim->P)); /* from the scene's round-robin spread, so no rank ever holds them all */
     PetscCall(DecompMigrate(sim->decomp, sim->P));   /* wraps and checks every particle is inside */
-    PetscCall(NeighbourhoodRebuild(&sim->nbhd, sim->step));
+    PetscCall(NeighbourhoodRebuild(&sim->nbhd, sim->phys.step));
     PetscCall(SimTotalMass(sim, &sim->mass0));
-    if (sim->has_fluid && sim->fluid == FLUID_ISPH) PetscCall(Staged(sim, STAGE_PHYSICS, ISPHInitialize));
-    else if (sim->has_fluid) PetscCall(Staged(sim, STAGE_PHYSICS, WCSPHRates));
-    if (sim->has_solid) PetscCall(Staged(sim, STAGE_SOLID, SolidAfterRebuild));
+    if (sim->phys.has_fluid && sim->phys.fluid == FLUID_ISPH) PetscCall(Staged(sim, STAGE_PHYSICS, ISPHInitialize));
+    else if (sim->phys.has_fluid) PetscCall(Staged(sim, STAGE_PHYSICS, WCSPHRates));
+    if (sim->phys.has_solid) PetscCall(Staged(sim, STAGE_SOLID, SolidAfterRebuild));
   }
   if (sim->restart[0]) PetscCall(OutDirTidyRestart(sim)); /* the snapshots past the checkpoint */
   PetscCall(IOSetUp(sim));
@@ -327,11 +349,11 @@ static PetscErrorCode Progress(Sim sim)
   PetscFunctionBeginUser;
   PetscCall(PetscTime(&now));
   {
-    PetscReal el = now - sim->wall_start, done = sim->t - sim->t_start, left = done > 0 ? el * (sim->t_end - sim->t) / done : 0;
+    PetscReal el = now - sim->wall_start, done = sim->phys.t - sim->t_start, left = done > 0 ? el * (sim->t_end - sim->phys.t) / done : 0;
     char its[64] = "";
-    if (sim->isph) PetscCall(PetscSNPrintf(its, sizeof(its), "  PPE its %" PetscInt_FMT " (free surface %" PetscInt_FMT ")", sim->isph->ppe->its_last, sim->isph->nfree));
-    if (sim->has_fluid && sim->solid) PetscCall(PetscSNPrintf(its + strlen(its), sizeof(its) - strlen(its), "  solid sub-steps %" PetscInt_FMT, sim->solid->nsub_last));
-    PetscCall(PetscPrintf(sim->comm, "step %7" PetscInt_FMT "  t %.5e / %.4g s  dt %.3e  particles %" PetscInt_FMT "%s  wall %.1f s  left ~%.0f s\n", sim->step, (double)sim->t, (double)sim->t_end, (double)sim->dt, sim->nbhd.nparticles, its, (double)el, (double)left));
+    if (sim->phys.isph) PetscCall(PetscSNPrintf(its, sizeof(its), "  PPE its %" PetscInt_FMT " (free surface %" PetscInt_FMT ")", sim->phys.isph->ppe->its_last, sim->phys.isph->nfree));
+    if (sim->phys.has_fluid && sim->phys.solid) PetscCall(PetscSNPrintf(its + strlen(its), sizeof(its) - strlen(its), "  solid sub-steps %" PetscInt_FMT, sim->phys.solid->nsub_last));
+    PetscCall(PetscPrintf(sim->comm, "step %7" PetscInt_FMT "  t %.5e / %.4g s  dt %.3e  particles %" PetscInt_FMT "%s  wall %.1f s  left ~%.0f s\n", sim->phys.step, (double)sim->phys.t, (double)sim->t_end, (double)sim->phys.dt, sim->nbhd.nparticles, its, (double)el, (double)left));
   }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -340,7 +362,7 @@ static PetscErrorCode Progress(Sim sim)
 static PetscErrorCode FluidStep(Sim sim)
 {
   PetscFunctionBeginUser;
-  if (!sim->isph) {
+  if (!sim->phys.isph) {
     PetscCall(Staged(sim, STAGE_PHYSICS, WCSPHStep));
     PetscFunctionReturn(PETSC_SUCCESS);
   }
@@ -358,38 +380,38 @@ static PetscErrorCode Step(Sim sim)
   PetscInt  nsub = 1;
 
   PetscFunctionBeginUser;
-  if (sim->has_solid && (sim->has_fluid || !sim->dt_fixed)) PetscCall(SolidTimeStep(sim, &dts)); /* with a fluid, -dt is the fluid's: the solid sub-steps in it */
-  if (sim->dt_fixed > 0) sim->dt = sim->dt_fixed;
-  else if (sim->isph) PetscCall(ISPHTimeStep(sim, &sim->dt));
-  else if (sim->has_fluid) PetscCall(WCSPHTimeStep(sim, &sim->dt));
-  else sim->dt = dts;
-  if (sim->has_solid && !sim->solid->subcycle) sim->dt = PetscMin(sim->dt, dts); /* one step for all (the paper's way) */
+  if (sim->phys.has_solid && (sim->phys.has_fluid || !sim->dt_fixed)) PetscCall(SolidTimeStep(&sim->phys, &dts)); /* with a fluid, -dt is the fluid's: the solid sub-steps in it */
+  if (sim->dt_fixed > 0) sim->phys.dt = sim->dt_fixed;
+  else if (sim->phys.isph) PetscCall(ISPHTimeStep(&sim->phys, &sim->phys.dt));
+  else if (sim->phys.has_fluid) PetscCall(WCSPHTimeStep(&sim->phys, &sim->phys.dt));
+  else sim->phys.dt = dts;
+  if (sim->phys.has_solid && !sim->phys.solid->subcycle) sim->phys.dt = PetscMin(sim->phys.dt, dts); /* one step for all (the paper's way) */
   /* a collapsing step is a blow-up: stop before the state changes */
-  if (sim->has_fluid && !sim->dt_fixed) PetscCall(GuardCheckDt(sim, 0, sim->dt));
+  if (sim->phys.has_fluid && !sim->dt_fixed) PetscCall(GuardCheckDt(sim, 0, sim->phys.dt));
   if (dts < PETSC_MAX_REAL && !sim->guard->state) PetscCall(GuardCheckDt(sim, 1, dts));
   if (sim->guard->state) PetscFunctionReturn(PETSC_SUCCESS);
   { /* end on t_end with two halves of what is left, not a full step and a sliver: ISPH's pressure
      * grows as its step shrinks (SPHERIC Test 2: a 0.6 ms last step after 4 ms ones put 22.6 kPa on
      * P1, against 2 kPa the step before) */
-    const PetscReal left = sim->t_end - sim->t;
-    if (left < sim->dt * (1 + 1e-6)) sim->dt = left;
-    else if (left < 2 * sim->dt) sim->dt = 0.5 * left;
+    const PetscReal left = sim->t_end - sim->phys.t;
+    if (left < sim->phys.dt * (1 + 1e-6)) sim->phys.dt = left;
+    else if (left < 2 * sim->phys.dt) sim->phys.dt = 0.5 * left;
   }
-  if (sim->has_fluid) PetscCall(FluidStep(sim));
-  if (sim->has_solid) {
-    if (dts < sim->dt) nsub = (PetscInt)PetscCeilReal(sim->dt / dts * (1 - 1e-12));
+  if (sim->phys.has_fluid) PetscCall(FluidStep(sim));
+  if (sim->phys.has_solid) {
+    if (dts < sim->phys.dt) nsub = (PetscInt)PetscCeilReal(sim->phys.dt / dts * (1 - 1e-12));
     PetscCall(PetscLogStagePush(sim->stage[STAGE_SOLID]));
-    if (sim->has_fluid) PetscCall(SolidAfterRebuild(sim)); /* the fluid moved and everything was rebuilt: new loads on the solid */
-    PetscCall(SolidBeginSubsteps(sim));
-    for (PetscInt k = 0; k < nsub; k++) PetscCall(SolidStep(sim, sim->dt / nsub));
+    if (sim->phys.has_fluid) PetscCall(SolidAfterRebuild(&sim->phys)); /* the fluid moved and everything was rebuilt: new loads on the solid */
+    PetscCall(SolidBeginSubsteps(&sim->phys));
+    for (PetscInt k = 0; k < nsub; k++) PetscCall(SolidStep(&sim->phys, sim->phys.dt / nsub));
     PetscCall(PetscLogStagePop());
-    if (sim->has_fluid) { /* the last half kick left the solids' ghosts a half kick behind their owners,
+    if (sim->phys.has_fluid) { /* the last half kick left the solids' ghosts a half kick behind their owners,
                             and the next fluid step reads them (ISPH's predictor before any refresh) */
       const FieldId vel[] = {FIELD_V};
       PetscCall(HaloRefresh(sim->halo, sim->P, 1, vel));
     }
-    sim->solid->nsub_last = nsub;
-    sim->solid->nsub_max  = PetscMax(sim->solid->nsub_max, nsub);
+    sim->phys.solid->nsub_last = nsub;
+    sim->phys.solid->nsub_max  = PetscMax(sim->phys.solid->nsub_max, nsub);
   }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -398,12 +420,12 @@ static PetscErrorCode Step(Sim sim)
 static PetscErrorCode Checkpoint(Sim sim)
 {
   PetscFunctionBeginUser;
-  if (sim->ckpt_step == sim->step) PetscFunctionReturn(PETSC_SUCCESS);
+  if (sim->ckpt_step == sim->phys.step) PetscFunctionReturn(PETSC_SUCCESS);
   PetscCall(CheckpointSave(sim));
   PetscCall(GuardCheckIO(sim));
   if (sim->guard->state == GUARD_IO) PetscFunctionReturn(PETSC_SUCCESS);
-  sim->ckpt_step = sim->step;
-  sim->ckpt_t    = sim->t;
+  sim->ckpt_step = sim->phys.step;
+  sim->ckpt_t    = sim->phys.t;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -411,19 +433,19 @@ PetscErrorCode SimRun(Sim sim)
 {
   PetscLogDouble  last, t1;
   const PetscReal eps = 1e-12 * sim->t_end, ps0 = sim->particle_steps;
-  const PetscInt  step0 = sim->step;
+  const PetscInt  step0 = sim->phys.step;
   Guard           g = sim->guard;
   PetscBool       shown;
 
   PetscFunctionBeginUser;
-  PetscCall(PetscViewerASCIIPrintf(PETSC_VIEWER_STDOUT_(sim->comm), "sphfsi: case %s, fluid %s, kernel %s at h = %g dx, %d rank(s), dx %g, t_end %g, c0 %g\n", sim->scene->name, sim->has_fluid ? FluidSchemes[sim->fluid] : "none", KernelTypes[sim->kernel.type], (double)sim->kernel.h_factor, sim->size, (double)sim->dx, (double)sim->t_end, (double)(sim->has_fluid ? sim->fl.c0 : sim->sl.c0)));
+  PetscCall(PetscViewerASCIIPrintf(PETSC_VIEWER_STDOUT_(sim->comm), "sphfsi: case %s, fluid %s, kernel %s at h = %g dx, %d rank(s), dx %g, t_end %g, c0 %g\n", sim->scene->name, sim->phys.has_fluid ? FluidSchemes[sim->phys.fluid] : "none", KernelTypes[sim->phys.kernel.type], (double)sim->phys.kernel.h_factor, sim->size, (double)sim->phys.dx, (double)sim->t_end, (double)(sim->phys.has_fluid ? sim->phys.fl.c0 : sim->phys.sl.c0)));
   PetscCall(ParticlesView(sim->P, PETSC_VIEWER_STDOUT_(sim->comm)));
   PetscCall(DecompView(sim->decomp, PETSC_VIEWER_STDOUT_(sim->comm)));
-  if (sim->isph) PetscCall(ISPHView(sim, PETSC_VIEWER_STDOUT_(sim->comm)));
-  else if (sim->has_fluid) PetscCall(WCSPHView(sim, PETSC_VIEWER_STDOUT_(sim->comm)));
-  if (sim->solid) PetscCall(SolidView(sim, PETSC_VIEWER_STDOUT_(sim->comm)));
+  if (sim->phys.isph) PetscCall(ISPHView(&sim->phys, PETSC_VIEWER_STDOUT_(sim->comm)));
+  else if (sim->phys.has_fluid) PetscCall(WCSPHView(&sim->phys, PETSC_VIEWER_STDOUT_(sim->comm)));
+  if (sim->phys.solid) PetscCall(SolidView(&sim->phys, PETSC_VIEWER_STDOUT_(sim->comm)));
   PetscCall(PetscTime(&sim->wall_start));
-  sim->t_start = sim->t;
+  sim->t_start = sim->phys.t;
   last         = sim->wall_start;
   if (!sim->restart[0]) { /* a restart has the first probe row and snapshot already */
     PetscCall(IOProbes(sim));
@@ -431,19 +453,19 @@ PetscErrorCode SimRun(Sim sim)
   }
   PetscCall(GuardCheckInitial(sim));
   PetscCall(GuardCheckIO(sim));
-  while (!g->state && sim->t < sim->t_end - eps && sim->step < sim->max_steps) {
+  while (!g->state && sim->phys.t < sim->t_end - eps && sim->phys.step < sim->max_steps) {
     PetscCall(GuardStepBegin(sim));
     PetscCall(GuardStep(sim, Step));
     if (g->state) break; /* a fault inside the step: time does not advance */
-    sim->t += sim->dt;
-    sim->step++;
+    sim->phys.t += sim->phys.dt;
+    sim->phys.step++;
     sim->particle_steps += (PetscReal)sim->nbhd.nparticles;
     PetscCall(PetscTime(&t1));
     shown = (PetscBool)(sim->progress_every && t1 - last >= sim->progress_every);
     PetscCall(GuardStepEnd(sim, &shown)); /* NaN/Inf, signals, wall time, progress: agreed */
     if (g->state == GUARD_FAULT) break;
     if (g->state == GUARD_STOP) PetscCall(GuardAnnounceStop(sim));
-    if (sim->t >= sim->next_probe - eps) PetscCall(IOProbes(sim));
+    if (sim->phys.t >= sim->next_probe - eps) PetscCall(IOProbes(sim));
     if (g->state == GUARD_STOP) { /* what a launcher's kill may not leave time for: probes and summary first */
       PetscCall(PetscTime(&t1));
       sim->wall_loop = t1 - sim->wall_start;
@@ -452,11 +474,11 @@ PetscErrorCode SimRun(Sim sim)
       PetscCall(IOSummary(sim));
     }
     PetscCall(OutDirBeat(sim));
-    if (sim->out_interval > 0 && sim->t >= sim->next_out - eps) {
+    if (sim->out_interval > 0 && sim->phys.t >= sim->next_out - eps) {
       PetscCall(IOSnapshot(sim));
       PetscCall(IOWriteProbes(sim));
     }
-    if (sim->ckpt_interval > 0 && sim->t >= sim->next_ckpt - eps) {
+    if (sim->ckpt_interval > 0 && sim->phys.t >= sim->next_ckpt - eps) {
       PetscCall(Checkpoint(sim));
       PetscCall(IOWriteProbes(sim));
     }
@@ -475,11 +497,11 @@ PetscErrorCode SimRun(Sim sim)
   if (g->state == GUARD_STOP && getenv("SPHFSI_TEST_STOP_DELAY")) PetscCall(PetscSleep(atof(getenv("SPHFSI_TEST_STOP_DELAY")))); /* tests: a stop as slow as a large checkpoint's (tests/check_stop.sh) */
   if (g->state == GUARD_STOP || (!g->state && sim->ckpt_interval > 0)) PetscCall(Checkpoint(sim));
   PetscCall(GuardFinish(sim));
-  if (sim->exit_status == SIM_EXIT_FAULT && sim->isph) PetscCall(PPEFaultHint(sim->isph->ppe));
+  if (sim->exit_status == SIM_EXIT_FAULT && sim->phys.isph) PetscCall(PPEFaultHint(sim->phys.isph->ppe));
   PetscCall(IOWriteProbes(sim));
   PetscCall(SimTotalMass(sim, &sim->mass));
   PetscCall(IOSummary(sim));
   if (sim->decomp->log_stats) PetscCall(DecompWriteStats(sim->decomp, sim->outdir));
-  PetscCall(PetscPrintf(sim->comm, "sphfsi: %" PetscInt_FMT " steps in %.2f s (%.3g particle-steps/s); output in %s\n", sim->step - step0, (double)sim->wall_loop, (double)((sim->particle_steps - ps0) / PetscMax(sim->wall_loop, 1e-9)), sim->outdir));
+  PetscCall(PetscPrintf(sim->comm, "sphfsi: %" PetscInt_FMT " steps in %.2f s (%.3g particle-steps/s); output in %s\n", sim->phys.step - step0, (double)sim->wall_loop, (double)((sim->particle_steps - ps0) / PetscMax(sim->wall_loop, 1e-9)), sim->outdir));
   PetscFunctionReturn(PETSC_SUCCESS);
 }

@@ -2,25 +2,12 @@
  * of a time step. */
 #pragma once
 #include "particles/grid.h"
-#include "particles/particles.h"
-#include "particles/cells.h"
-#include "particles/decomp.h"
-#include "particles/halo.h"
-#include "particles/neighbourhood.h"
-#include "base/material.h"
-#include "base/kernel.h"
-#include "base/dim.h"
-#include <petscviewer.h>
-
-typedef enum { FLUID_WCSPH = 0, FLUID_ISPH } FluidScheme;
-extern const char *const FluidSchemes[];
+#include "physics/physics.h"
 
 typedef enum { STAGE_NEIGHBOUR, STAGE_HALO, STAGE_PHYSICS, STAGE_PPE_ASSEMBLY, STAGE_PPE_SOLVE, STAGE_SOLID, STAGE_OUTPUT, STAGE_GUARD, STAGE_COUNT } SimStage;
 
 typedef struct _p_Sim *Sim;
 typedef struct _SceneOps SceneOps;
-typedef struct _p_ISPH *ISPH;
-typedef struct _p_Solid *Solid;
 typedef struct _p_Guard *Guard;     /* guard.h */
 typedef struct _n_Series Series;    /* refdata.h */
 typedef struct _n_SizeGuard *SizeGuard; /* size_guard.h */
@@ -32,7 +19,6 @@ struct _p_Sim {
   /* scene and scheme */
   const SceneOps *scene;
   void           *scene_ctx;
-  FluidScheme     fluid;
   /* machinery */
   Grid      grid;
   Particles P;
@@ -40,26 +26,15 @@ struct _p_Sim {
   Decomp    decomp;
   Halo      halo;
   Neighbourhood nbhd; /* brings the machinery up to date after particles move; counts the particles */
-  /* physics: the scene says which media it has */
-  PetscInt      dim;       /* 2 or 3: set by the scene's create (default 2) */
-  PetscBool     has_fluid, has_solid;
-  PetscReal     g[3];
-  FluidMaterial fl;
-  ISPH          isph;  /* NULL unless -fluid isph */
-  SolidMaterial sl;
-  Solid         solid; /* NULL unless the scene has solids */
-  PetscReal     v_ref;      /* expected maximum speed: c0 = 10 v_ref when -fluid_c0 is not given */
-  SPHKernel     kernel;     /* -kernel, -h_factor: the smoothing kernel of every pair */
-  PetscReal     dx, h_max;  /* finest spacing, largest smoothing length */
+  Physics       phys;       /* the model, the step and the fluid and solid modules (physics.h) */
   PetscReal     dom_lo[3], dom_hi[3];
   PetscBool     periodic[3];
   PetscBool     outflow;    /* fluid leaving the domain box is removed (open boundary) */
-  PetscBool     confined;   /* the fluid has no free surface (Taylor-Green, Poiseuille) */
   PetscReal     start_jitter; /* -fluid_start_jitter: random displacement of the fluid's start lattice (dx) */
   struct { PetscInt n; PetscReal z0, dz; } extrude; /* a 3D slab built from a 2D layout (SceneExtrudeBegin) */
   /* time */
-  PetscReal t, t_end, dt, dt_fixed, cfl;
-  PetscInt  step, max_steps;
+  PetscReal t_end, dt_fixed;
+  PetscInt  max_steps;
   /* output */
   char      outdir[PETSC_MAX_PATH_LEN];
   PetscBool overwrite;      /* -overwrite: a new run may replace an earlier run's output (outdir.h) */

@@ -91,7 +91,7 @@ static PetscErrorCode Refuse(Sim sim, PetscBool at_least)
   const PetscReal var = Variable(g, (PetscReal)g->n, (PetscReal)g->nsolid), own = (PetscReal)g->n / g->size;
   char            count[96], need[32], each[32], fixed[32], lim[32], total[32];
   PetscFunctionBeginUser;
-  PetscCall(PetscSNPrintf(count, sizeof(count), "the scene has %s%" PetscInt64_FMT " particles at -dx %g", at_least ? "at least " : "", g->n, (double)sim->dx));
+  PetscCall(PetscSNPrintf(count, sizeof(count), "the scene has %s%" PetscInt64_FMT " particles at -dx %g", at_least ? "at least " : "", g->n, (double)sim->phys.dx));
   PetscCheck(v != OVER_IDS, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "%s, more than this build can number (PETSc's 32-bit PetscInt: %d): choose a larger -dx, or PETSc configured --with-64-bit-indices", count, (int)PETSC_MAX_INT);
   Bytes(own > 0 ? var / own : 0, each, sizeof(each));
   Bytes(g->fixed, fixed, sizeof(fixed));
@@ -255,8 +255,8 @@ static PetscErrorCode Limits(Sim sim, SizeGuard g, PetscBool given, PetscReal ma
 /* Bytes per particle of this run's fields, lists and schemes (after ParticlesSetUp). */
 static PetscErrorCode Model(Sim sim, SizeGuard g)
 {
-  const PetscInt  D = sim->dim;
-  const PetscReal hf = sim->kernel.h_factor, skin = sim->nbhd.skin / sim->dx;
+  const PetscInt  D = sim->phys.dim;
+  const PetscReal hf = sim->phys.kernel.h_factor, skin = sim->nbhd.skin / sim->phys.dx;
   PetscBool       store_w = PETSC_FALSE;
   PetscFunctionBeginUser;
   PetscCall(PetscOptionsGetBool(NULL, NULL, "-neighbour_store_w", &store_w, NULL)); /* SimSetUp reads it after the scene */
@@ -265,11 +265,11 @@ static PetscErrorCode Model(Sim sim, SizeGuard g)
   g->b_arrays   = BYTES_ARRAYS * ParticlesBytesPerParticle(sim->P);
   g->b_pair     = skin > 0 ? Ball(D, 2 * hf + skin) * (BYTES_LIST_PAIR + (store_w ? 8 : 0) + BYTES_CANDIDATE) : Ball(D, 2 * hf) * (BYTES_LIST_PAIR + (store_w ? 8 : 0));
   g->w          = 2 * hf + skin;
-  if (sim->isph) g->b_pair += BYTES_ISPH_ROW + BYTES_ISPH_PAIR * Ball(D, 2 * hf);
-  if (sim->solid) { /* the total-Lagrangian fits (order 2 at most) in capacity grown by half */
+  if (sim->phys.isph) g->b_pair += BYTES_ISPH_ROW + BYTES_ISPH_PAIR * Ball(D, 2 * hf);
+  if (sim->phys.solid) { /* the total-Lagrangian fits (order 2 at most) in capacity grown by half */
     const PetscInt nb = D + D * (D + 1) / 2;
-    g->b_solid = BYTES_SOLID_PAIR * Ball(D, 2 * hf + sim->solid->skin) + 1.5 * sizeof(PetscReal) * (nb * nb + D * D + D * nb);
-    g->w += sim->solid->skin;
+    g->b_solid = BYTES_SOLID_PAIR * Ball(D, 2 * hf + sim->phys.solid->skin) + 1.5 * sizeof(PetscReal) * (nb * nb + D * D + D * nb);
+    g->w += sim->phys.solid->skin;
   }
   g->ghosts = (PetscBool)(sim->size > 1);
   for (PetscInt d = 0; d < D; d++) g->ghosts = (PetscBool)(g->ghosts || sim->periodic[d]);
@@ -297,14 +297,14 @@ PetscErrorCode SizeGuardCheck(Sim sim)
     PetscInt64 lo = 0, hi = (PetscInt64)1 << 62;
     while (hi - lo > 1) {
       const PetscInt64 mid = lo + (hi - lo) / 2;
-      if (Judge(g, mid, sim->solid ? mid : 0) == FITS) lo = mid;
+      if (Judge(g, mid, sim->phys.solid ? mid : 0) == FITS) lo = mid;
       else hi = mid;
     }
     g->n_safe = lo;
   }
   PetscCall(PetscInfo(NULL, "Size guard: %g B per rank + %g B per particle with its ghosts + %g B per particle (+ %g B per solid one); limit %g B per rank (%s over %d ranks), address space left %g B; all fits below %" PetscInt64_FMT " particles\n", (double)g->fixed, (double)g->b_arrays, (double)g->b_pair, (double)g->b_solid, (double)g->share, g->source, (int)g->node_ranks, (double)g->vm_room, g->n_safe));
   /* the domain's lattice at -dx bounds the scene's count (-case boxes may space a box finer: the real population checks) */
-  for (PetscInt d = 0; d < sim->dim; d++) lattice *= (sim->dom_hi[d] - sim->dom_lo[d]) / sim->dx + 1;
+  for (PetscInt d = 0; d < sim->phys.dim; d++) lattice *= (sim->dom_hi[d] - sim->dom_lo[d]) / sim->phys.dx + 1;
   /* The dry pass: the scene's populate with the builders counting.  What it leaves is undone or
    * redone: the ids and the extrusion here; in the scenes' contexts (src/scenes) hydrostatic and
    * water_on_plate round their extents to whole particles (the same values again), taylor_green's

@@ -53,7 +53,7 @@ extern SceneOps SceneBoxes; /* not const: Create fills in its probe names */
 /* n numbers read into b: 2 D (or up to nmax) and a box whose high corner exceeds its low one. */
 static PetscErrorCode CheckBox(Sim sim, const char *name, const PetscReal b[], PetscInt n, PetscInt nmax)
 {
-  const PetscInt D = sim->dim;
+  const PetscInt D = sim->phys.dim;
   PetscBool      empty = PETSC_FALSE;
   PetscFunctionBeginUser;
   PetscCheck(n >= 2 * D && n <= nmax, sim->comm, PETSC_ERR_USER_INPUT, "%s takes %d%s numbers, not %d", name, (int)(2 * D), nmax == 2 * D ? "" : nmax == 2 * D + 1 ? (D == 3 ? " or 7" : " or 5") : (D == 3 ? " to 8" : " to 6"), (int)n);
@@ -104,7 +104,7 @@ static PetscInt TankWalls(const Box *t, PetscInt D, PetscReal r[5][6])
  * faces: -PREFIX_K_faces, the faces that meet water (default all). */
 static PetscErrorCode ReadBoxes(Sim sim, PetscOptionItems *PetscOptionsObject, const char *prefix, const char *text, Box *list, PetscInt *count, PetscBool spacing, PetscBool faces)
 {
-  const PetscInt D = sim->dim, nb = 2 * D;
+  const PetscInt D = sim->phys.dim, nb = 2 * D;
   char           name[40];
   PetscFunctionBeginUser;
   for (PetscInt k = 1; k <= NBOX; k++) {
@@ -118,7 +118,7 @@ static PetscErrorCode ReadBoxes(Sim sim, PetscOptionItems *PetscOptionsObject, c
     PetscCall(CheckBox(sim, name, v, n, spacing ? nb + 1 : nb));
     B = &list[(*count)++];
     for (PetscInt i = 0; i < nb; i++) B->b[i] = v[i];
-    B->s = n == nb + 1 ? v[nb] : sim->dx;
+    B->s = n == nb + 1 ? v[nb] : sim->phys.dx;
     PetscCheck(B->s > 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "%s: the spacing %g must be > 0", name, (double)B->s);
     for (PetscInt i = 0; i < nb; i++) B->face[i] = PETSC_TRUE;
     if (faces) {
@@ -158,14 +158,14 @@ static PetscErrorCode Create(Sim sim)
   PetscFunctionBeginUser;
   PetscCall(PetscNew(&c));
   sim->scene_ctx = c;
-  PetscCheck(sim->dx > 0, sim->comm, PETSC_ERR_USER_INPUT, "Scene boxes needs -dx (the particle spacing, m)");
+  PetscCheck(sim->phys.dx > 0, sim->comm, PETSC_ERR_USER_INPUT, "Scene boxes needs -dx (the particle spacing, m)");
   PetscOptionsBegin(sim->comm, NULL, "Scene boxes: water, tanks, obstacles and solids as boxes given in the options", "");
-  PetscCall(OptInt("-dim", "Dimension: 2, or 3 (z up; every box then has six numbers)", "", sim->dim, &sim->dim, NULL));
-  PetscCheck(sim->dim == 2 || sim->dim == 3, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dim %" PetscInt_FMT " must be 2 or 3", sim->dim);
-  D = sim->dim; up = D - 1;
-  if (D == 3) { sim->g[1] = 0; sim->g[2] = -9.81; }
+  PetscCall(OptInt("-dim", "Dimension: 2, or 3 (z up; every box then has six numbers)", "", sim->phys.dim, &sim->phys.dim, NULL));
+  PetscCheck(sim->phys.dim == 2 || sim->phys.dim == 3, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dim %" PetscInt_FMT " must be 2 or 3", sim->phys.dim);
+  D = sim->phys.dim; up = D - 1;
+  if (D == 3) { sim->phys.g[1] = 0; sim->phys.g[2] = -9.81; }
   PetscCall(ReadBoxes(sim, PetscOptionsObject, "fluid_box", "Water at rest x0,y0,x1,y1[,spacing] (3D: x0,y0,z0,x1,y1,z1[,spacing]) (m)", c->fluid, &c->nfluid, PETSC_TRUE, PETSC_FALSE));
-  rows = KernelSupportRows(&sim->kernel);
+  rows = KernelSupportRows(&sim->phys.kernel);
   PetscCall(OptInt("-wall_rows", "Rows of wall + dummy particles of a tank that does not give its own", "", rows, &rows, NULL));
   PetscCheck(rows >= 1, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-wall_rows %" PetscInt_FMT " must be >= 1", rows);
   for (PetscInt k = 1; k <= NTANK; k++) {
@@ -181,7 +181,7 @@ static PetscErrorCode Create(Sim sim)
     PetscCheck(n >= nb && n <= nb + 2, sim->comm, PETSC_ERR_USER_INPUT, "%s takes %s[,spacing[,rows]], not %d numbers", name, D == 3 ? "x0,x1,y0,y1,z0,z1" : "x0,x1,y0,y1", (int)n);
     for (PetscInt d = 0; d < D; d++) { T->b[d] = v[2 * d]; T->b[D + d] = v[2 * d + 1]; }
     PetscCall(CheckBox(sim, name, T->b, nb, nb));
-    T->s    = n >= nb + 1 ? v[nb] : sim->dx;
+    T->s    = n >= nb + 1 ? v[nb] : sim->phys.dx;
     T->rows = n >= nb + 2 ? (PetscInt)v[nb + 1] : rows;
     PetscCheck(T->s > 0 && T->rows >= 1 && (n < nb + 2 || v[nb + 1] == (PetscReal)T->rows), sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "%s: the spacing must be > 0 and the rows a whole number >= 1", name);
     PetscCall(PetscSNPrintf(name, sizeof(name), "-tank_%d_sides", (int)k));
@@ -212,8 +212,8 @@ static PetscErrorCode Create(Sim sim)
       }
     }
     for (PetscInt d = 0; d < D; d++) all = (PetscBool)(all && sim->periodic[d]);
-    sim->confined = all;
-    PetscCall(OptBool("-confined", "The water fills the domain: no free surface (ISPH pins the pressure's constant); default when every direction is periodic", "", sim->confined, &sim->confined, NULL));
+    sim->phys.confined = all;
+    PetscCall(OptBool("-confined", "The water fills the domain: no free surface (ISPH pins the pressure's constant); default when every direction is periodic", "", sim->phys.confined, &sim->phys.confined, NULL));
   }
   for (PetscInt k = 1; k <= NGAUGE; k++) {
     PetscInt nl = D - 1, np = D, nbox = 2 * D;
@@ -243,13 +243,13 @@ static PetscErrorCode Create(Sim sim)
     }
     PetscCheck(c->nfluid + nfs > 0 || c->nsolid + nss > 0, sim->comm, PETSC_ERR_USER_INPUT, "Scene boxes has no water and no solid: give -fluid_box_1 x0,y0,x1,y1");
     PetscCheck(!nss || c->nclamp + ncs > 0, sim->comm, PETSC_ERR_ARG_INCOMP, "A solid shape needs a clamp (-clamp_box_K, or a shape of kind clamp next to it): a free solid is not supported");
-    sim->has_fluid = (PetscBool)(c->nfluid + nfs > 0);
-    sim->has_solid = (PetscBool)(c->nsolid + nss > 0);
+    sim->phys.has_fluid = (PetscBool)(c->nfluid + nfs > 0);
+    sim->phys.has_solid = (PetscBool)(c->nsolid + nss > 0);
   }
   if (sim->t_end < 0) sim->t_end = 1.0;
   for (PetscInt i = 0; i < c->nsolid; i++) {
     PetscBool held = PETSC_FALSE;
-    for (PetscInt j = 0; j < c->nclamp; j++) held = (PetscBool)(held || Touch(c->solid[i].b, c->clamp[j].b, 1e-9 * sim->dx, D));
+    for (PetscInt j = 0; j < c->nclamp; j++) held = (PetscBool)(held || Touch(c->solid[i].b, c->clamp[j].b, 1e-9 * sim->phys.dx, D));
     PetscCheck(held, sim->comm, PETSC_ERR_ARG_INCOMP, "-solid_box_%d touches no -clamp_box: a free solid is not supported; clamp it (a -clamp_box_K sharing an edge with it)", (int)i + 1);
   }
   for (PetscInt i = 0; i < c->nfluid; i++) {
@@ -310,7 +310,7 @@ static PetscErrorCode Create(Sim sim)
   }
   PetscCheck(!c->nsgauge || c->nsolid, sim->comm, PETSC_ERR_ARG_INCOMP, "-gauge_solid_1 needs a -solid_box_1");
   /* c0 = 10 x the speed of a fall from the highest water surface to the lowest water */
-  if (sim->has_fluid) sim->v_ref = PetscSqrtReal(2 * PetscSqrtReal(VDot(sim->g, sim->g, D)) * (top - low));
+  if (sim->phys.has_fluid) sim->phys.v_ref = PetscSqrtReal(2 * PetscSqrtReal(VDot(sim->phys.g, sim->phys.g, D)) * (top - low));
   /* probes: front_x, v_max, then the gauges */
   n = 0;
   PetscCall(ProbeName(c, &n, "front_x", 0));
@@ -335,12 +335,12 @@ static PetscErrorCode Populate(Sim sim)
 {
   Boxes *c = (Boxes *)sim->scene_ctx;
   PetscFunctionBeginUser;
-  const PetscInt D = sim->dim, up = D - 1;
+  const PetscInt D = sim->phys.dim, up = D - 1;
   for (PetscInt i = 0; i < c->nfluid; i++) { /* at rest: hydrostatic below the lattice's top */
     const Box *F     = &c->fluid[i];
     PetscInt   first = sim->P->n, n;
     PetscReal  s     = SceneFitSpacing(F->b[D + up] - F->b[up], F->s, &n);
-    PetscCall(SceneAddBox(sim, KIND_FLUID, F->b, F->s, sim->fl.rho0));
+    PetscCall(SceneAddBox(sim, KIND_FLUID, F->b, F->s, sim->phys.fl.rho0));
     if (c->shapes.n) PetscCall(ShapesCutWater(sim, &c->shapes, first, F->b, F->b + D, F->s));
     PetscCall(SceneHydrostaticDensity(sim, first, F->b[up] + n * s));
   }
@@ -349,9 +349,9 @@ static PetscErrorCode Populate(Sim sim)
     if (D == 3) PetscCall(SceneAddTankBox(sim, T->b, T->b + 3, T->b[5], T->s, T->rows));
     else PetscCall(SceneAddTank(sim, T->b[0], T->b[2], T->b[1], T->b[3], T->s, T->rows, T->left, T->right));
   }
-  for (PetscInt i = 0; i < c->nsolid; i++) PetscCall(SceneAddBox(sim, KIND_SOLID, c->solid[i].b, sim->dx, sim->sl.rho0));
-  for (PetscInt i = 0; i < c->nclamp; i++) PetscCall(SceneAddBox(sim, KIND_CLAMP, c->clamp[i].b, sim->dx, sim->sl.rho0));
-  for (PetscInt i = 0; i < c->nwall; i++) PetscCall(SceneAddWallBox(sim, c->wall[i].b, sim->dx, c->wall[i].face));
+  for (PetscInt i = 0; i < c->nsolid; i++) PetscCall(SceneAddBox(sim, KIND_SOLID, c->solid[i].b, sim->phys.dx, sim->phys.sl.rho0));
+  for (PetscInt i = 0; i < c->nclamp; i++) PetscCall(SceneAddBox(sim, KIND_CLAMP, c->clamp[i].b, sim->phys.dx, sim->phys.sl.rho0));
+  for (PetscInt i = 0; i < c->nwall; i++) PetscCall(SceneAddWallBox(sim, c->wall[i].b, sim->phys.dx, c->wall[i].face));
   PetscCall(ShapesPopulate(sim, &c->shapes));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -370,7 +370,7 @@ static PetscErrorCode Probe(Sim sim, PetscReal *vals)
       m[0] = PetscMax(m[0], x[D * a]);
       for (PetscInt k = 0; k < c->nlevel; k++) { /* the highest water within 1.5 dx of the gauge's vertical */
         PetscBool near = PETSC_TRUE;
-        for (PetscInt d = 0; d < D - 1; d++) near = (PetscBool)(near && PetscAbsReal(x[D * a + d] - c->level[k][d]) < 1.5 * sim->dx);
+        for (PetscInt d = 0; d < D - 1; d++) near = (PetscBool)(near && PetscAbsReal(x[D * a + d] - c->level[k][d]) < 1.5 * sim->phys.dx);
         if (near) m[1 + k] = PetscMax(m[1 + k], x[D * a + D - 1]);
       }
     } else if (P->kind[a] == KIND_SOLID && x0)
@@ -385,9 +385,9 @@ static PetscErrorCode Probe(Sim sim, PetscReal *vals)
   }
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, m, 1 + c->nlevel, MPIU_REAL, MPIU_MAX, sim->comm));
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, s, (D + 1) * c->nsgauge, MPIU_REAL, MPIU_SUM, sim->comm));
-  vals[0] = m[0] > -PETSC_MAX_REAL ? m[0] + 0.5 * sim->dx : 0;
+  vals[0] = m[0] > -PETSC_MAX_REAL ? m[0] + 0.5 * sim->phys.dx : 0;
   PetscCall(SceneMaxSpeed(sim, &vals[1]));
-  for (PetscInt k = 0; k < c->nlevel; k++) vals[n++] = m[1 + k] > -PETSC_MAX_REAL ? m[1 + k] + 0.5 * sim->dx : 0; /* 0: no water there */
+  for (PetscInt k = 0; k < c->nlevel; k++) vals[n++] = m[1 + k] > -PETSC_MAX_REAL ? m[1 + k] + 0.5 * sim->phys.dx : 0; /* 0: no water there */
   for (PetscInt k = 0; k < c->npress; k++) PetscCall(SceneProbePressure(sim, c->press[k], &vals[n++]));
   for (PetscInt k = 0; k < c->nsgauge; k++)
     for (PetscInt d = 0; d < D; d++) vals[n++] = s[(D + 1) * k + D] > 0 ? s[(D + 1) * k + d] / s[(D + 1) * k + D] : 0;

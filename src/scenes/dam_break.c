@@ -17,7 +17,7 @@ static PetscErrorCode Create(Sim sim)
   sim->scene_ctx = c;
   PetscCall(SceneKeepSeries(sim, &c->front));
   PetscCall(SceneKeepSeries(sim, &c->height));
-  c->a = 0.05715; c->H = -1; c->L = -1; c->top = -1; c->rows = KernelSupportRows(&sim->kernel);
+  c->a = 0.05715; c->H = -1; c->L = -1; c->top = -1; c->rows = KernelSupportRows(&sim->phys.kernel);
   PetscOptionsBegin(sim->comm, NULL, "Scene dam_break: collapse of a water column", "");
   PetscCall(OptReal("-column_width", "Column width a (m)", "", c->a, &c->a, NULL));
   PetscCall(OptReal("-column_height", "Column height (m); default 2a", "", c->H, &c->H, NULL));
@@ -33,10 +33,10 @@ static PetscErrorCode Create(Sim sim)
   PetscCheck(c->L > c->a, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-tank_length %g must exceed the column width %g", (double)c->L, (double)c->a);
   PetscCheck(c->top >= c->H, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-tank_height %g must be at least the column height %g", (double)c->top, (double)c->H);
   PetscCheck(c->rows >= 1, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-wall_rows %" PetscInt_FMT " must be >= 1", c->rows);
-  if (sim->dx < 0) sim->dx = c->a / 20;
+  if (sim->phys.dx < 0) sim->phys.dx = c->a / 20;
   if (sim->t_end < 0) sim->t_end = 3.0 / PetscSqrtReal(2 * 9.81 / c->a); /* T = 3 */
-  PetscCheck(sim->dx <= 0.5 * c->a, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dx %g is larger than half the column width %g: choose a smaller -dx", (double)sim->dx, (double)c->a);
-  sim->v_ref     = PetscSqrtReal(2 * 9.81 * c->H);
+  PetscCheck(sim->phys.dx <= 0.5 * c->a, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dx %g is larger than half the column width %g: choose a smaller -dx", (double)sim->phys.dx, (double)c->a);
+  sim->phys.v_ref     = PetscSqrtReal(2 * 9.81 * c->H);
   /* open air above the walls, as high again: the run-up jet on the far wall rises past 3x the
    * column height by t = 0.29 s at a/80 (ISPH, 4 m/s at the tip) and falls back into the tank */
   SceneTankDomain(sim, c->L, 2 * c->top, c->rows);
@@ -66,14 +66,14 @@ static PetscErrorCode Probe(Sim sim, PetscReal *vals)
   for (PetscInt a = 0; a < P->n; a++) {
     if (!KindIsFluid(P->kind[a])) continue;
     r[0] = PetscMax(r[0], x[2 * a]);
-    r[1] += SceneFluidVolume(sim, m[a], rho[a]) * SceneStripShare(x[2 * a], w, sim->dx);
+    r[1] += SceneFluidVolume(sim, m[a], rho[a]) * SceneStripShare(x[2 * a], w, sim->phys.dx);
   }
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &r[0], 1, MPIU_REAL, MPIU_MAX, sim->comm));
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &r[1], 1, MPIU_REAL, MPIU_SUM, sim->comm));
-  vals[0] = r[0] + 0.5 * sim->dx;
+  vals[0] = r[0] + 0.5 * sim->phys.dx;
   vals[1] = r[1] / w;
-  PetscCall(SeriesAppend(&c->front, sim->t, vals[0]));
-  PetscCall(SeriesAppend(&c->height, sim->t, vals[1]));
+  PetscCall(SeriesAppend(&c->front, sim->phys.t, vals[0]));
+  PetscCall(SeriesAppend(&c->height, sim->phys.t, vals[1]));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -86,7 +86,7 @@ static PetscErrorCode Errors(Sim sim, FILE *f)
   DamBreak *c = (DamBreak *)sim->scene_ctx;
   Series    ref = {0};
   PetscBool found;
-  PetscReal rms, max, g = -sim->g[1], Tend = sim->t * PetscSqrtReal(2 * g / c->a);
+  PetscReal rms, max, g = -sim->phys.g[1], Tend = sim->phys.t * PetscSqrtReal(2 * g / c->a);
   PetscInt  n;
   PetscFunctionBeginUser;
   PetscCall(RefDataLoad(sim, "martin_moyce1952_surge_n2eq2_a2.25in__pysph.csv", "T", "Z", &ref, &found));
@@ -98,7 +98,7 @@ static PetscErrorCode Errors(Sim sim, FILE *f)
   PetscCall(SeriesDestroy(&ref));
   PetscCall(RefDataLoad(sim, "martin_moyce1952_height_n2eq2_a2.25in_table6__ocellaris.csv", "tau", "H_over_H0", &ref, &found));
   if (found && f) {
-    PetscCall(SeriesCompare(&c->height, &ref, 1.0 / PetscSqrtReal(g / c->a), c->H, 0, sim->t * PetscSqrtReal(g / c->a), PETSC_TRUE, &rms, &max, &n));
+    PetscCall(SeriesCompare(&c->height, &ref, 1.0 / PetscSqrtReal(g / c->a), c->H, 0, sim->phys.t * PetscSqrtReal(g / c->a), PETSC_TRUE, &rms, &max, &n));
     fprintf(f, "\"height_rel_err_rms\": %.6g, \"height_rel_err_max\": %.6g, \"height_points\": %d, ", (double)rms, (double)max, (int)n);
   }
   PetscCall(SeriesDestroy(&ref));

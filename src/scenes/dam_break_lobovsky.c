@@ -37,7 +37,7 @@ static PetscErrorCode Create(Sim sim)
   sim->scene_ctx = c;
   for (PetscInt k = 0; k < NGAUGE; k++) PetscCall(SceneKeepSeries(sim, &c->level[k]));
   for (PetscInt k = 0; k < NSENSOR; k++) PetscCall(SceneKeepSeries(sim, &c->pres[k]));
-  c->L = 0.6; c->H = 0.3; c->Lt = 1.61; c->top = 1.0; c->sensor = 0.0045; c->rows = KernelSupportRows(&sim->kernel);
+  c->L = 0.6; c->H = 0.3; c->Lt = 1.61; c->top = 1.0; c->sensor = 0.0045; c->rows = KernelSupportRows(&sim->phys.kernel);
   PetscOptionsBegin(sim->comm, NULL, "Scene dam_break_lobovsky: Lobovsky et al. 2014 dam break, H = 0.3 m, with level gauges and wall pressure sensors", "");
   PetscCall(OptReal("-tank_height", "Tank wall height (m): room for the run-up on the far wall", "", c->top, &c->top, NULL));
   PetscCall(OptReal("-sensor_size", "Height of a pressure sensor's face on the wall (m), over which its pressure is averaged", "", c->sensor, &c->sensor, NULL));
@@ -46,10 +46,10 @@ static PetscErrorCode Create(Sim sim)
   PetscCheck(c->top >= 2 * c->H, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-tank_height %g must be at least twice the column height %g (the run-up on the far wall)", (double)c->top, (double)c->H);
   PetscCheck(c->sensor >= 0 && c->sensor <= 0.006, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-sensor_size %g must be in [0, 0.006] m (the lowest sensor is 3 mm above the floor)", (double)c->sensor);
   PetscCheck(c->rows >= 1, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-wall_rows %" PetscInt_FMT " must be >= 1", c->rows);
-  if (sim->dx < 0) sim->dx = c->H / 40;
+  if (sim->phys.dx < 0) sim->phys.dx = c->H / 40;
   if (sim->t_end < 0) sim->t_end = 8.0 / PetscSqrtReal(9.81 / c->H); /* t sqrt(g/H) = 8 */
-  PetscCheck(sim->dx <= c->H / 10, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dx %g leaves fewer than 10 particles over the column height %g: choose a smaller -dx", (double)sim->dx, (double)c->H);
-  sim->v_ref     = PetscSqrtReal(2 * 9.81 * c->H);
+  PetscCheck(sim->phys.dx <= c->H / 10, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dx %g leaves fewer than 10 particles over the column height %g: choose a smaller -dx", (double)sim->phys.dx, (double)c->H);
+  sim->phys.v_ref     = PetscSqrtReal(2 * 9.81 * c->H);
   /* open air above the walls, as high again (as the Martin & Moyce scene): at H/80 ISPH throws a
    * droplet of the far wall's run-up back over the tank at (-4, +4) m/s through y = 1 m at
    * t sqrt(g/H) = 3.7; it falls back into the tank */
@@ -75,7 +75,7 @@ static PetscErrorCode Probe(Sim sim, PetscReal *vals)
   PetscCall(SceneWaterDepth(sim, &c->col, NGAUGE, GaugeX, lev));
   for (PetscInt g = 0; g < NGAUGE; g++) {
     vals[g] = lev[g];
-    PetscCall(SeriesAppend(&c->level[g], sim->t, lev[g]));
+    PetscCall(SeriesAppend(&c->level[g], sim->phys.t, lev[g]));
   }
   for (PetscInt s = 0; s < NSENSOR; s++) {
     PetscReal sum = 0;
@@ -85,7 +85,7 @@ static PetscErrorCode Probe(Sim sim, PetscReal *vals)
       sum += p;
     }
     vals[NGAUGE + s] = sum / NFACE;
-    PetscCall(SeriesAppend(&c->pres[s], sim->t, vals[NGAUGE + s]));
+    PetscCall(SeriesAppend(&c->pres[s], sim->phys.t, vals[NGAUGE + s]));
   }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -93,7 +93,7 @@ static PetscErrorCode Probe(Sim sim, PetscReal *vals)
 static PetscErrorCode Errors(Sim sim, FILE *f)
 {
   Lobovsky *c = (Lobovsky *)sim->scene_ctx;
-  PetscReal g = -sim->g[1], ts = PetscSqrtReal(c->H / g), tend = sim->t / ts, rg = sim->fl.rho0 * g * c->H;
+  PetscReal g = -sim->phys.g[1], ts = PetscSqrtReal(c->H / g), tend = sim->phys.t / ts, rg = sim->phys.fl.rho0 * g * c->H;
   PetscReal levels2 = 0; /* the four gauges' rms errors, squared and summed */
   PetscInt  nlevels = 0;
   PetscFunctionBeginUser;

@@ -32,9 +32,9 @@ static PetscErrorCode Create(Sim sim)
   sim->scene_ctx = c;
   PetscCall(SceneKeepSeries(sim, &c->dx_tip)); /* checkpoints carry the histories */
   PetscCall(SceneKeepSeries(sim, &c->dy_tip));
-  c->W = 0.1; c->H = 0.14; c->L = 0.079; c->t = 0.005; c->top = 0.16; c->rows = KernelSupportRows(&sim->kernel); c->nclamp = 4; c->dxc = -1; c->fine = 0.02; c->floor = 0.1;
-  sim->sl.rho0 = 1100; sim->sl.K = 2.0e7; sim->sl.G = 4.27e6; /* rubber, paper section 3.3 */
-  sim->fl.mu   = 1.0e-3;
+  c->W = 0.1; c->H = 0.14; c->L = 0.079; c->t = 0.005; c->top = 0.16; c->rows = KernelSupportRows(&sim->phys.kernel); c->nclamp = 4; c->dxc = -1; c->fine = 0.02; c->floor = 0.1;
+  sim->phys.sl.rho0 = 1100; sim->phys.sl.K = 2.0e7; sim->phys.sl.G = 4.27e6; /* rubber, paper section 3.3 */
+  sim->phys.fl.mu   = 1.0e-3;
   PetscOptionsBegin(sim->comm, NULL, "Scene elastic_gate: water column released through an elastic gate (Antoci et al. 2007)", "");
   PetscCall(OptReal("-water_width", "Width of the water column behind the gate (m)", "", c->W, &c->W, NULL));
   PetscCall(OptReal("-water_depth", "Initial water depth (m)", "", c->H, &c->H, NULL));
@@ -46,12 +46,12 @@ static PetscErrorCode Create(Sim sim)
   PetscCall(OptReal("-dx_coarse", "Spacing of the fluid away from the gate (m); default -dx (uniform)", "", c->dxc, &c->dxc, NULL));
   PetscCall(OptReal("-fine_width", "Width of the fine fluid zone before the gate (m), with -dx_coarse", "", c->fine, &c->fine, NULL));
   PetscCall(OptReal("-floor_downstream", "Length of the floor downstream of the gate (m); 0 = the floor ends under the gate and the water falls freely past it", "", c->floor, &c->floor, NULL));
-  PetscCall(OptInt("-dim", "Dimension: 2, or 3 for a slab of the 2D case, periodic across -gate_width", "", sim->dim, &sim->dim, NULL));
+  PetscCall(OptInt("-dim", "Dimension: 2, or 3 for a slab of the 2D case, periodic across -gate_width", "", sim->phys.dim, &sim->phys.dim, NULL));
   c->width = -1;
-  if (sim->dim == 3) PetscCall(OptBool("-gate_side_walls", "3D: the tank's side walls at z = 0 and z = -gate_width (default 0.1 m, the experiment's tank) instead of a periodic slab", "", c->side_walls, &c->side_walls, NULL));
-  if (sim->dim == 3) PetscCall(OptReal("-gate_width", "3D: width in z (m): of the periodic slab, default 10 dx (the periodic grid needs 3 cells of 2 h + skin); between side walls, default 0.1 m", "", c->width, &c->width, NULL));
+  if (sim->phys.dim == 3) PetscCall(OptBool("-gate_side_walls", "3D: the tank's side walls at z = 0 and z = -gate_width (default 0.1 m, the experiment's tank) instead of a periodic slab", "", c->side_walls, &c->side_walls, NULL));
+  if (sim->phys.dim == 3) PetscCall(OptReal("-gate_width", "3D: width in z (m): of the periodic slab, default 10 dx (the periodic grid needs 3 cells of 2 h + skin); between side walls, default 0.1 m", "", c->width, &c->width, NULL));
   PetscOptionsEnd();
-  PetscCheck(sim->dim == 2 || sim->dim == 3, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dim %" PetscInt_FMT " must be 2 or 3", sim->dim);
+  PetscCheck(sim->phys.dim == 2 || sim->phys.dim == 3, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dim %" PetscInt_FMT " must be 2 or 3", sim->phys.dim);
   PetscCheck(c->W > 0 && c->H > 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-water_width %g and -water_depth %g must be > 0", (double)c->W, (double)c->H);
   PetscCheck(c->t > 0 && c->L > c->t, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-gate_length %g must exceed -gate_thickness %g > 0", (double)c->L, (double)c->t);
   PetscCheck(c->L < c->H, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-gate_length %g must be less than -water_depth %g (the rigid wall above the gate holds the rest)", (double)c->L, (double)c->H);
@@ -59,26 +59,26 @@ static PetscErrorCode Create(Sim sim)
   PetscCheck(c->floor >= 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-floor_downstream %g must be >= 0", (double)c->floor);
   PetscCheck(c->rows >= 1, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-wall_rows %" PetscInt_FMT " must be >= 1", c->rows);
   PetscCheck(c->nclamp >= 3, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-clamp_rows %" PetscInt_FMT " must be >= 3 (the clamp must fill the kernel support)", c->nclamp);
-  if (sim->dx < 0) sim->dx = 0.001;
-  PetscCheck(c->t / sim->dx > 2.999, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dx %g leaves fewer than 3 particles across the gate thickness %g", (double)sim->dx, (double)c->t);
-  if (c->dxc < 0) c->dxc = sim->dx;
-  PetscCheck(sim->dim == 2 || c->dxc == sim->dx, sim->comm, PETSC_ERR_ARG_INCOMP, "-dim 3 takes a uniform lattice: drop -dx_coarse %g (or set it to -dx %g)", (double)c->dxc, (double)sim->dx);
+  if (sim->phys.dx < 0) sim->phys.dx = 0.001;
+  PetscCheck(c->t / sim->phys.dx > 2.999, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dx %g leaves fewer than 3 particles across the gate thickness %g", (double)sim->phys.dx, (double)c->t);
+  if (c->dxc < 0) c->dxc = sim->phys.dx;
+  PetscCheck(sim->phys.dim == 2 || c->dxc == sim->phys.dx, sim->comm, PETSC_ERR_ARG_INCOMP, "-dim 3 takes a uniform lattice: drop -dx_coarse %g (or set it to -dx %g)", (double)c->dxc, (double)sim->phys.dx);
   PetscCall(SceneZonesSetUp(sim, c->dxc, &c->W, &c->fine, &c->H));
   if (sim->t_end < 0) sim->t_end = 0.4;
-  sim->has_solid = PETSC_TRUE;
+  sim->phys.has_solid = PETSC_TRUE;
   sim->outflow   = PETSC_TRUE;
-  sim->v_ref     = PetscSqrtReal(2 * 9.81 * c->H);
+  sim->phys.v_ref     = PetscSqrtReal(2 * 9.81 * c->H);
   sim->dom_lo[0] = -(c->rows + 0.5) * c->dxc;
   sim->dom_hi[0] = c->W + c->t + PetscMax(0.1, c->floor + 2 * c->dxc); /* fluid beyond leaves */
   sim->dom_lo[1] = -0.1;
-  sim->dom_hi[1] = c->top + sim->dx;
-  if (sim->dim == 3) {
-    if (c->width < 0) c->width = c->side_walls ? 0.1 : 10 * sim->dx;
-    c->nz = RoundToInt(c->width / sim->dx);
+  sim->dom_hi[1] = c->top + sim->phys.dx;
+  if (sim->phys.dim == 3) {
+    if (c->width < 0) c->width = c->side_walls ? 0.1 : 10 * sim->phys.dx;
+    c->nz = RoundToInt(c->width / sim->phys.dx);
     PetscCheck(c->nz >= 6, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-gate_width %g holds fewer than 6 particles", (double)c->width);
-    c->width         = c->nz * sim->dx;
-    sim->dom_lo[2]   = c->side_walls ? -(c->rows + 0.5) * sim->dx : 0;
-    sim->dom_hi[2]   = c->side_walls ? c->width + (c->rows + 0.5) * sim->dx : c->width;
+    c->width         = c->nz * sim->phys.dx;
+    sim->dom_lo[2]   = c->side_walls ? -(c->rows + 0.5) * sim->phys.dx : 0;
+    sim->dom_hi[2]   = c->side_walls ? c->width + (c->rows + 0.5) * sim->phys.dx : c->width;
     sim->periodic[2] = (PetscBool)!c->side_walls;
   }
   PetscCall(ParticlesEnableField(sim->P, FIELD_X0, PETSC_FALSE));
@@ -88,14 +88,14 @@ static PetscErrorCode Create(Sim sim)
 static PetscErrorCode Populate(Sim sim)
 {
   Gate     *c  = (Gate *)sim->scene_ctx;
-  PetscReal dx = sim->dx, xg = c->W; /* gate's upstream face */
+  PetscReal dx = sim->phys.dx, xg = c->W; /* gate's upstream face */
   PetscInt  nt = RoundToInt(c->t / dx), nl = RoundToInt(c->L / dx), ntop = RoundToInt(c->top / dx);
   PetscFunctionBeginUser;
-  if (sim->dim == 3) PetscCall(SceneExtrudeBegin(sim, c->nz, 0, dx));
+  if (sim->phys.dim == 3) PetscCall(SceneExtrudeBegin(sim, c->nz, 0, dx));
   PetscCall(SceneAddZonedWater(sim, c->dxc, c->W, c->fine, c->H, c->top, c->rows, xg + nt * dx + RoundToInt(c->floor / dx) * dx, PETSC_FALSE));
   /* the gate and its clamp */
-  PetscCall(SceneAddLattice(sim, KIND_SOLID, xg + 0.5 * dx, 0.5 * dx, nt, nl, dx, sim->sl.rho0));
-  PetscCall(SceneAddLattice(sim, KIND_CLAMP, xg + 0.5 * dx, (nl + 0.5) * dx, nt, c->nclamp, dx, sim->sl.rho0));
+  PetscCall(SceneAddLattice(sim, KIND_SOLID, xg + 0.5 * dx, 0.5 * dx, nt, nl, dx, sim->phys.sl.rho0));
+  PetscCall(SceneAddLattice(sim, KIND_CLAMP, xg + 0.5 * dx, (nl + 0.5) * dx, nt, c->nclamp, dx, sim->phys.sl.rho0));
   { /* rigid wall above the clamp: the column facing the water is wall, the rest dummy */
     const PetscReal above[4] = {xg, (nl + c->nclamp) * dx, xg + nt * dx, ntop * dx};
     const PetscBool faces[4] = {PETSC_TRUE, PETSC_FALSE, PETSC_FALSE, PETSC_FALSE};
@@ -103,12 +103,12 @@ static PetscErrorCode Populate(Sim sim)
   }
   PetscCall(SceneHydrostaticDensity(sim, 0, RoundToInt(c->H / dx) * dx));
   PetscCall(SceneExtrudeEnd(sim));
-  if (sim->dim == 3 && c->side_walls) { /* the tank's side walls over its whole section: one wall layer, then dummies */
+  if (sim->phys.dim == 3 && c->side_walls) { /* the tank's side walls over its whole section: one wall layer, then dummies */
     PetscInt nx = c->rows + nt + RoundToInt(c->W / dx) + RoundToInt(c->floor / dx), ny = c->rows + ntop;
     for (PetscInt k = 0; k < c->rows; k++)
       for (PetscInt side = 0; side < 2; side++) {
         const PetscReal lo[3] = {-(c->rows - 0.5) * dx, -(c->rows - 0.5) * dx, side ? c->width + (k + 0.5) * dx : -(k + 0.5) * dx};
-        PetscCall(SceneAddBlock(sim, k ? KIND_DUMMY : KIND_WALL, lo, (PetscInt[]){nx, ny, 1}, dx, sim->fl.rho0));
+        PetscCall(SceneAddBlock(sim, k ? KIND_DUMMY : KIND_WALL, lo, (PetscInt[]){nx, ny, 1}, dx, sim->phys.fl.rho0));
       }
   }
   PetscFunctionReturn(PETSC_SUCCESS);
@@ -123,26 +123,26 @@ static PetscErrorCode Probe(Sim sim, PetscReal *vals)
 {
   Gate      *c = (Gate *)sim->scene_ctx;
   Particles  P = sim->P;
-  PetscReal *x = PField(P, FIELD_X), *x0 = PField(P, FIELD_X0), *m = PField(P, FIELD_M), *rho = PField(P, FIELD_RHO), s[4] = {0, 0, 0, 0}, strip = 4 * sim->dx;
-  PetscInt   D = sim->dim;
+  PetscReal *x = PField(P, FIELD_X), *x0 = PField(P, FIELD_X0), *m = PField(P, FIELD_M), *rho = PField(P, FIELD_RHO), s[4] = {0, 0, 0, 0}, strip = 4 * sim->phys.dx;
+  PetscInt   D = sim->phys.dim;
   PetscFunctionBeginUser;
   for (PetscInt a = 0; a < P->n; a++) {
-    if (P->kind[a] == KIND_SOLID && x0[D * a + 1] < sim->dx) {
+    if (P->kind[a] == KIND_SOLID && x0[D * a + 1] < sim->phys.dx) {
       s[0] += x[D * a] - x0[D * a];
       s[1] += x[D * a + 1] - x0[D * a + 1];
       s[2] += 1;
     }
-    if (KindIsFluid(P->kind[a])) s[3] += SceneFluidVolume(sim, m[a], rho[a]) * SceneStripShare(x[D * a], strip, sim->dx);
+    if (KindIsFluid(P->kind[a])) s[3] += SceneFluidVolume(sim, m[a], rho[a]) * SceneStripShare(x[D * a], strip, sim->phys.dx);
   }
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, s, 4, MPIU_REAL, MPI_SUM, sim->comm));
   vals[0] = s[2] > 0 ? s[0] / s[2] : 0;
   vals[1] = s[2] > 0 ? s[1] / s[2] : 0;
   vals[2] = s[3] / strip;
-  vals[3] = sim->solid->load_mean[0];
+  vals[3] = sim->phys.solid->load_mean[0];
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &vals[3], 1, MPIU_REAL, MPI_SUM, sim->comm));
   if (D == 3) { vals[2] /= c->width; vals[3] /= c->width; }
-  PetscCall(SeriesAppend(&c->dx_tip, sim->t, vals[0]));
-  PetscCall(SeriesAppend(&c->dy_tip, sim->t, vals[1]));
+  PetscCall(SeriesAppend(&c->dx_tip, sim->phys.t, vals[0]));
+  PetscCall(SeriesAppend(&c->dy_tip, sim->phys.t, vals[1]));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -156,7 +156,7 @@ static PetscErrorCode Compare(Sim sim, FILE *f, const Series *s, const char *fil
   PetscFunctionBeginUser;
   PetscCall(RefDataLoad(sim, file, "t_s", col, &ref, &found));
   if (found && f) {
-    PetscCall(SeriesCompare(s, &ref, 1.0, 1.0, 0, sim->t, PETSC_FALSE, &rms, &max, &n));
+    PetscCall(SeriesCompare(s, &ref, 1.0, 1.0, 0, sim->phys.t, PETSC_FALSE, &rms, &max, &n));
     fprintf(f, "\"%s_err_rms\": %.6g, \"%s_err_max\": %.6g, \"%s_points\": %d, ", key, (double)rms, key, (double)max, key, (int)n);
   }
   PetscCall(SeriesDestroy(&ref));

@@ -108,7 +108,7 @@ static PetscErrorCode ReadFile(Sim sim, ParticlesFile *c, PetscReal dom[], Petsc
   PetscCall(PetscViewerHDF5GetFileId(v, &file));
   PetscCall(DatasetShape(file, c->path, "x", &rank, dims));
   PetscCheck(rank == 2 && (dims[1] == 2 || dims[1] == 3), sim->comm, PETSC_ERR_FILE_UNEXPECTED, "%s: dataset x (the positions) must be N x 2 or N x 3%s", c->path, rank ? "" : ", and the file has none");
-  sim->dim = D = (PetscInt)dims[1];
+  sim->phys.dim = D = (PetscInt)dims[1];
   c->N     = (PetscInt)dims[0];
   PetscCheck(c->N > 0, sim->comm, PETSC_ERR_FILE_UNEXPECTED, "%s holds no particles", c->path);
   c->n     = c->N / sim->size + (sim->rank < c->N % sim->size);
@@ -122,10 +122,10 @@ static PetscErrorCode ReadFile(Sim sim, ParticlesFile *c, PetscReal dom[], Petsc
   PetscCall(ReadRows(sim->comm, file, c->path, "rho", c->N, 1, c->first, c->n, H5T_NATIVE_DOUBLE, sizeof(PetscReal), PETSC_FALSE, &buf)); c->rho = (PetscReal *)buf;
   PetscCall(ReadRows(sim->comm, file, c->path, "v", c->N, D, c->first, c->n, H5T_NATIVE_DOUBLE, sizeof(PetscReal), PETSC_FALSE, &buf)); c->v = (PetscReal *)buf;
   PetscCall(ReadRows(sim->comm, file, c->path, "p", c->N, 1, c->first, c->n, H5T_NATIVE_DOUBLE, sizeof(PetscReal), PETSC_FALSE, &buf)); c->p = (PetscReal *)buf;
-  if (sim->dx <= 0) {
+  if (sim->phys.dx <= 0) {
     PetscCall(PetscViewerHDF5HasAttribute(v, "/", "dx", &has));
     PetscCheck(has, sim->comm, PETSC_ERR_USER_INPUT, "%s has no attribute dx: give the particle spacing with -dx", c->path);
-    PetscCall(PetscViewerHDF5ReadAttribute(v, "/", "dx", PETSC_REAL, NULL, &sim->dx));
+    PetscCall(PetscViewerHDF5ReadAttribute(v, "/", "dx", PETSC_REAL, NULL, &sim->phys.dx));
   }
   if (!dom_set) {
     PetscInt n = 2 * D;
@@ -165,7 +165,7 @@ static PetscErrorCode Create(Sim sim)
   PetscOptionsEnd();
   PetscCheck(set && c->path[0], sim->comm, PETSC_ERR_USER_INPUT, "Scene file needs -particles_file FILE.h5 (docs/geometry.md gives its schema)");
   PetscCall(ReadFile(sim, c, dom, dom_set));
-  D  = sim->dim;
+  D  = sim->phys.dim;
   up = D - 1;
   PetscCheck(!dom_set || n == 2 * D, sim->comm, PETSC_ERR_USER_INPUT, "-domain takes %d numbers in this %dD file, not %d", (int)(2 * D), (int)D, (int)n);
   for (PetscInt d = 0; d < D; d++) {
@@ -173,7 +173,7 @@ static PetscErrorCode Create(Sim sim)
     PetscCheck(dom[D + d] > dom[d], sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "The domain's high corner must exceed its low corner in every direction (-domain or the file's attribute)");
     lo[d] = PETSC_MAX_REAL; hi[d] = -PETSC_MAX_REAL;
   }
-  if (D == 3) { sim->g[1] = 0; sim->g[2] = -9.81; }
+  if (D == 3) { sim->phys.g[1] = 0; sim->phys.g[2] = -9.81; }
   for (PetscInt a = 0; a < c->n; a++) {
     const PetscInt k = c->kind[a];
     if (k < 0 || k >= KIND_COUNT) { bad = c->first + a; continue; }
@@ -189,37 +189,37 @@ static PetscErrorCode Create(Sim sim)
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &top, 1, MPIU_REAL, MPIU_MAX, sim->comm));
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &low, 1, MPIU_REAL, MPIU_MIN, sim->comm));
   for (PetscInt d = 0; d < D; d++) PetscCheck(lo[d] >= sim->dom_lo[d] && hi[d] <= sim->dom_hi[d], sim->comm, PETSC_ERR_ARG_INCOMP, "%s: particles reach %g..%g in direction %d, outside the domain %g..%g", c->path, (double)lo[d], (double)hi[d], (int)d + 1, (double)sim->dom_lo[d], (double)sim->dom_hi[d]);
-  sim->has_fluid = (PetscBool)(c->count[KIND_FLUID] > 0);
-  sim->has_solid = (PetscBool)(c->count[KIND_SOLID] > 0);
-  PetscCheck(sim->has_fluid || sim->has_solid, sim->comm, PETSC_ERR_USER_INPUT, "%s has no fluid (kind 0) and no solid (kind 3) particle", c->path);
-  PetscCheck(!sim->has_solid || c->count[KIND_CLAMP] > 0, sim->comm, PETSC_ERR_ARG_INCOMP, "%s has a solid (kind 3) and no clamp (kind 4): a free solid is not supported", c->path);
+  sim->phys.has_fluid = (PetscBool)(c->count[KIND_FLUID] > 0);
+  sim->phys.has_solid = (PetscBool)(c->count[KIND_SOLID] > 0);
+  PetscCheck(sim->phys.has_fluid || sim->phys.has_solid, sim->comm, PETSC_ERR_USER_INPUT, "%s has no fluid (kind 0) and no solid (kind 3) particle", c->path);
+  PetscCheck(!sim->phys.has_solid || c->count[KIND_CLAMP] > 0, sim->comm, PETSC_ERR_ARG_INCOMP, "%s has a solid (kind 3) and no clamp (kind 4): a free solid is not supported", c->path);
   if (sim->t_end < 0) sim->t_end = 1.0;
   /* c0 = 10 x the speed of a fall over the fluid's height (as -case boxes) */
-  if (sim->has_fluid) sim->v_ref = PetscSqrtReal(2 * PetscSqrtReal(VDot(sim->g, sim->g, D)) * (top - low + sim->dx));
+  if (sim->phys.has_fluid) sim->phys.v_ref = PetscSqrtReal(2 * PetscSqrtReal(VDot(sim->phys.g, sim->phys.g, D)) * (top - low + sim->phys.dx));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
 static PetscErrorCode Populate(Sim sim)
 {
   ParticlesFile *c = (ParticlesFile *)sim->scene_ctx;
-  const PetscInt D = sim->dim;
+  const PetscInt D = sim->phys.dim;
   PetscInt       first = sim->P->n;
   PetscReal      vol = 1, top = -PETSC_MAX_REAL;
   PetscFunctionBeginUser;
   for (PetscInt k = 0; k < KIND_COUNT; k++) PetscCall(SceneCount(sim, (ParticleKind)k, c->count[k]));
   if (SceneCounting(sim)) PetscFunctionReturn(PETSC_SUCCESS);
-  for (PetscInt d = 0; d < D; d++) vol *= sim->dx;
+  for (PetscInt d = 0; d < D; d++) vol *= sim->phys.dx;
   for (PetscInt a = 0; a < c->n; a++) {
     const PetscInt  k    = c->kind[a];
-    const PetscReal rho0 = KindIsSolid(k) ? sim->sl.rho0 : sim->fl.rho0;
-    PetscCall(ParticlesAdd(sim->P, c->id ? c->id[a] : c->first + a, (ParticleKind)k, c->x + D * a, c->m ? c->m[a] : rho0 * vol, c->h ? c->h[a] : sim->kernel.h_factor * sim->dx, c->rho ? c->rho[a] : rho0));
+    const PetscReal rho0 = KindIsSolid(k) ? sim->phys.sl.rho0 : sim->phys.fl.rho0;
+    PetscCall(ParticlesAdd(sim->P, c->id ? c->id[a] : c->first + a, (ParticleKind)k, c->x + D * a, c->m ? c->m[a] : rho0 * vol, c->h ? c->h[a] : sim->phys.kernel.h_factor * sim->phys.dx, c->rho ? c->rho[a] : rho0));
     if (KindIsFluid(k)) top = PetscMax(top, c->x[D * a + D - 1]);
   }
   sim->next_id = c->N;
   if (c->v) PetscCall(PetscArraycpy(PField(sim->P, FIELD_V) + D * first, c->v, D * c->n));
   if (c->p) PetscCall(PetscArraycpy(PField(sim->P, FIELD_P) + first, c->p, c->n));
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &top, 1, MPIU_REAL, MPIU_MAX, sim->comm));
-  if (!c->rho && c->hydrostatic && sim->has_fluid) PetscCall(SceneHydrostaticDensity(sim, first, top + 0.5 * sim->dx));
+  if (!c->rho && c->hydrostatic && sim->phys.has_fluid) PetscCall(SceneHydrostaticDensity(sim, first, top + 0.5 * sim->phys.dx));
   if (c->id) { /* each of 0..N-1 once: all in range, and their sum and sum of squares those of 0..N-1 */
     PetscInt64 s[3] = {0, 0, 0};
     for (PetscInt a = 0; a < c->n; a++) {
@@ -243,7 +243,7 @@ static PetscErrorCode Probe(Sim sim, PetscReal *vals)
   for (PetscInt a = 0; a < P->n; a++)
     if (KindIsFluid(P->kind[a])) front = PetscMax(front, x[P->dim * a]);
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &front, 1, MPIU_REAL, MPIU_MAX, sim->comm));
-  vals[0] = front > -PETSC_MAX_REAL ? front + 0.5 * sim->dx : 0;
+  vals[0] = front > -PETSC_MAX_REAL ? front + 0.5 * sim->phys.dx : 0;
   PetscCall(SceneMaxSpeed(sim, &vals[1]));
   PetscFunctionReturn(PETSC_SUCCESS);
 }

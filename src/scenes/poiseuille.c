@@ -18,7 +18,7 @@ static PetscErrorCode Create(Sim sim)
 {
   Poiseuille *c;
   PetscReal   F;
-  PetscInt    nmin = (PetscInt)PetscCeilReal(3 * 2 * sim->kernel.h_factor); /* the periodic grid needs >= 3 cells of 2 h */
+  PetscInt    nmin = (PetscInt)PetscCeilReal(3 * 2 * sim->phys.kernel.h_factor); /* the periodic grid needs >= 3 cells of 2 h */
   PetscFunctionBeginUser;
   PetscCall(PetscNew(&c));
   sim->scene_ctx = c;
@@ -27,48 +27,48 @@ static PetscErrorCode Create(Sim sim)
   PetscCall(SceneKeepReal(sim, &c->l2_last));
   PetscCall(SceneKeepReal(sim, &c->t_last));
   c->Hc = 1e-3; c->Re = 0.0125; c->nu = 1e-6;
-  c->rows = KernelSupportRows(&sim->kernel); /* wall rows covering the kernel support 2h */
+  c->rows = KernelSupportRows(&sim->phys.kernel); /* wall rows covering the kernel support 2h */
   PetscOptionsBegin(sim->comm, NULL, "Scene poiseuille: body-force driven channel flow from rest (Morris et al. 1997); nu = 1e-6 m^2/s (mu = rho0 nu), F = 8 nu^2 Re / Hc^3 (Re 0.0125, Hc 1 mm: F = 1e-4 m/s^2, u_max = 1.25e-5 m/s)", "");
   PetscCall(OptReal("-channel_height", "Channel height Hc between the walls (m)", "", c->Hc, &c->Hc, NULL));
   PetscCall(OptReal("-re", "Reynolds number u_max Hc / nu; sets the body force F = 8 nu^2 Re / Hc^3", "", c->Re, &c->Re, NULL));
   PetscOptionsEnd();
   PetscCheck(c->Hc > 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-channel_height %g must be > 0", (double)c->Hc);
   PetscCheck(c->Re > 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-re %g must be > 0", (double)c->Re);
-  if (sim->dx < 0) sim->dx = c->Hc / 20;
+  if (sim->phys.dx < 0) sim->phys.dx = c->Hc / 20;
   /* the fluid rows (j + 1/2) dx must fill the channel exactly: dx = Hc / ny */
-  c->ny = RoundToInt(c->Hc / sim->dx);
-  PetscCheck(c->ny >= 4, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dx %g leaves fewer than 4 particle rows across the channel height %g: choose -dx <= %g", (double)sim->dx, (double)c->Hc, (double)(c->Hc / 4));
-  if (PetscAbsReal(sim->dx - c->Hc / c->ny) > 1e-12 * c->Hc) PetscCall(PetscInfo(NULL, "poiseuille: -dx %g rounded to %g = Hc / %" PetscInt_FMT "\n", (double)sim->dx, (double)(c->Hc / c->ny), c->ny));
-  sim->dx = c->Hc / c->ny;
+  c->ny = RoundToInt(c->Hc / sim->phys.dx);
+  PetscCheck(c->ny >= 4, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dx %g leaves fewer than 4 particle rows across the channel height %g: choose -dx <= %g", (double)sim->phys.dx, (double)c->Hc, (double)(c->Hc / 4));
+  if (PetscAbsReal(sim->phys.dx - c->Hc / c->ny) > 1e-12 * c->Hc) PetscCall(PetscInfo(NULL, "poiseuille: -dx %g rounded to %g = Hc / %" PetscInt_FMT "\n", (double)sim->phys.dx, (double)(c->Hc / c->ny), c->ny));
+  sim->phys.dx = c->Hc / c->ny;
   /* periodic length Lc = nx dx (a whole number of lattice columns): Hc / 2, or the grid's minimum */
-  c->nx = PetscMax(RoundToInt(0.5 * c->Hc / sim->dx), nmin);
-  c->Lc = c->nx * sim->dx;
+  c->nx = PetscMax(RoundToInt(0.5 * c->Hc / sim->phys.dx), nmin);
+  c->Lc = c->nx * sim->phys.dx;
   F     = 8 * c->nu * c->nu * c->Re / (c->Hc * c->Hc * c->Hc);
   if (sim->t_end < 0) sim->t_end = 2 * c->Hc * c->Hc / c->nu; /* transient ~ exp(-pi^2 nu t / Hc^2): 3e-9 left */
-  sim->confined    = PETSC_TRUE; /* no free surface */
+  sim->phys.confined    = PETSC_TRUE; /* no free surface */
   sim->periodic[0] = PETSC_TRUE;
   sim->periodic[1] = PETSC_FALSE;
   sim->dom_lo[0]   = 0;
   sim->dom_hi[0]   = c->Lc;
-  sim->dom_lo[1]   = -(c->rows + 0.5) * sim->dx;
-  sim->dom_hi[1]   = c->Hc + (c->rows + 0.5) * sim->dx;
-  sim->g[0]        = F;
-  sim->g[1]        = 0;
-  sim->fl.mu       = sim->fl.rho0 * c->nu;
-  sim->v_ref       = F * c->Hc * c->Hc / (8 * c->nu);
+  sim->dom_lo[1]   = -(c->rows + 0.5) * sim->phys.dx;
+  sim->dom_hi[1]   = c->Hc + (c->rows + 0.5) * sim->phys.dx;
+  sim->phys.g[0]        = F;
+  sim->phys.g[1]        = 0;
+  sim->phys.fl.mu       = sim->phys.fl.rho0 * c->nu;
+  sim->phys.v_ref       = F * c->Hc * c->Hc / (8 * c->nu);
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
 static PetscErrorCode Populate(Sim sim)
 {
   Poiseuille *c  = (Poiseuille *)sim->scene_ctx;
-  PetscReal   dx = sim->dx;
+  PetscReal   dx = sim->phys.dx;
   PetscFunctionBeginUser;
-  PetscCall(SceneAddLattice(sim, KIND_FLUID, 0.5 * dx, 0.5 * dx, c->nx, c->ny, dx, sim->fl.rho0));
+  PetscCall(SceneAddLattice(sim, KIND_FLUID, 0.5 * dx, 0.5 * dx, c->nx, c->ny, dx, sim->phys.fl.rho0));
   /* straight walls over the whole period, below y = 0 and above y = Hc: first row wall, then dummy */
   for (PetscInt k = 0; k < c->rows; k++) {
-    PetscCall(SceneAddLattice(sim, k ? KIND_DUMMY : KIND_WALL, 0.5 * dx, -(k + 0.5) * dx, c->nx, 1, dx, sim->fl.rho0));
-    PetscCall(SceneAddLattice(sim, k ? KIND_DUMMY : KIND_WALL, 0.5 * dx, c->Hc + (k + 0.5) * dx, c->nx, 1, dx, sim->fl.rho0));
+    PetscCall(SceneAddLattice(sim, k ? KIND_DUMMY : KIND_WALL, 0.5 * dx, -(k + 0.5) * dx, c->nx, 1, dx, sim->phys.fl.rho0));
+    PetscCall(SceneAddLattice(sim, k ? KIND_DUMMY : KIND_WALL, 0.5 * dx, c->Hc + (k + 0.5) * dx, c->nx, 1, dx, sim->phys.fl.rho0));
   }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -97,24 +97,24 @@ static PetscErrorCode Probe(Sim sim, PetscReal *vals)
   Poiseuille *c = (Poiseuille *)sim->scene_ctx;
   Particles   P = sim->P;
   PetscReal  *x = PField(P, FIELD_X), *v = PField(P, FIELD_V);
-  PetscReal   s[5] = {0, 0, 0, 0, 0}, nu = sim->fl.mu / sim->fl.rho0, F = sim->g[0];
+  PetscReal   s[5] = {0, 0, 0, 0, 0}, nu = sim->phys.fl.mu / sim->phys.fl.rho0, F = sim->phys.g[0];
   PetscFunctionBeginUser;
   for (PetscInt a = 0; a < P->n; a++) {
     PetscReal y = x[2 * a + 1], ue, du;
     if (!KindIsFluid(P->kind[a])) continue;
-    ue = Exact(F, nu, c->Hc, y, sim->t);
+    ue = Exact(F, nu, c->Hc, y, sim->phys.t);
     du = v[2 * a] - ue;
     s[0] += du * du + v[2 * a + 1] * v[2 * a + 1];
     s[1] += ue * ue;
-    if (PetscAbsReal(y - 0.5 * c->Hc) < 0.75 * sim->dx) { s[2] += v[2 * a]; s[3] += ue; s[4] += 1; }
+    if (PetscAbsReal(y - 0.5 * c->Hc) < 0.75 * sim->phys.dx) { s[2] += v[2 * a]; s[3] += ue; s[4] += 1; }
   }
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, s, 5, MPIU_REAL, MPI_SUM, sim->comm));
   vals[0] = s[4] > 0 ? s[2] / s[4] : 0;
   vals[1] = s[1] > 0 ? PetscSqrtReal(s[0] / s[1]) : 0;
-  PetscCall(SeriesAppend(&c->uc_ref, sim->t, s[4] > 0 ? s[3] / s[4] : 0));
+  PetscCall(SeriesAppend(&c->uc_ref, sim->phys.t, s[4] > 0 ? s[3] / s[4] : 0));
   c->uc_last = vals[0];
   c->l2_last = vals[1];
-  c->t_last  = sim->t;
+  c->t_last  = sim->phys.t;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -122,14 +122,14 @@ static PetscErrorCode Probe(Sim sim, PetscReal *vals)
 static PetscErrorCode Errors(Sim sim, FILE *f)
 {
   Poiseuille *c = (Poiseuille *)sim->scene_ctx;
-  PetscReal   vals[2], ref, nu = sim->fl.mu / sim->fl.rho0, umax;
+  PetscReal   vals[2], ref, nu = sim->phys.fl.mu / sim->phys.fl.rho0, umax;
   PetscFunctionBeginUser;
-  if (c->t_last != sim->t) PetscCall(Probe(sim, vals)); /* the last probe row may predate t_end */
+  if (c->t_last != sim->phys.t) PetscCall(Probe(sim, vals)); /* the last probe row may predate t_end */
   ref  = c->uc_ref.y[c->uc_ref.n - 1];
-  umax = sim->g[0] * c->Hc * c->Hc / (8 * nu);
+  umax = sim->phys.g[0] * c->Hc * c->Hc / (8 * nu);
   if (f)
     fprintf(f, "\"u_center_rel_err_final\": %.6g, \"u_center_final\": %.9g, \"u_center_exact\": %.9g, \"u_max_steady\": %.9g, \"l2_vel_err_final\": %.6g, \"t_final\": %.9g, \"re\": %.6g, \"reference\": \"Morris et al. 1997 Eq. 21 (transient series)\"",
-            (double)(ref != 0 ? PetscAbsReal(c->uc_last - ref) / PetscAbsReal(ref) : 0), (double)c->uc_last, (double)ref, (double)umax, (double)c->l2_last, (double)sim->t, (double)(umax * c->Hc / nu));
+            (double)(ref != 0 ? PetscAbsReal(c->uc_last - ref) / PetscAbsReal(ref) : 0), (double)c->uc_last, (double)ref, (double)umax, (double)c->l2_last, (double)sim->phys.t, (double)(umax * c->Hc / nu));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

@@ -69,14 +69,14 @@ static PetscErrorCode AddPointSpaced(Sim sim, ParticleKind kind, const PetscReal
     for (PetscInt k = 0; k < sim->extrude.n; k++) {
       PetscInt        id = sim->next_id++;
       const PetscReal q[3] = {p[0], p[1], sim->extrude.z0 + (k + 0.5) * sim->extrude.dz};
-      if (id % sim->size == sim->rank) PetscCall(ParticlesAdd(sim->P, id, kind, q, m, sim->kernel.h_factor * dx, rho0));
+      if (id % sim->size == sim->rank) PetscCall(ParticlesAdd(sim->P, id, kind, q, m, sim->phys.kernel.h_factor * dx, rho0));
     }
     PetscFunctionReturn(PETSC_SUCCESS);
   }
-  if (sim->dim == 3) m *= s[2];
+  if (sim->phys.dim == 3) m *= s[2];
   {
     PetscInt id = sim->next_id++;
-    if (id % sim->size == sim->rank) PetscCall(ParticlesAdd(sim->P, id, kind, p, m, sim->kernel.h_factor * dx, rho0));
+    if (id % sim->size == sim->rank) PetscCall(ParticlesAdd(sim->P, id, kind, p, m, sim->phys.kernel.h_factor * dx, rho0));
   }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -107,7 +107,7 @@ PetscReal SceneFitSpacing(PetscReal extent, PetscReal dx, PetscInt *n)
 PetscErrorCode SceneExtrudeBegin(Sim sim, PetscInt n, PetscReal z0, PetscReal dz)
 {
   PetscFunctionBeginUser;
-  PetscCheck(sim->dim == 3 && n >= 1 && dz > 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "Extrusion needs a 3D scene, >= 1 layer and a spacing > 0");
+  PetscCheck(sim->phys.dim == 3 && n >= 1 && dz > 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "Extrusion needs a 3D scene, >= 1 layer and a spacing > 0");
   sim->extrude.n  = n;
   sim->extrude.z0 = z0;
   sim->extrude.dz = dz;
@@ -121,7 +121,7 @@ PetscErrorCode SceneExtrudeEnd(Sim sim)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscInt SceneLayoutDim(Sim sim) { return sim->extrude.n > 0 ? 2 : sim->dim; }
+PetscInt SceneLayoutDim(Sim sim) { return sim->extrude.n > 0 ? 2 : sim->phys.dim; }
 
 static PetscErrorCode AddOne(Sim sim, ParticleKind kind, PetscReal x, PetscReal y, PetscReal dx, PetscReal rho0)
 {
@@ -198,9 +198,9 @@ PetscErrorCode SceneAddWallBox(Sim sim, const PetscReal b[], PetscReal dx, const
   const PetscInt D = SceneLayoutDim(sim);
   PetscInt       first = sim->P->n;
   PetscFunctionBeginUser;
-  PetscCall(SceneAddBox(sim, KIND_WALL, b, dx, sim->fl.rho0));
+  PetscCall(SceneAddBox(sim, KIND_WALL, b, dx, sim->phys.fl.rho0));
   for (PetscInt a = first; a < sim->P->n; a++) { /* this rank's share of the lattice */
-    const PetscReal *x = PField(sim->P, FIELD_X) + sim->dim * a;
+    const PetscReal *x = PField(sim->P, FIELD_X) + sim->phys.dim * a;
     PetscBool        wet = PETSC_FALSE;
     for (PetscInt d = 0; d < D; d++) wet = (PetscBool)(wet || (faces[d] && x[d] < b[d] + dx) || (faces[D + d] && x[d] > b[D + d] - dx));
     if (!wet) sim->P->kind[a] = KIND_DUMMY;
@@ -217,31 +217,31 @@ PetscErrorCode SceneAddTank(Sim sim, PetscReal x0, PetscReal x1, PetscReal y0, P
   for (PetscInt k = 0; k < rows; k++)
     for (PetscInt i = il; i < ir; i++) {
       PetscInt layer = PetscMax(k, PetscMax(i < 0 ? -i - 1 : 0, i >= nx ? i - nx : 0));
-      PetscCall(AddOne(sim, layer ? KIND_DUMMY : KIND_WALL, x0 + (i + 0.5) * dx, y0 - (k + 0.5) * dx, dx, sim->fl.rho0));
+      PetscCall(AddOne(sim, layer ? KIND_DUMMY : KIND_WALL, x0 + (i + 0.5) * dx, y0 - (k + 0.5) * dx, dx, sim->phys.fl.rho0));
     }
   /* side walls */
   for (PetscInt j = 0; j < ny; j++)
     for (PetscInt k = 0; k < rows; k++) {
-      if (left) PetscCall(AddOne(sim, k ? KIND_DUMMY : KIND_WALL, x0 - (k + 0.5) * dx, y0 + (j + 0.5) * dx, dx, sim->fl.rho0));
-      if (right) PetscCall(AddOne(sim, k ? KIND_DUMMY : KIND_WALL, x0 + (nx + k + 0.5) * dx, y0 + (j + 0.5) * dx, dx, sim->fl.rho0));
+      if (left) PetscCall(AddOne(sim, k ? KIND_DUMMY : KIND_WALL, x0 - (k + 0.5) * dx, y0 + (j + 0.5) * dx, dx, sim->phys.fl.rho0));
+      if (right) PetscCall(AddOne(sim, k ? KIND_DUMMY : KIND_WALL, x0 + (nx + k + 0.5) * dx, y0 + (j + 0.5) * dx, dx, sim->phys.fl.rho0));
     }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
 void SceneTankDomain(Sim sim, PetscReal L, PetscReal top, PetscInt rows)
 {
-  const PetscInt up = sim->dim - 1;
+  const PetscInt up = sim->phys.dim - 1;
   for (PetscInt d = 0; d < up; d++) { /* the horizontal directions: a square tank in 3D */
-    sim->dom_lo[d] = -(rows + 0.5) * sim->dx;
-    sim->dom_hi[d] = L + (rows + 0.5) * sim->dx;
+    sim->dom_lo[d] = -(rows + 0.5) * sim->phys.dx;
+    sim->dom_hi[d] = L + (rows + 0.5) * sim->phys.dx;
   }
-  sim->dom_lo[up] = -(rows + 0.5) * sim->dx;
+  sim->dom_lo[up] = -(rows + 0.5) * sim->phys.dx;
   sim->dom_hi[up] = top;
 }
 
 PetscErrorCode SceneAddTankBox(Sim sim, const PetscReal lo[], const PetscReal hi[], PetscReal top, PetscReal dx, PetscInt rows)
 {
-  const PetscInt D = sim->dim, up = D - 1;
+  const PetscInt D = sim->phys.dim, up = D - 1;
   PetscInt       n[3] = {1, 1, 1}, a[3], b[3];
   PetscReal      s[3] = {dx, dx, dx}; /* horizontally as the water's box fills (SceneAddBox); dx upwards */
   PetscFunctionBeginUser;
@@ -263,17 +263,17 @@ PetscErrorCode SceneAddTankBox(Sim sim, const PetscReal lo[], const PetscReal hi
           p[d]         = lo[d] + (idx[d] + 0.5) * s[d];
         }
         if (layer < 0) continue; /* the water's box (and the open space above it) */
-        PetscCall(AddPointSpaced(sim, layer ? KIND_DUMMY : KIND_WALL, p, s, dx, sim->fl.rho0));
+        PetscCall(AddPointSpaced(sim, layer ? KIND_DUMMY : KIND_WALL, p, s, dx, sim->phys.fl.rho0));
       }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
 PetscErrorCode SceneAddDamBreak(Sim sim, PetscReal w, PetscReal hgt, PetscReal L, PetscReal top, PetscInt rows)
 {
-  PetscReal dx = sim->dx;
+  PetscReal dx = sim->phys.dx;
   PetscInt  nx = RoundToInt(w / dx), ny = RoundToInt(hgt / dx);
   PetscFunctionBeginUser;
-  PetscCall(SceneAddLattice(sim, KIND_FLUID, 0.5 * dx, 0.5 * dx, nx, ny, dx, sim->fl.rho0));
+  PetscCall(SceneAddLattice(sim, KIND_FLUID, 0.5 * dx, 0.5 * dx, nx, ny, dx, sim->phys.fl.rho0));
   PetscCall(SceneAddTank(sim, 0, L, 0, top - dx, dx, rows, PETSC_TRUE, PETSC_TRUE));
   PetscCall(SceneHydrostaticDensity(sim, 0, ny * dx));
   PetscFunctionReturn(PETSC_SUCCESS);
@@ -283,16 +283,16 @@ PetscErrorCode SceneZonesSetUp(Sim sim, PetscReal dc, PetscReal *W, PetscReal *f
 {
   PetscInt nc;
   PetscFunctionBeginUser;
-  PetscCheck(dc >= sim->dx && dc <= 4 * sim->dx, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dx_coarse %g must be between -dx %g and 4 dx", (double)dc, (double)sim->dx);
-  if (dc == sim->dx) {
-    *W    = RoundToInt(*W / sim->dx) * sim->dx;
-    *H    = RoundToInt(*H / sim->dx) * sim->dx;
+  PetscCheck(dc >= sim->phys.dx && dc <= 4 * sim->phys.dx, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dx_coarse %g must be between -dx %g and 4 dx", (double)dc, (double)sim->phys.dx);
+  if (dc == sim->phys.dx) {
+    *W    = RoundToInt(*W / sim->phys.dx) * sim->phys.dx;
+    *H    = RoundToInt(*H / sim->phys.dx) * sim->phys.dx;
     *fine = *W;
     PetscFunctionReturn(PETSC_SUCCESS);
   }
   nc = RoundToInt((*W - *fine) / dc);
   PetscCheck(*fine > 0 && nc >= 1, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-fine_width %g must be in (0, -water_width %g) less a coarse column", (double)*fine, (double)*W);
-  *fine = RoundToInt((*W - nc * dc) / sim->dx) * sim->dx;
+  *fine = RoundToInt((*W - nc * dc) / sim->phys.dx) * sim->phys.dx;
   *W    = nc * dc + *fine;
   *H    = RoundToInt(*H / dc) * dc;
   PetscFunctionReturn(PETSC_SUCCESS);
@@ -300,12 +300,12 @@ PetscErrorCode SceneZonesSetUp(Sim sim, PetscReal dc, PetscReal *W, PetscReal *f
 
 PetscErrorCode SceneAddZonedWater(Sim sim, PetscReal dc, PetscReal W, PetscReal fine, PetscReal H, PetscReal top, PetscInt rows, PetscReal x_end, PetscBool right)
 {
-  PetscReal dx = sim->dx, xf = W - fine;
+  PetscReal dx = sim->phys.dx, xf = W - fine;
   PetscInt  ncx = RoundToInt(xf / dc), rows_f = (PetscInt)PetscCeilReal(rows * dc / dx - 1e-9);
   PetscFunctionBeginUser;
-  PetscCall(SceneAddLattice(sim, KIND_FLUID, xf + 0.5 * dx, 0.5 * dx, RoundToInt(fine / dx), RoundToInt(H / dx), dx, sim->fl.rho0));
+  PetscCall(SceneAddLattice(sim, KIND_FLUID, xf + 0.5 * dx, 0.5 * dx, RoundToInt(fine / dx), RoundToInt(H / dx), dx, sim->phys.fl.rho0));
   if (ncx > 0) {
-    PetscCall(SceneAddLattice(sim, KIND_FLUID, 0.5 * dc, 0.5 * dc, ncx, RoundToInt(H / dc), dc, sim->fl.rho0));
+    PetscCall(SceneAddLattice(sim, KIND_FLUID, 0.5 * dc, 0.5 * dc, ncx, RoundToInt(H / dc), dc, sim->phys.fl.rho0));
     PetscCall(SceneAddTank(sim, 0, xf, 0, RoundToInt(top / dc) * dc, dc, rows, PETSC_TRUE, PETSC_FALSE));
     PetscCall(SceneAddTank(sim, xf, x_end, 0, right ? RoundToInt(top / dx) * dx : 0, dx, rows_f, PETSC_FALSE, right));
   } else PetscCall(SceneAddTank(sim, 0, x_end, 0, RoundToInt(top / dx) * dx, dx, rows, PETSC_TRUE, right));
@@ -320,8 +320,8 @@ PetscErrorCode SceneHydrostaticDensity(Sim sim, PetscInt first, PetscReal y_surf
   PetscFunctionBeginUser;
   for (PetscInt a = first; a < P->n; a++) {
     if (!KindIsFluid(P->kind[a])) continue;
-    p[a]   = sim->fl.rho0 * (-sim->g[up]) * (y_surface - x[P->dim * a + up]);
-    rho[a] = EOSDensity(&sim->fl, p[a]);
+    p[a]   = sim->phys.fl.rho0 * (-sim->phys.g[up]) * (y_surface - x[P->dim * a + up]);
+    rho[a] = EOSDensity(&sim->phys.fl, p[a]);
   }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -337,9 +337,9 @@ PetscErrorCode SceneProbePressure(Sim sim, const PetscReal x0[], PetscReal *pval
     PetscReal d[3] = {0, 0, 0}, w, gd;
     if (!KindIsFluid(P->kind[a])) continue;
     VSub(x0, x + D * a, d, D);
-    w = KernelW(&sim->kernel, PetscSqrtReal(VDot(d, d, D)), h[a]);
+    w = KernelW(&sim->phys.kernel, PetscSqrtReal(VDot(d, d, D)), h[a]);
     if (w <= 0) continue;
-    gd = VDot(sim->g, d, D);
+    gd = VDot(sim->phys.g, d, D);
     s[0] += w * (p[a] + SceneFluidDensity(sim, rho[a]) * gd);
     s[1] += w;
   }
@@ -368,11 +368,11 @@ void SceneColumnKernelInit(Sim sim, SceneColumnKernel *ck)
     const PetscInt nq = 400;
     for (PetscInt q = 0; q < nq; q++) {
       PetscReal t = -T + (q + 0.5) * 2 * T / nq;
-      s += KernelW(&sim->kernel, PetscSqrtReal(S * S + t * t), 1.0) * 2 * T / nq;
+      s += KernelW(&sim->phys.kernel, PetscSqrtReal(S * S + t * t), 1.0) * 2 * T / nq;
     }
     ck->w[k] = s;
   }
-  ck->dim = sim->kernel.dim;
+  ck->dim = sim->phys.kernel.dim;
 }
 
 /* W_col(s, h) from the table (linear in s / h) */

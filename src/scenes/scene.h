@@ -8,7 +8,7 @@
 struct _SceneOps {
   const char *name;
   const char *help;
-  /* Read the scene's options; set sim->dx, t_end (unless given), dom_lo/hi, periodic, g,
+  /* Read the scene's options; set sim->phys.dx, t_end (unless given), dom_lo/hi, periodic, g,
    * material defaults and v_ref. */
   PetscErrorCode (*create)(Sim sim);
   /* Add the particles (fields are allocated by then). */
@@ -84,7 +84,7 @@ PetscErrorCode SceneAddDamBreak(Sim sim, PetscReal w, PetscReal hgt, PetscReal L
  * surface at height y_surface (y in 2D, z in 3D), for this rank's fluid particles from index `first` on (0: all of them). */
 PetscErrorCode SceneHydrostaticDensity(Sim sim, PetscInt first, PetscReal y_surface);
 /* Mixed particle sizes (section 3.3): water [0, W] x [0, H] at the coarse spacing dc on [0, W - fine]
- * and at sim->dx on [W - fine, W] (next to a gate).  SceneZonesSetUp checks dc and fine (option names
+ * and at sim->phys.dx on [W - fine, W] (next to a gate).  SceneZonesSetUp checks dc and fine (option names
  * -dx_coarse, -fine_width in its messages) and rounds W, fine and H so that the zones tile the water
  * in whole columns and reach the same surface; dc == dx gives one zone (*fine = *W, W and H rounded
  * to dx). */
@@ -114,7 +114,7 @@ PetscErrorCode SceneWaterDepth(Sim sim, const SceneColumnKernel *ck, PetscInt n,
  * sheet), while incompressible water keeps rho0 and the volume m / rho0. */
 static inline PetscReal SceneFluidDensity(Sim sim, PetscReal rho)
 {
-  return sim->fluid == FLUID_ISPH ? sim->fl.rho0 : rho;
+  return sim->phys.fluid == FLUID_ISPH ? sim->phys.fl.rho0 : rho;
 }
 static inline PetscReal SceneFluidVolume(Sim sim, PetscReal m, PetscReal rho)
 {

@@ -60,16 +60,16 @@ static PetscErrorCode ReadShapeOptions(Sim sim, PetscOptionItems *PetscOptionsOb
   PetscCall(PetscOptionsReal(opt, "Rotation of the shape about the origin, degrees anticlockwise (2D; after the scale)", "", deg, &deg, &set_r));
   PetscCall(PetscSNPrintf(opt, sizeof(opt), "%s_translate", s->name));
   PetscCall(PetscOptionsRealArray(opt, "Translation of the shape x,y (3D x,y,z) (m; last)", "", t, &nt, &set_t));
-  if (set_t) PetscCheck(nt == sim->dim, sim->comm, PETSC_ERR_USER_INPUT, "%s takes %d numbers, not %d", opt, (int)sim->dim, (int)nt);
+  if (set_t) PetscCheck(nt == sim->phys.dim, sim->comm, PETSC_ERR_USER_INPUT, "%s takes %d numbers, not %d", opt, (int)sim->phys.dim, (int)nt);
   if (set_s) PetscCheck(scale > 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "%s_scale %g must be > 0", s->name, (double)scale);
-  PetscCheck(!set_r || sim->dim == 2, sim->comm, PETSC_ERR_ARG_INCOMP, "%s_rotate: a sphere does not turn (rotation is for 2D shapes)", s->name);
+  PetscCheck(!set_r || sim->phys.dim == 2, sim->comm, PETSC_ERR_ARG_INCOMP, "%s_rotate: a sphere does not turn (rotation is for 2D shapes)", s->name);
   if (set_s || set_r || set_t) PetscCall(GeomTransform(&s->g, scale, deg * PETSC_PI / 180, t));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
 PetscErrorCode ShapesRead(Sim sim, PetscOptionItems *PetscOptionsObject, Shapes *S, PetscInt rows)
 {
-  const PetscInt D = sim->dim;
+  const PetscInt D = sim->phys.dim;
   PetscReal     *xy;
   char           name[40];
   PetscBool      set;
@@ -156,14 +156,14 @@ static PetscBool TakenByClamp(const Shapes *S, PetscInt si, const PetscReal p[])
 
 PetscErrorCode ShapesSetUp(Sim sim, Shapes *S, PetscInt nbox, const PetscReal (*box)[6], const PetscReal *spacing)
 {
-  const PetscInt D = sim->dim;
+  const PetscInt D = sim->phys.dim;
   PetscFunctionBeginUser;
-  for (PetscInt d = 0; d < D; d++) { S->origin[d] = sim->dom_lo[d]; S->h[d] = sim->dx; }
-  if (nbox > 0 && spacing[0] == sim->dx) /* the first water box's lattice */
+  for (PetscInt d = 0; d < D; d++) { S->origin[d] = sim->dom_lo[d]; S->h[d] = sim->phys.dx; }
+  if (nbox > 0 && spacing[0] == sim->phys.dx) /* the first water box's lattice */
     for (PetscInt d = 0; d < D; d++) {
       PetscInt n;
       S->origin[d] = box[0][d];
-      S->h[d]      = SceneFitSpacing(box[0][D + d] - box[0][d], sim->dx, &n);
+      S->h[d]      = SceneFitSpacing(box[0][D + d] - box[0][d], sim->phys.dx, &n);
     }
   S->flow_measure = 1;
   for (PetscInt d = 0; d < D; d++) S->flow_measure *= sim->dom_hi[d] - sim->dom_lo[d];
@@ -201,7 +201,7 @@ PetscErrorCode ShapesSetUp(Sim sim, Shapes *S, PetscInt nbox, const PetscReal (*
 
 PetscErrorCode ShapesPopulate(Sim sim, Shapes *S)
 {
-  const PetscInt  D = sim->dim;
+  const PetscInt  D = sim->phys.dim;
   const PetscReal hmin = D == 3 ? PetscMin(S->h[0], PetscMin(S->h[1], S->h[2])) : PetscMin(S->h[0], S->h[1]);
   PetscFunctionBeginUser;
   for (PetscInt pass = 0; pass < 2; pass++) /* water first, then the bodies in the order given */
@@ -229,7 +229,7 @@ PetscErrorCode ShapesPopulate(Sim sim, Shapes *S)
             case SHAPE_SOLID: kind = KIND_SOLID; break;
             default: kind = KIND_CLAMP; break;
             }
-            PetscCall(SceneAddPoint(sim, kind, p, S->h, sim->dx, kind == KIND_SOLID || kind == KIND_CLAMP ? sim->sl.rho0 : sim->fl.rho0));
+            PetscCall(SceneAddPoint(sim, kind, p, S->h, sim->phys.dx, kind == KIND_SOLID || kind == KIND_CLAMP ? sim->phys.sl.rho0 : sim->phys.fl.rho0));
           }
       if (s->kind == SHAPE_FLUID) {
         PetscCall(ShapesCutWater(sim, S, first, NULL, NULL, 0));
@@ -242,7 +242,7 @@ PetscErrorCode ShapesPopulate(Sim sim, Shapes *S)
 PetscErrorCode ShapesCutWater(Sim sim, const Shapes *S, PetscInt first, const PetscReal lo[], const PetscReal hi[], PetscReal spacing)
 {
   Particles  P = sim->P;
-  const PetscInt D = sim->dim;
+  const PetscInt D = sim->phys.dim;
   PetscReal  gap = 0, *x = PField(P, FIELD_X);
   PetscBool *drop, any = PETSC_FALSE;
   PetscFunctionBeginUser;
@@ -294,7 +294,7 @@ static PetscErrorCode FlowValues(Sim sim, const Shapes *S, PetscReal *vals)
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &s, 1, MPIU_REAL, MPI_SUM, sim->comm));
   for (PetscInt i = 0; i < S->n; i++) nobs += S->s[i].kind == SHAPE_WALL;
   vals[0] = s / S->flow_measure;
-  vals[1] = vals[0] != 0 && sim->fl.mu > 0 ? sim->fl.rho0 * sim->g[0] * S->flow_measure / PetscMax(nobs, 1) / (sim->fl.mu * vals[0]) : 0;
+  vals[1] = vals[0] != 0 && sim->phys.fl.mu > 0 ? sim->phys.fl.rho0 * sim->phys.g[0] * S->flow_measure / PetscMax(nobs, 1) / (sim->phys.fl.mu * vals[0]) : 0;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -303,7 +303,7 @@ PetscErrorCode ShapesFlowProbe(Sim sim, Shapes *S, PetscReal *vals)
   PetscFunctionBeginUser;
   if (!S->flow) PetscFunctionReturn(PETSC_SUCCESS);
   PetscCall(FlowValues(sim, S, vals));
-  PetscCall(SeriesAppend(&S->drag, sim->t, vals[1]));
+  PetscCall(SeriesAppend(&S->drag, sim->phys.t, vals[1]));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -325,7 +325,7 @@ static PetscReal TableAt(const Series *tab, PetscReal phi)
 
 PetscErrorCode ShapesFlowErrors(Sim sim, Shapes *S, FILE *f)
 {
-  const PetscInt D = sim->dim;
+  const PetscInt D = sim->phys.dim;
   PetscReal      solid = 0, mean = 0, w = 0, phi, phil, vals[2], ref = 0, refl = 0, fac = 1, mw = 0, *m = PField(sim->P, FIELD_M);
   PetscInt       nobs = 0, iw = 0;
   Series         tab = {0, 0, NULL, NULL};
@@ -338,9 +338,9 @@ PetscErrorCode ShapesFlowErrors(Sim sim, Shapes *S, FILE *f)
   for (PetscInt a = 0; a < sim->P->n; a++) mw += KindIsFluid(sim->P->kind[a]) ? m[a] : 0;
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &mw, 1, MPIU_REAL, MPI_SUM, sim->comm));
   phi  = solid / S->flow_measure;
-  phil = 1 - mw / sim->fl.rho0 / S->flow_measure;
+  phil = 1 - mw / sim->phys.fl.rho0 / S->flow_measure;
   for (PetscInt k = 0; k < S->drag.n; k++)
-    if (S->drag.t[k] >= 0.9 * sim->t) { mean += S->drag.y[k]; w += 1; }
+    if (S->drag.t[k] >= 0.9 * sim->phys.t) { mean += S->drag.y[k]; w += 1; }
   mean = w > 0 ? mean / w : vals[1];
   if (nobs == 1 && S->s[iw].g.type == GEOM_SPHERE) { /* one cylinder (sphere) a cell */
     PetscCall(RefDataLoad(sim, D == 3 ? "zick_homsy1982_simple_cubic_sphere_array_drag.csv" : "sangani_acrivos1982_square_cylinder_array_drag.csv", "phi", D == 3 ? "K" : "drag", &tab, &found));
@@ -348,7 +348,7 @@ PetscErrorCode ShapesFlowErrors(Sim sim, Shapes *S, FILE *f)
     if (found) { ref = TableAt(&tab, phi); refl = TableAt(&tab, phil); }
   }
   if (f) {
-    fprintf(f, "\"drag_mean_last_tenth\": %.9g, \"drag_final\": %.9g, \"u_mean_final\": %.9g, \"re\": %.6g, \"phi\": %.9g, \"phi_lattice\": %.9g", (double)mean, (double)vals[1], (double)vals[0], (double)(vals[0] * (sim->dom_hi[0] - sim->dom_lo[0]) * sim->fl.rho0 / sim->fl.mu), (double)phi, (double)phil);
+    fprintf(f, "\"drag_mean_last_tenth\": %.9g, \"drag_final\": %.9g, \"u_mean_final\": %.9g, \"re\": %.6g, \"phi\": %.9g, \"phi_lattice\": %.9g", (double)mean, (double)vals[1], (double)vals[0], (double)(vals[0] * (sim->dom_hi[0] - sim->dom_lo[0]) * sim->phys.fl.rho0 / sim->phys.fl.mu), (double)phi, (double)phil);
     if (ref > 0) fprintf(f, ", \"%s\": %.9g, \"%s\": %.9g, \"drag_rel_err\": %.6g", D == 3 ? "K" : "drag_coefficient", (double)(mean / fac), D == 3 ? "K_reference" : "drag_reference", (double)ref, (double)(mean / fac / ref - 1));
     if (refl > 0) fprintf(f, ", \"drag_reference_phi_lattice\": %.9g, \"drag_rel_err_phi_lattice\": %.6g", (double)refl, (double)(mean / fac / refl - 1));
     if (ref > 0) fprintf(f, ", \"reference\": \"%s, interpolated in log(drag) between its fractions\"", D == 3 ? "Zick & Homsy 1982, simple cubic array of spheres" : "Sangani & Acrivos 1982, square array of cylinders");

@@ -56,7 +56,7 @@ static PetscErrorCode Create(Sim sim)
   PetscCall(SceneKeepSeries(sim, &c->hup));
   PetscCall(SceneKeepSeries(sim, &c->hdown));
   PetscCall(SceneKeepSeries(sim, &c->vup));
-  c->W = 0.1; c->H = 0.14; c->a = 0.03; c->Lc = -1; c->top = -1; c->rows = KernelSupportRows(&sim->kernel); c->gate_rows = 4; c->bevel = 45;
+  c->W = 0.1; c->H = 0.14; c->a = 0.03; c->Lc = -1; c->top = -1; c->rows = KernelSupportRows(&sim->phys.kernel); c->gate_rows = 4; c->bevel = 45;
   c->dxc = -1; c->fine = 0.02;
   c->win[0] = -1; c->win[1] = -1;
   PetscOptionsBegin(sim->comm, NULL, "Scene sluice_gate: a reservoir drains under a vertical gate", "");
@@ -80,7 +80,7 @@ static PetscErrorCode Create(Sim sim)
   PetscCheck(c->gate_rows >= 3, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-gate_rows %" PetscInt_FMT " must be >= 3 (water on both sides of the gate needs wall particles under its kernel)", c->gate_rows);
   PetscCheck(c->bevel >= 0 && c->bevel < 90, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-gate_bevel %g must be in [0, 90) degrees", (double)c->bevel);
   PetscCheck(!win_set || (nwin == 2 && c->win[0] >= 0 && c->win[1] > c->win[0]), sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-q_window needs two times t0,t1 with 0 <= t0 < t1");
-  if (sim->dx < 0) sim->dx = c->H / 56;
+  if (sim->phys.dx < 0) sim->phys.dx = c->H / 56;
   if (sim->t_end < 0) sim->t_end = DrainTime(c->W, c->H, c->a, g);
   if (c->top < 0) c->top = 1.25 * c->H;
   /* jet speed <= sqrt(2 g H) (Bernoulli from the initial surface): the front must not reach the far end */
@@ -88,30 +88,30 @@ static PetscErrorCode Create(Sim sim)
   if (c->Lc < 0) c->Lc = 1.3 * vmax * sim->t_end + 4 * c->a;
   /* start-up: the drawdown wave crosses the reservoir and comes back, 2 W / sqrt(g H) */
   if (!win_set) { c->win[0] = 2 * c->W / PetscSqrtReal(g * c->H); c->win[1] = sim->t_end; }
-  PetscCheck(c->a >= 4 * sim->dx * (1 - 1e-9), sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dx %g leaves %.2g particles across the gate opening %g m; at least 4 are needed: choose -dx <= %g", (double)sim->dx, (double)(c->a / sim->dx), (double)c->a, (double)(c->a / 4));
-  PetscCheck(sim->dx <= 0.25 * c->W, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dx %g leaves fewer than 4 particles across -water_width %g: choose -dx <= %g", (double)sim->dx, (double)c->W, (double)(0.25 * c->W));
+  PetscCheck(c->a >= 4 * sim->phys.dx * (1 - 1e-9), sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dx %g leaves %.2g particles across the gate opening %g m; at least 4 are needed: choose -dx <= %g", (double)sim->phys.dx, (double)(c->a / sim->phys.dx), (double)c->a, (double)(c->a / 4));
+  PetscCheck(sim->phys.dx <= 0.25 * c->W, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dx %g leaves fewer than 4 particles across -water_width %g: choose -dx <= %g", (double)sim->phys.dx, (double)c->W, (double)(0.25 * c->W));
   PetscCheck(c->Lc >= 2 * c->a, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-channel_length %g must be at least twice the gate opening (%g m) so that the jet's vena contracta lies in the channel", (double)c->Lc, (double)(2 * c->a));
-  PetscCheck(c->top >= c->H + 2 * sim->dx, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-tank_height %g must exceed -water_depth %g by at least 2 dx", (double)c->top, (double)c->H);
+  PetscCheck(c->top >= c->H + 2 * sim->phys.dx, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-tank_height %g must exceed -water_depth %g by at least 2 dx", (double)c->top, (double)c->H);
   /* the lattice's own extents: the gate edge and the water sit on lattice lines */
-  c->W   = RoundToInt(c->W / sim->dx) * sim->dx;
-  c->H   = RoundToInt(c->H / sim->dx) * sim->dx;
-  c->a   = RoundToInt(c->a / sim->dx) * sim->dx;
-  c->Lc  = RoundToInt(c->Lc / sim->dx) * sim->dx;
-  c->top = RoundToInt(c->top / sim->dx) * sim->dx;
-  if (c->dxc < 0) c->dxc = sim->dx;
+  c->W   = RoundToInt(c->W / sim->phys.dx) * sim->phys.dx;
+  c->H   = RoundToInt(c->H / sim->phys.dx) * sim->phys.dx;
+  c->a   = RoundToInt(c->a / sim->phys.dx) * sim->phys.dx;
+  c->Lc  = RoundToInt(c->Lc / sim->phys.dx) * sim->phys.dx;
+  c->top = RoundToInt(c->top / sim->phys.dx) * sim->phys.dx;
+  if (c->dxc < 0) c->dxc = sim->phys.dx;
   PetscCall(SceneZonesSetUp(sim, c->dxc, &c->W, &c->fine, &c->H));
   c->xg0 = c->W;
-  c->xg1 = c->W + c->gate_rows * sim->dx;
+  c->xg1 = c->W + c->gate_rows * sim->phys.dx;
   /* h_up mid-reservoir; h_down two openings past the gate's sharp upstream edge, beyond the vena
    * contracta (at ~ a / Cc = 1.6 a; the frictionless supercritical jet keeps its depth after it) */
   c->x_up   = 0.5 * c->W;
   c->x_down = c->xg0 + 2 * c->a;
-  PetscCheck(c->x_down + 2 * sim->dx < c->xg1 + c->Lc, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "The h_down station x = %g lies outside the channel: increase -channel_length", (double)c->x_down);
-  sim->v_ref     = vmax;
+  PetscCheck(c->x_down + 2 * sim->phys.dx < c->xg1 + c->Lc, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "The h_down station x = %g lies outside the channel: increase -channel_length", (double)c->x_down);
+  sim->phys.v_ref     = vmax;
   /* walls: rows at the coarse spacing, or the fine rows as deep (< rows dc + dx) */
   sim->dom_lo[0] = -(c->rows + 0.5) * c->dxc;
-  sim->dom_hi[0] = c->xg1 + c->Lc + c->rows * c->dxc + 1.5 * sim->dx;
-  sim->dom_lo[1] = -(c->rows * c->dxc + 1.5 * sim->dx);
+  sim->dom_hi[0] = c->xg1 + c->Lc + c->rows * c->dxc + 1.5 * sim->phys.dx;
+  sim->dom_lo[1] = -(c->rows * c->dxc + 1.5 * sim->phys.dx);
   sim->dom_hi[1] = c->top + c->H; /* room for splashes above the walls */
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -119,7 +119,7 @@ static PetscErrorCode Create(Sim sim)
 static PetscErrorCode Populate(Sim sim)
 {
   Sluice   *c  = (Sluice *)sim->scene_ctx;
-  PetscReal dx = sim->dx, rho0 = sim->fl.rho0;
+  PetscReal dx = sim->phys.dx, rho0 = sim->phys.fl.rho0;
   PetscInt  ng = c->gate_rows, nj = RoundToInt((c->top - c->a) / dx);
   PetscReal tb = PetscTanReal(c->bevel * PETSC_PI / 180);
   PetscFunctionBeginUser;
@@ -162,7 +162,7 @@ static PetscErrorCode Probe(Sim sim, PetscReal *vals)
   Sluice    *c = (Sluice *)sim->scene_ctx;
   Particles  P = sim->P;
   PetscReal *x = PField(P, FIELD_X), *v = PField(P, FIELD_V), *m = PField(P, FIELD_M), *rho = PField(P, FIELD_RHO);
-  PetscReal  s[4] = {0, 0, 0, 0}, dx = sim->dx, xc = 0.5 * (c->xg0 + c->xg1);
+  PetscReal  s[4] = {0, 0, 0, 0}, dx = sim->phys.dx, xc = 0.5 * (c->xg0 + c->xg1);
   PetscFunctionBeginUser;
   for (PetscInt a = 0; a < P->n; a++) {
     PetscReal V, xa = x[2 * a];
@@ -175,10 +175,10 @@ static PetscErrorCode Probe(Sim sim, PetscReal *vals)
   }
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, s, 4, MPIU_REAL, MPI_SUM, sim->comm));
   vals[0] = s[0]; vals[1] = s[1]; vals[2] = s[2];
-  PetscCall(SeriesAppend(&c->q, sim->t, s[0]));
-  PetscCall(SeriesAppend(&c->hup, sim->t, s[1]));
-  PetscCall(SeriesAppend(&c->hdown, sim->t, s[2]));
-  PetscCall(SeriesAppend(&c->vup, sim->t, s[3]));
+  PetscCall(SeriesAppend(&c->q, sim->phys.t, s[0]));
+  PetscCall(SeriesAppend(&c->hup, sim->phys.t, s[1]));
+  PetscCall(SeriesAppend(&c->hdown, sim->phys.t, s[2]));
+  PetscCall(SeriesAppend(&c->vup, sim->phys.t, s[3]));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -228,7 +228,7 @@ static inline PetscReal ImpliedCc(PetscReal q, PetscReal a, PetscReal h, PetscRe
 static PetscErrorCode Errors(Sim sim, FILE *f)
 {
   Sluice   *c = (Sluice *)sim->scene_ctx;
-  PetscReal Cc = 0.611, g = -sim->g[1], t0 = c->win[0], t1 = PetscMin(c->win[1], sim->t);
+  PetscReal Cc = 0.611, g = -sim->phys.g[1], t0 = c->win[0], t1 = PetscMin(c->win[1], sim->phys.t);
   PetscReal T = 0, Eabs = 0, Ebias = 0, Qs = 0, Qr = 0, Hd = 0, Ccq = 0, hmin = PETSC_MAX_REAL, hmax = 0;
   PetscBool found;
   PetscFunctionBeginUser;

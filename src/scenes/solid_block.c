@@ -32,7 +32,7 @@ static PetscErrorCode Create(Sim sim)
   PetscCall(SceneKeepReal(sim, &c->s_err_max));
   PetscCall(SceneKeepReal(sim, &c->d_min_min));
   c->n = 20; c->size = 0.02; c->rate = -1; c->s0 = 1e4; c->jitter = 0;
-  sim->sl.rho0 = 1000; sim->sl.K = 3.25e6; sim->sl.G = 7.15e5;
+  sim->phys.sl.rho0 = 1000; sim->phys.sl.K = 3.25e6; sim->phys.sl.G = 7.15e5;
   PetscOptionsBegin(sim->comm, NULL, "Scene solid_block: free elastic block (objectivity and tensile-instability checks)", "");
   PetscCall(OptEList("-block_motion", "Motion of the block", "", BlockMotions, 3, BlockMotions[motion], &motion, NULL));
   PetscCall(OptReal("-block_size", "Side of the square block (m)", "", c->size, &c->size, NULL));
@@ -46,12 +46,12 @@ static PetscErrorCode Create(Sim sim)
   PetscCheck(c->size > 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-block_size %g must be > 0", (double)c->size);
   PetscCheck(c->jitter >= 0 && c->jitter < 0.3, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-block_jitter %g must be in [0, 0.3)", (double)c->jitter);
   PetscCheck(c->s0 > 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-block_s0 %g must be > 0", (double)c->s0);
-  if (sim->dx > 0) c->n = RoundToInt(c->size / sim->dx);
+  if (sim->phys.dx > 0) c->n = RoundToInt(c->size / sim->phys.dx);
   PetscCheck(c->n >= 4, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "The block needs >= 4 particles along a side (-block_n or -dx)");
-  sim->dx        = c->size / c->n;
-  sim->has_fluid = PETSC_FALSE;
-  sim->has_solid = PETSC_TRUE;
-  sim->g[0] = sim->g[1] = 0;
+  sim->phys.dx        = c->size / c->n;
+  sim->phys.has_fluid = PETSC_FALSE;
+  sim->phys.has_solid = PETSC_TRUE;
+  sim->phys.g[0] = sim->phys.g[1] = 0;
   if (sim->t_end < 0) sim->t_end = c->motion == BLOCK_ROTATE ? 0.5 * PETSC_PI / c->rate : 0.05;
   c->c[0] = c->c[1] = 0.5 * c->size;
   {
@@ -85,11 +85,11 @@ static PetscErrorCode Populate(Sim sim)
   Particles  P = sim->P;
   PetscReal *x, *v, *S;
   PetscFunctionBeginUser;
-  PetscCall(SceneAddLattice(sim, KIND_SOLID, 0.5 * sim->dx, 0.5 * sim->dx, c->n, c->n, sim->dx, sim->sl.rho0));
+  PetscCall(SceneAddLattice(sim, KIND_SOLID, 0.5 * sim->phys.dx, 0.5 * sim->phys.dx, c->n, c->n, sim->phys.dx, sim->phys.sl.rho0));
   x = PField(P, FIELD_X); v = PField(P, FIELD_V); S = PField(P, FIELD_S);
   for (PetscInt a = 0; a < P->n; a++) {
-    x[2 * a] += c->jitter * sim->dx * Hash(P->id[a], 1);
-    x[2 * a + 1] += c->jitter * sim->dx * Hash(P->id[a], 2);
+    x[2 * a] += c->jitter * sim->phys.dx * Hash(P->id[a], 1);
+    x[2 * a + 1] += c->jitter * sim->phys.dx * Hash(P->id[a], 2);
     switch (c->motion) {
     case BLOCK_TRANSLATE: v[2 * a] = c->rate; v[2 * a + 1] = 0.5 * c->rate; break;
     case BLOCK_ROTATE:
@@ -121,7 +121,7 @@ static PetscErrorCode Probe(Sim sim, PetscReal *vals)
   Particles  P = sim->P;
   Cells      C = sim->cells;
   PetscReal *x = PField(P, FIELD_X), *S = PField(P, FIELD_S), e = 0, d2 = PETSC_MAX_REAL;
-  PetscReal  th = c->rate * sim->t, q = PetscCosReal(2 * th), r = PetscSinReal(2 * th);
+  PetscReal  th = c->rate * sim->phys.t, q = PetscCosReal(2 * th), r = PetscSinReal(2 * th);
   /* Q diag(s0, -s0) Q^T = s0 [[cos 2th, sin 2th], [sin 2th, -cos 2th]] */
   PetscReal  ref[3] = {c->s0 * q, c->s0 * r, -c->s0 * q};
   PetscFunctionBeginUser;
@@ -138,8 +138,8 @@ static PetscErrorCode Probe(Sim sim, PetscReal *vals)
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &e, 1, MPIU_REAL, MPIU_MAX, sim->comm));
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &d2, 1, MPIU_REAL, MPIU_MIN, sim->comm));
   vals[0] = e / c->s0;
-  vals[1] = PetscSqrtReal(d2) / sim->dx;
-  PetscCall(SolidEnergy(sim, &vals[2], &vals[3]));
+  vals[1] = PetscSqrtReal(d2) / sim->phys.dx;
+  PetscCall(SolidEnergy(&sim->phys, &vals[2], &vals[3]));
   c->s_err_max = PetscMax(c->s_err_max, vals[0]);
   c->d_min_min = PetscMin(c->d_min_min, vals[1]);
   PetscFunctionReturn(PETSC_SUCCESS);

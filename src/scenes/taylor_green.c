@@ -29,26 +29,26 @@ static PetscErrorCode Create(Sim sim)
   c->L = 1.0; c->U = 1.0; c->Re = 100;
   PetscOptionsBegin(sim->comm, NULL, "Scene taylor_green: decaying vortices in a periodic unit square (L = 1 m, U = 1 m/s)", "");
   PetscCall(OptReal("-re", "Reynolds number U L / nu; sets mu = rho0 U L / Re (a later -fluid_mu overrides)", "", c->Re, &c->Re, NULL));
-  PetscCall(OptInt("-dim", "Dimension: 2, or 3 for the same vortices in a periodic cube (uniform in z)", "", sim->dim, &sim->dim, NULL));
+  PetscCall(OptInt("-dim", "Dimension: 2, or 3 for the same vortices in a periodic cube (uniform in z)", "", sim->phys.dim, &sim->phys.dim, NULL));
   PetscOptionsEnd();
-  PetscCheck(sim->dim == 2 || sim->dim == 3, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dim %" PetscInt_FMT " must be 2 or 3", sim->dim);
+  PetscCheck(sim->phys.dim == 2 || sim->phys.dim == 3, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dim %" PetscInt_FMT " must be 2 or 3", sim->phys.dim);
   PetscCheck(c->Re > 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-re %g must be > 0", (double)c->Re);
-  if (sim->dx < 0) sim->dx = c->L / 50;
+  if (sim->phys.dx < 0) sim->phys.dx = c->L / 50;
   if (sim->t_end < 0) sim->t_end = 1.0;
   /* the lattice must tile the period exactly: dx = L / n */
-  n = RoundToInt(c->L / sim->dx);
-  PetscCheck(n >= 8, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dx %g leaves fewer than 8 particles across the %g m period: choose -dx <= %g", (double)sim->dx, (double)c->L, (double)(c->L / 8));
-  if (PetscAbsReal(sim->dx - c->L / n) > 1e-12 * c->L) PetscCall(PetscInfo(NULL, "taylor_green: -dx %g rounded to %g = L / %" PetscInt_FMT "\n", (double)sim->dx, (double)(c->L / n), n));
-  sim->dx          = c->L / n;
-  sim->confined    = PETSC_TRUE; /* no free surface */
-  for (PetscInt d = 0; d < sim->dim; d++) {
+  n = RoundToInt(c->L / sim->phys.dx);
+  PetscCheck(n >= 8, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dx %g leaves fewer than 8 particles across the %g m period: choose -dx <= %g", (double)sim->phys.dx, (double)c->L, (double)(c->L / 8));
+  if (PetscAbsReal(sim->phys.dx - c->L / n) > 1e-12 * c->L) PetscCall(PetscInfo(NULL, "taylor_green: -dx %g rounded to %g = L / %" PetscInt_FMT "\n", (double)sim->phys.dx, (double)(c->L / n), n));
+  sim->phys.dx          = c->L / n;
+  sim->phys.confined    = PETSC_TRUE; /* no free surface */
+  for (PetscInt d = 0; d < sim->phys.dim; d++) {
     sim->periodic[d] = PETSC_TRUE;
     sim->dom_lo[d]   = 0;
     sim->dom_hi[d]   = c->L;
-    sim->g[d]        = 0;
+    sim->phys.g[d]        = 0;
   }
-  sim->fl.mu = sim->fl.rho0 * c->U * c->L / c->Re;
-  sim->v_ref = c->U;
+  sim->phys.fl.mu = sim->phys.fl.rho0 * c->U * c->L / c->Re;
+  sim->phys.v_ref = c->U;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -64,18 +64,18 @@ static PetscErrorCode Populate(Sim sim)
 {
   TaylorGreen *c = (TaylorGreen *)sim->scene_ctx;
   Particles    P;
-  PetscReal   *x, *v, *p, *rho, *m, dx = sim->dx, k = 2 * PETSC_PI / c->L, E = 0;
-  PetscInt     n = RoundToInt(c->L / dx), D = sim->dim;
+  PetscReal   *x, *v, *p, *rho, *m, dx = sim->phys.dx, k = 2 * PETSC_PI / c->L, E = 0;
+  PetscInt     n = RoundToInt(c->L / dx), D = sim->phys.dim;
   PetscFunctionBeginUser;
-  if (D == 3) PetscCall(SceneAddBlock(sim, KIND_FLUID, (PetscReal[]){0.5 * dx, 0.5 * dx, 0.5 * dx}, (PetscInt[]){n, n, n}, dx, sim->fl.rho0));
-  else PetscCall(SceneAddLattice(sim, KIND_FLUID, 0.5 * dx, 0.5 * dx, n, n, dx, sim->fl.rho0));
+  if (D == 3) PetscCall(SceneAddBlock(sim, KIND_FLUID, (PetscReal[]){0.5 * dx, 0.5 * dx, 0.5 * dx}, (PetscInt[]){n, n, n}, dx, sim->phys.fl.rho0));
+  else PetscCall(SceneAddLattice(sim, KIND_FLUID, 0.5 * dx, 0.5 * dx, n, n, dx, sim->phys.fl.rho0));
   P = sim->P;
   x = PField(P, FIELD_X); v = PField(P, FIELD_V); p = PField(P, FIELD_P); rho = PField(P, FIELD_RHO); m = PField(P, FIELD_M);
   for (PetscInt a = 0; a < P->n; a++) {
     Exact(c, 0, 0, &x[D * a], &v[D * a]); /* w = 0 in 3D */
     /* exact pressure at t = 0, density through the EOS (Eq. 20) */
-    p[a]   = 0.25 * sim->fl.rho0 * c->U * c->U * (PetscCosReal(2 * k * x[D * a]) + PetscCosReal(2 * k * x[D * a + 1]));
-    rho[a] = EOSDensity(&sim->fl, p[a]);
+    p[a]   = 0.25 * sim->phys.fl.rho0 * c->U * c->U * (PetscCosReal(2 * k * x[D * a]) + PetscCosReal(2 * k * x[D * a + 1]));
+    rho[a] = EOSDensity(&sim->phys.fl, p[a]);
     E += 0.5 * m[a] * (v[D * a] * v[D * a] + v[D * a + 1] * v[D * a + 1]);
   }
   PetscCall(MPIU_Allreduce(&E, &c->E0, 1, MPIU_REAL, MPI_SUM, sim->comm));
@@ -89,13 +89,13 @@ static PetscErrorCode Probe(Sim sim, PetscReal *vals)
   TaylorGreen *c = (TaylorGreen *)sim->scene_ctx;
   Particles    P = sim->P;
   PetscReal   *x = PField(P, FIELD_X), *v = PField(P, FIELD_V), *m = PField(P, FIELD_M);
-  PetscReal    s[3] = {0, 0, 0}, nu = sim->fl.mu / sim->fl.rho0;
+  PetscReal    s[3] = {0, 0, 0}, nu = sim->phys.fl.mu / sim->phys.fl.rho0;
   PetscInt     D = P->dim;
   PetscFunctionBeginUser;
   for (PetscInt a = 0; a < P->n; a++) {
     PetscReal ve[2], ex, ey;
     if (!KindIsFluid(P->kind[a])) continue;
-    Exact(c, nu, sim->t, &x[D * a], ve);
+    Exact(c, nu, sim->phys.t, &x[D * a], ve);
     ex = v[D * a] - ve[0]; ey = v[D * a + 1] - ve[1];
     s[0] += 0.5 * m[a] * (v[D * a] * v[D * a] + v[D * a + 1] * v[D * a + 1]);
     s[1] += ex * ex + ey * ey;
@@ -110,7 +110,7 @@ static PetscErrorCode Probe(Sim sim, PetscReal *vals)
   vals[1]    = s[2] > 0 ? PetscSqrtReal(s[1] / s[2]) : 0;
   c->e_last  = vals[0];
   c->l2_last = vals[1];
-  c->t_last  = sim->t;
+  c->t_last  = sim->phys.t;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -118,14 +118,14 @@ static PetscErrorCode Probe(Sim sim, PetscReal *vals)
 static PetscErrorCode Errors(Sim sim, FILE *f)
 {
   TaylorGreen *c = (TaylorGreen *)sim->scene_ctx;
-  PetscReal    vals[2], nu = sim->fl.mu / sim->fl.rho0, ratio, exact;
+  PetscReal    vals[2], nu = sim->phys.fl.mu / sim->phys.fl.rho0, ratio, exact;
   PetscFunctionBeginUser;
-  if (c->t_last != sim->t) PetscCall(Probe(sim, vals)); /* the last probe row may predate t_end */
+  if (c->t_last != sim->phys.t) PetscCall(Probe(sim, vals)); /* the last probe row may predate t_end */
   ratio = c->e_last / c->E0;
-  exact = PetscExpReal(-16 * PETSC_PI * PETSC_PI * nu * sim->t / (c->L * c->L));
+  exact = PetscExpReal(-16 * PETSC_PI * PETSC_PI * nu * sim->phys.t / (c->L * c->L));
   if (f)
     fprintf(f, "\"e_kin_rel_err_final\": %.6g, \"e_kin_ratio_final\": %.9g, \"e_kin_ratio_exact\": %.9g, \"l2_vel_err_final\": %.6g, \"t_final\": %.9g, \"re\": %.6g, \"reference\": \"Taylor-Green analytic decay\"",
-            (double)(PetscAbsReal(ratio - exact) / exact), (double)ratio, (double)exact, (double)c->l2_last, (double)sim->t, (double)(c->U * c->L / nu));
+            (double)(PetscAbsReal(ratio - exact) / exact), (double)ratio, (double)exact, (double)c->l2_last, (double)sim->phys.t, (double)(c->U * c->L / nu));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

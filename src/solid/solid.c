@@ -4,7 +4,6 @@
 #include "fluid/fluid_terms.h"
 #include "base/kernel.h"
 #include "fluid/operators.h"
-#include "scenes/scene.h"
 #include "fluid/boundary.h"
 #include "fluid/isph.h"
 #include "solid/solid_impl.h"
@@ -14,39 +13,39 @@ const char *const SolidGradients[]    = {"standard", "corrected", "SolidGradient
 const char *const SolidFormulations[] = {"updated", "total", "SolidFormulation", "SOLID_", NULL};
 
 /* The coupling's options (-fsi_), with a fluid: in the solid, which carries them. */
-static PetscErrorCode FSISetFromOptions(Sim sim)
+static PetscErrorCode FSISetFromOptions(Physics *ph)
 {
-  Solid s = sim->solid;
+  Solid s = ph->solid;
   PetscFunctionBeginUser;
-  s->implicit = (PetscBool)(sim->fluid == FLUID_ISPH);
-  s->transit  = sim->fluid == FLUID_ISPH ? 0.85 : 0.0; /* K, G x 5 gate: 1.0 swings the load -138..360 N/m, 0.85 runs clean */
-  PetscOptionsBegin(sim->comm, "fsi_", "Fluid-structure coupling", "Solid");
-  if (sim->fluid == FLUID_ISPH) PetscCall(OptBool("-implicit", "ISPH + solid: the solid rows of the pressure equation answer the solid's acceleration under that pressure (implicit interface; off = the solid seen as a wall at rest during the solve, unstable for light solids)", "", s->implicit, &s->implicit, NULL));
-  if (sim->fluid == FLUID_ISPH) PetscCall(OptReal("-dt_transit", "ISPH + solid: the fluid step is at most this many times the time an elastic wave (c0 of the solid) takes to cross the solid's largest extent, since the pressure is frozen over the solid sub-steps (0 = no limit); a gate 5x stiffer than the rubber needs it", "", s->transit, &s->transit, NULL));
+  s->implicit = (PetscBool)(ph->fluid == FLUID_ISPH);
+  s->transit  = ph->fluid == FLUID_ISPH ? 0.85 : 0.0; /* K, G x 5 gate: 1.0 swings the load -138..360 N/m, 0.85 runs clean */
+  PetscOptionsBegin(ph->comm, "fsi_", "Fluid-structure coupling", "Solid");
+  if (ph->fluid == FLUID_ISPH) PetscCall(OptBool("-implicit", "ISPH + solid: the solid rows of the pressure equation answer the solid's acceleration under that pressure (implicit interface; off = the solid seen as a wall at rest during the solve, unstable for light solids)", "", s->implicit, &s->implicit, NULL));
+  if (ph->fluid == FLUID_ISPH) PetscCall(OptReal("-dt_transit", "ISPH + solid: the fluid step is at most this many times the time an elastic wave (c0 of the solid) takes to cross the solid's largest extent, since the pressure is frozen over the solid sub-steps (0 = no limit); a gate 5x stiffer than the rubber needs it", "", s->transit, &s->transit, NULL));
   PetscCall(OptBool("-repulsion", "Repulsive force Eq. 41 between fluid and solid particles (default: on with -fluid wcsph, off with isph)", "", s->repulsion, &s->repulsion, NULL));
   PetscOptionsEnd();
-  PetscCheck(s->transit >= 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-fsi_dt_transit %g must be >= 0", (double)s->transit);
+  PetscCheck(s->transit >= 0, ph->comm, PETSC_ERR_ARG_OUTOFRANGE, "-fsi_dt_transit %g must be >= 0", (double)s->transit);
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode SolidSetFromOptions(Sim sim)
+PetscErrorCode SolidSetFromOptions(Physics *ph)
 {
-  SolidMaterial *m = &sim->sl;
+  SolidMaterial *m = &ph->sl;
   Solid          s;
   PetscInt       grad = SOLID_GRAD_CORRECTED, form = SOLID_TOTAL;
-  PetscBool      fluid = sim->has_fluid;
+  PetscBool      fluid = ph->has_fluid;
 
   PetscFunctionBeginUser;
   PetscCall(PetscNew(&s));
-  sim->solid   = s;
+  ph->solid   = s;
   s->skin      = 0.4;
   s->subcycle  = PETSC_TRUE;
-  s->repulsion = (PetscBool)(fluid && sim->fluid == FLUID_WCSPH);
+  s->repulsion = (PetscBool)(fluid && ph->fluid == FLUID_WCSPH);
   s->hourglass = 0;
   s->order     = 2;
   s->quadrature = PETSC_TRUE;
   s->clamp_face = PETSC_TRUE;
-  PetscOptionsBegin(sim->comm, "solid_", "Elastic solid: hypo-elastic updated-Lagrangian (Eqs. 20, 23-40) or total-Lagrangian", "Solid");
+  PetscOptionsBegin(ph->comm, "solid_", "Elastic solid: hypo-elastic updated-Lagrangian (Eqs. 20, 23-40) or total-Lagrangian", "Solid");
   PetscCall(OptEList("-formulation", "total (default): total-Lagrangian neo-Hookean with a second-order reference gradient (converges in bending); updated: the paper's hypo-elastic scheme (Jaumann rate, artificial stress)", "", SolidFormulations, 2, SolidFormulations[form], &form, NULL));
   s->formulation = (SolidFormulation)form;
   PetscCall(OptReal("-damping", "Mass-proportional damping rate zeta (1/s): acc -= zeta v, to reach a static solution by dynamic relaxation (about twice the lowest angular frequency damps it critically); 0 = off", "", s->damping, &s->damping, NULL));
@@ -64,54 +63,54 @@ PetscErrorCode SolidSetFromOptions(Sim sim)
   PetscCall(OptReal("-art_stress_n", "Exponent n of f = W_ab / W(dx, h) in the artificial stress, Eq. 23", "", m->n, &m->n, NULL));
   PetscCall(OptEList("-gradient", "Velocity gradient of the strain rate: standard (Eqs. 35-38) or corrected (Bonet-Lok, exact for linear fields)", "", SolidGradients, 2, SolidGradients[grad], &grad, NULL));
   if (fluid) PetscCall(OptBool("-subcycle", "Multi-rate: sub-cycle the solid with its own step inside each fluid step (off: one step, the smaller, for both)", "", s->subcycle, &s->subcycle, NULL));
-  s->cfl = sim->cfl;
+  s->cfl = ph->cfl;
   PetscCall(OptReal("-cfl", "Courant number of the solid's step, cfl min(h, 1.3 dx) / (c0 + |v|) (default: -cfl)", "", s->cfl, &s->cfl, NULL));
   PetscCall(OptReal("-skin", "Neighbour-list skin of the solid sub-steps, in particle spacings", "", s->skin, &s->skin, NULL));
   PetscOptionsEnd();
   s->gradient = (SolidGradient)grad;
-  if (fluid) PetscCall(FSISetFromOptions(sim));
-  PetscCheck(s->damping >= 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-solid_damping %g must be >= 0", (double)s->damping);
-  PetscCheck(s->order == 1 || s->order == 2, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-solid_order %" PetscInt_FMT " must be 1 or 2", s->order);
-  PetscCheck(s->hourglass >= 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-solid_hourglass %g must be >= 0", (double)s->hourglass);
-  PetscCheck(s->skin >= 0 && s->skin <= 2, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-solid_skin %g must be in [0, 2] particle spacings", (double)s->skin);
-  PetscCheck(s->cfl > 0 && s->cfl <= 1, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-solid_cfl %g must be in (0, 1]", (double)s->cfl);
+  if (fluid) PetscCall(FSISetFromOptions(ph));
+  PetscCheck(s->damping >= 0, ph->comm, PETSC_ERR_ARG_OUTOFRANGE, "-solid_damping %g must be >= 0", (double)s->damping);
+  PetscCheck(s->order == 1 || s->order == 2, ph->comm, PETSC_ERR_ARG_OUTOFRANGE, "-solid_order %" PetscInt_FMT " must be 1 or 2", s->order);
+  PetscCheck(s->hourglass >= 0, ph->comm, PETSC_ERR_ARG_OUTOFRANGE, "-solid_hourglass %g must be >= 0", (double)s->hourglass);
+  PetscCheck(s->skin >= 0 && s->skin <= 2, ph->comm, PETSC_ERR_ARG_OUTOFRANGE, "-solid_skin %g must be in [0, 2] particle spacings", (double)s->skin);
+  PetscCheck(s->cfl > 0 && s->cfl <= 1, ph->comm, PETSC_ERR_ARG_OUTOFRANGE, "-solid_cfl %g must be in (0, 1]", (double)s->cfl);
   /* the one-sided fits at a surface are stiffer than the bulk: measured on the oscillating plate
    * (6 across) the total-Lagrangian solid is stable at 0.35 and not at 0.4 */
-  PetscCheck(s->formulation != SOLID_TOTAL || s->cfl <= 0.3, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-solid_cfl %g is above 0.3, the stable limit of -solid_formulation total with a margin (its surface particles are stiffer than the bulk): use -solid_cfl 0.3 or less", (double)s->cfl);
-  PetscCheck(m->rho0 > 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-solid_rho %g must be > 0", (double)m->rho0);
-  PetscCheck(m->K > 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-solid_K %g must be > 0", (double)m->K);
-  PetscCheck(m->G >= 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-solid_G %g must be >= 0", (double)m->G);
-  PetscCheck(m->alpha >= 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-solid_alpha %g must be >= 0", (double)m->alpha);
-  PetscCheck(m->eps >= 0 && m->eps < 1, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-solid_art_stress %g must be in [0, 1)", (double)m->eps);
-  PetscCheck(m->n > 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-solid_art_stress_n %g must be > 0", (double)m->n);
+  PetscCheck(s->formulation != SOLID_TOTAL || s->cfl <= 0.3, ph->comm, PETSC_ERR_ARG_OUTOFRANGE, "-solid_cfl %g is above 0.3, the stable limit of -solid_formulation total with a margin (its surface particles are stiffer than the bulk): use -solid_cfl 0.3 or less", (double)s->cfl);
+  PetscCheck(m->rho0 > 0, ph->comm, PETSC_ERR_ARG_OUTOFRANGE, "-solid_rho %g must be > 0", (double)m->rho0);
+  PetscCheck(m->K > 0, ph->comm, PETSC_ERR_ARG_OUTOFRANGE, "-solid_K %g must be > 0", (double)m->K);
+  PetscCheck(m->G >= 0, ph->comm, PETSC_ERR_ARG_OUTOFRANGE, "-solid_G %g must be >= 0", (double)m->G);
+  PetscCheck(m->alpha >= 0, ph->comm, PETSC_ERR_ARG_OUTOFRANGE, "-solid_alpha %g must be >= 0", (double)m->alpha);
+  PetscCheck(m->eps >= 0 && m->eps < 1, ph->comm, PETSC_ERR_ARG_OUTOFRANGE, "-solid_art_stress %g must be in [0, 1)", (double)m->eps);
+  PetscCheck(m->n > 0, ph->comm, PETSC_ERR_ARG_OUTOFRANGE, "-solid_art_stress_n %g must be > 0", (double)m->n);
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode SolidSetUp(Sim sim)
+PetscErrorCode SolidSetUp(Physics *ph)
 {
-  SolidMaterial *m = &sim->sl;
-  Solid          s = sim->solid;
-  PetscBool      fluid = sim->has_fluid;
+  SolidMaterial *m = &ph->sl;
+  Solid          s = ph->solid;
+  PetscBool      fluid = ph->has_fluid;
 
   PetscFunctionBeginUser;
   m->c0 = PetscSqrtReal(m->K / m->rho0);
-  PetscCall(ParticlesEnableField(sim->P, FIELD_S, PETSC_TRUE));
-  PetscCall(ParticlesEnableField(sim->P, FIELD_ACC, PETSC_FALSE));
-  PetscCall(ParticlesEnableField(sim->P, FIELD_DRHO, PETSC_FALSE));
-  if (s->gradient == SOLID_GRAD_CORRECTED && s->formulation == SOLID_UPDATED) PetscCall(ParticlesEnableField(sim->P, FIELD_KCORR, PETSC_FALSE)); /* ghosts: refreshed when computed */
+  PetscCall(ParticlesEnableField(ph->P, FIELD_S, PETSC_TRUE));
+  PetscCall(ParticlesEnableField(ph->P, FIELD_ACC, PETSC_FALSE));
+  PetscCall(ParticlesEnableField(ph->P, FIELD_DRHO, PETSC_FALSE));
+  if (s->gradient == SOLID_GRAD_CORRECTED && s->formulation == SOLID_UPDATED) PetscCall(ParticlesEnableField(ph->P, FIELD_KCORR, PETSC_FALSE)); /* ghosts: refreshed when computed */
   if (s->formulation == SOLID_TOTAL) {
-    PetscCall(ParticlesEnableField(sim->P, FIELD_X0, PETSC_TRUE)); /* the reference configuration */
+    PetscCall(ParticlesEnableField(ph->P, FIELD_X0, PETSC_TRUE)); /* the reference configuration */
   }
   if (fluid) {
-    PetscCall(ParticlesEnableField(sim->P, FIELD_FVIEW, PETSC_TRUE));
-    PetscCall(ParticlesEnableField(sim->P, FIELD_VWALL, PETSC_FALSE));
+    PetscCall(ParticlesEnableField(ph->P, FIELD_FVIEW, PETSC_TRUE));
+    PetscCall(ParticlesEnableField(ph->P, FIELD_VWALL, PETSC_FALSE));
   }
-  if (s->repulsion) PetscCall(ParticlesEnableField(sim->P, FIELD_NORMAL, PETSC_TRUE));
-  if (s->implicit) PetscCall(ParticlesEnableField(sim->P, FIELD_AMEAN, PETSC_FALSE));
+  if (s->repulsion) PetscCall(ParticlesEnableField(ph->P, FIELD_NORMAL, PETSC_TRUE));
+  if (s->implicit) PetscCall(ParticlesEnableField(ph->P, FIELD_AMEAN, PETSC_FALSE));
   /* ISPH: the solid's loads (after the step's last rebuild) and its PPE rows (after the predictor's)
    * read the fluid ghosts' pressure, which nothing else recomputes there */
-  if (fluid && sim->fluid == FLUID_ISPH) PetscCall(ParticlesEnableField(sim->P, FIELD_P, PETSC_TRUE));
-  PetscCall(CellsCreateList(&sim->kernel, &s->nl));
+  if (fluid && ph->fluid == FLUID_ISPH) PetscCall(ParticlesEnableField(ph->P, FIELD_P, PETSC_TRUE));
+  PetscCall(CellsCreateList(&ph->kernel, &s->nl));
   { /* Sums over the lattice of spacing 1 on one side of a flat surface, at a particle of its first
      * row: |sum V grad W| (nrm_min, the normal's threshold) and Eq. 41's repulsion.  Eq. 41 is a
      * plain sum over the solid neighbours within 2 h, not a kernel sum, and its 1/3 is the paper's
@@ -119,20 +118,20 @@ PetscErrorCode SolidSetUp(Sim sim)
      * neighbours in 3D and ~3 times at h = 2 dx (where the gate blew up at its 27th step).  So the
      * sum is scaled to the paper's (2D, 1.3 dx; the layer k = 0), exactly 1 there, and a slab
      * repeats the 2D run. */
-    const PetscReal hh = sim->kernel.h_factor, href = SPH_H_FACTOR;
+    const PetscReal hh = ph->kernel.h_factor, href = SPH_H_FACTOR;
     PetscReal       g = 0, s2 = 0, s3 = 0, sref = 0;
-    PetscInt        nr = PetscMax(KernelSupportRows(&sim->kernel), 3), nk = sim->dim == 3 ? nr : 0;
+    PetscInt        nr = PetscMax(KernelSupportRows(&ph->kernel), 3), nk = ph->dim == 3 ? nr : 0;
     for (PetscInt k = -nk; k <= nk; k++) /* one layer in 2D */
       for (PetscInt j = 0; j <= nr; j++)
         for (PetscInt i = -nr; i <= nr; i++) {
           PetscReal r = PetscSqrtReal((PetscReal)(i * i + j * j + k * k)), rep = j ? FSIRepulsion(-1.0, r / (2 * hh), 1.0) : 0;
-          g += KernelF(&sim->kernel, r, hh) * j;
+          g += KernelF(&ph->kernel, r, hh) * j;
           s3 += rep;
           if (!k) s2 += rep;
           if (!k && j) sref += FSIRepulsion(-1.0, r / (2 * href), 1.0);
         }
     s->nrm_min         = 0.5 * PetscAbsReal(g);
-    s->repulsion_scale = sim->dim == 3 ? (s3 > 0 ? sref / s3 : 1) : (s2 > 0 ? sref / s2 : 1);
+    s->repulsion_scale = ph->dim == 3 ? (s3 > 0 ? sref / s3 : 1) : (s2 > 0 ? sref / s2 : 1);
   }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -156,17 +155,17 @@ PetscErrorCode SolidDestroy(Solid *s)
 /* Outward normal of solid surface particles, -sum_b V_b grad_a W / |.| over solid neighbours (the
  * kernel form of Eqs. 42-43's tangent turned by 90 degrees: it needs no ordering of the surface
  * particles); zero inside the body. */
-SPH_INLINE PetscErrorCode NormalsD(Sim sim, const PetscInt D)
+SPH_INLINE PetscErrorCode NormalsD(Physics *ph, const PetscInt D)
 {
-  Particles        P = sim->P;
-  Cells            C = sim->solid->nl;
+  Particles        P = ph->P;
+  Cells            C = ph->solid->nl;
   const PetscReal *x = PField(P, FIELD_X), *m = PField(P, FIELD_M), *rho = PField(P, FIELD_RHO), *h = PField(P, FIELD_H);
   PetscReal       *nrm = PField(P, FIELD_NORMAL);
   const FieldId    refresh[] = {FIELD_NORMAL};
 
   PetscFunctionBeginUser;
   for (PetscInt a = 0; a < P->n; a++) {
-    PetscReal g[3] = {0, 0, 0}, gn, dxa = h[a] / sim->kernel.h_factor;
+    PetscReal g[3] = {0, 0, 0}, gn, dxa = h[a] / ph->kernel.h_factor;
     for (PetscInt i = 0; i < D; i++) nrm[D * a + i] = 0;
     if (!KindIsSolid(P->kind[a])) continue;
     for (PetscInt k = C->nstart[a]; k < C->nstart[a + 1]; k++) {
@@ -175,48 +174,48 @@ SPH_INLINE PetscErrorCode NormalsD(Sim sim, const PetscInt D)
       for (PetscInt i = 0; i < D; i++) g[i] -= m[b] / rho[b] * C->f[k] * (x[D * a + i] - x[D * b + i]);
     }
     gn = PetscSqrtReal(VDot(g, g, D));
-    if (gn * dxa > sim->solid->nrm_min)
+    if (gn * dxa > ph->solid->nrm_min)
       for (PetscInt i = 0; i < D; i++) nrm[D * a + i] = g[i] / gn;
   }
-  PetscCall(HaloRefreshKinds(sim->halo, P, SolidKeep, 1, refresh));
+  PetscCall(HaloRefreshKinds(ph->halo, P, SolidKeep, 1, refresh));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-static PetscErrorCode Normals(Sim sim) { return SPH_DIM_DISPATCH(sim->dim, NormalsD, sim); }
+static PetscErrorCode Normals(Physics *ph) { return SPH_DIM_DISPATCH(ph->dim, NormalsD, ph); }
 
 PetscBool SolidKeep(PetscInt kind) { return KindIsSolid(kind); }
 
-PetscErrorCode SolidPrepare(Sim sim)
+PetscErrorCode SolidPrepare(Physics *ph)
 {
-  Solid            s = sim->solid;
-  Particles        P = sim->P;
+  Solid            s = ph->solid;
+  Particles        P = ph->P;
   const PetscReal *x = PField(P, FIELD_X);
   PetscFunctionBeginUser;
-  PetscCall(NeighbourhoodSubList(&sim->nbhd, SolidKeep, s->skin * sim->dx, s->nl));
+  PetscCall(NeighbourhoodSubList(ph->nb, SolidKeep, s->skin * ph->dx, s->nl));
   if (P->dim * P->n > s->cap_xref) {
     PetscCall(PetscFree(s->xref));
     s->cap_xref = 3 * P->n + 16;
     PetscCall(PetscMalloc1(s->cap_xref, &s->xref));
   }
   PetscCall(PetscArraycpy(s->xref, x, P->dim * P->n));
-  if (s->formulation == SOLID_TOTAL) PetscCall(SolidTotalPrepare(sim));
-  if (sim->has_fluid) { /* the fluid's last half kick came after its rebuild: the loads need its ghosts' velocities */
+  if (s->formulation == SOLID_TOTAL) PetscCall(SolidTotalPrepare(ph));
+  if (ph->has_fluid) { /* the fluid's last half kick came after its rebuild: the loads need its ghosts' velocities */
     const FieldId vel[] = {FIELD_V};
-    PetscCall(HaloRefresh(sim->halo, P, 1, vel));
+    PetscCall(HaloRefresh(ph->halo, P, 1, vel));
   }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
 /* After the drift: ghosts take the owners' new state, or, once some solid has moved half the
  * skin since SolidPrepare, everything is rebuilt (collective decision). */
-static PetscErrorCode SolidRefresh(Sim sim)
+static PetscErrorCode SolidRefresh(Physics *ph)
 {
-  Solid            s = sim->solid;
-  Particles        P = sim->P;
+  Solid            s = ph->solid;
+  Particles        P = ph->P;
   const PetscReal *x = PField(P, FIELD_X);
   const FieldId    state[] = {FIELD_X, FIELD_RHO, FIELD_S};
   const PetscInt   D = P->dim;
-  PetscReal        d2 = 0, lim = 0.5 * s->skin * sim->dx;
+  PetscReal        d2 = 0, lim = 0.5 * s->skin * ph->dx;
   PetscFunctionBeginUser;
   for (PetscInt a = 0; a < P->n; a++)
     if (P->kind[a] == KIND_SOLID) {
@@ -224,80 +223,80 @@ static PetscErrorCode SolidRefresh(Sim sim)
       VSub(x + D * a, s->xref + D * a, d, D);
       d2 = PetscMax(d2, VDot(d, d, D));
     }
-  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &d2, 1, MPIU_REAL, MPIU_MAX, sim->comm));
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &d2, 1, MPIU_REAL, MPIU_MAX, ph->comm));
   if (d2 >= lim * lim) {
-    PetscCall(NeighbourhoodRebuild(&sim->nbhd, sim->step));
-    PetscCall(SolidPrepare(sim));
+    PetscCall(NeighbourhoodRebuild(ph->nb, ph->step));
+    PetscCall(SolidPrepare(ph));
     s->nrebuild++;
   } else {
-    PetscCall(HaloRefreshKinds(sim->halo, P, SolidKeep, 3, state));
+    PetscCall(HaloRefreshKinds(ph->halo, P, SolidKeep, 3, state));
   }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode SolidRates(Sim sim)
+PetscErrorCode SolidRates(Physics *ph)
 {
   PetscFunctionBeginUser;
-  PetscCall(CellsUpdatePairs(sim->solid->nl, sim->P));
-  if (sim->solid->formulation == SOLID_TOTAL) {
-    if (sim->solid->repulsion) PetscCall(Normals(sim));
-    PetscCall(SolidTotalRates(sim));
+  PetscCall(CellsUpdatePairs(ph->solid->nl, ph->P));
+  if (ph->solid->formulation == SOLID_TOTAL) {
+    if (ph->solid->repulsion) PetscCall(Normals(ph));
+    PetscCall(SolidTotalRates(ph));
     PetscFunctionReturn(PETSC_SUCCESS);
   }
-  if (sim->solid->repulsion) PetscCall(Normals(sim));
-  PetscCall(SolidUpdatedRates(sim));
+  if (ph->solid->repulsion) PetscCall(Normals(ph));
+  PetscCall(SolidUpdatedRates(ph));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode SolidTransitLimit(Sim sim, PetscReal *dt)
+PetscErrorCode SolidTransitLimit(Physics *ph, PetscReal *dt)
 {
-  Solid s = sim->solid;
+  Solid s = ph->solid;
   PetscFunctionBeginUser;
   *dt = PETSC_MAX_REAL;
   if (!s || s->transit <= 0) PetscFunctionReturn(PETSC_SUCCESS);
   if (s->extent <= 0) { /* bounding box of the moving solids at the first call (SimSetUp: as built) */
-    const PetscReal *x = PField(sim->P, FIELD_X);
-    const PetscInt   D = sim->dim;
+    const PetscReal *x = PField(ph->P, FIELD_X);
+    const PetscInt   D = ph->dim;
     PetscReal        b[6]; /* xmin, ymin[, zmin], then -xmax, ...: all as minima */
     for (PetscInt i = 0; i < 2 * D; i++) b[i] = PETSC_MAX_REAL;
-    for (PetscInt a = 0; a < sim->P->n; a++)
-      if (sim->P->kind[a] == KIND_SOLID)
+    for (PetscInt a = 0; a < ph->P->n; a++)
+      if (ph->P->kind[a] == KIND_SOLID)
         for (PetscInt i = 0; i < D; i++) { b[i] = PetscMin(b[i], x[D * a + i]); b[D + i] = PetscMin(b[D + i], -x[D * a + i]); }
-    PetscCall(MPIU_Allreduce(MPI_IN_PLACE, b, (PetscMPIInt)(2 * D), MPIU_REAL, MPIU_MIN, sim->comm));
+    PetscCall(MPIU_Allreduce(MPI_IN_PLACE, b, (PetscMPIInt)(2 * D), MPIU_REAL, MPIU_MIN, ph->comm));
     s->extent = 0;
     for (PetscInt i = 0; i < D; i++) s->extent = PetscMax(s->extent, -b[D + i] - b[i]);
-    s->extent = b[0] < PETSC_MAX_REAL ? s->extent + sim->dx : 0;
+    s->extent = b[0] < PETSC_MAX_REAL ? s->extent + ph->dx : 0;
     if (s->extent <= 0) s->transit = 0; /* no moving solid */
   }
-  if (s->transit > 0) *dt = s->transit * s->extent / sim->sl.c0;
+  if (s->transit > 0) *dt = s->transit * s->extent / ph->sl.c0;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode SolidTimeStep(Sim sim, PetscReal *dt)
+PetscErrorCode SolidTimeStep(Physics *ph, PetscReal *dt)
 {
-  Particles        P = sim->P;
+  Particles        P = ph->P;
   const PetscReal *v = PField(P, FIELD_V), *acc = PField(P, FIELD_ACC), *h = PField(P, FIELD_H);
   /* The solid's stable step is set by its particle spacing, not by h: the nearest pairs carry the
    * stiffest mode.  -solid_cfl is calibrated at h = 1.3 dx (the paper's); at larger h / dx the step
    * stays that of h = 1.3 dx (at 2 dx it would be 1.54x longer: the elastic gate blew up in its
    * first fluid step with the Wendland kernel at 2 dx). */
-  const PetscReal  hlen = PetscMin(1.0, SPH_H_FACTOR / sim->kernel.h_factor);
+  const PetscReal  hlen = PetscMin(1.0, SPH_H_FACTOR / ph->kernel.h_factor);
   PetscReal        lim  = PETSC_MAX_REAL;
 
   PetscFunctionBeginUser;
   for (PetscInt a = 0; a < P->n; a++)
-    if (P->kind[a] == KIND_SOLID) lim = PetscMin(lim, AcousticStepLimit(sim->solid->cfl, hlen * h[a], sim->sl.c0, v + P->dim * a, acc + P->dim * a, P->dim));
-  PetscCall(MPIU_Allreduce(&lim, dt, 1, MPIU_REAL, MPIU_MIN, sim->comm));
+    if (P->kind[a] == KIND_SOLID) lim = PetscMin(lim, AcousticStepLimit(ph->solid->cfl, hlen * h[a], ph->sl.c0, v + P->dim * a, acc + P->dim * a, P->dim));
+  PetscCall(MPIU_Allreduce(&lim, dt, 1, MPIU_REAL, MPIU_MIN, ph->comm));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
 /* v += dt acc; the means over the fluid step (SolidBeginSubsteps) gain dt / dt_f of the current
  * acceleration and support force. */
-static void Kick(Sim sim, PetscReal dt)
+static void Kick(Physics *ph, PetscReal dt)
 {
-  Particles        P = sim->P;
-  Solid            s = sim->solid;
-  PetscReal       *v = PField(P, FIELD_V), *am = PField(P, FIELD_AMEAN), w = sim->dt > 0 ? dt / sim->dt : 0;
+  Particles        P = ph->P;
+  Solid            s = ph->solid;
+  PetscReal       *v = PField(P, FIELD_V), *am = PField(P, FIELD_AMEAN), w = ph->dt > 0 ? dt / ph->dt : 0;
   const PetscReal *acc = PField(P, FIELD_ACC);
   const PetscInt   D   = P->dim;
   for (PetscInt a = 0; a < P->n; a++) {
@@ -312,28 +311,28 @@ static void Kick(Sim sim, PetscReal dt)
   }
 }
 
-PetscErrorCode SolidBeginSubsteps(Sim sim)
+PetscErrorCode SolidBeginSubsteps(Physics *ph)
 {
-  Particles  P = sim->P;
+  Particles  P = ph->P;
   PetscReal *am = PField(P, FIELD_AMEAN);
   PetscFunctionBeginUser;
-  for (PetscInt i = 0; i < 3; i++) sim->solid->support_mean[i] = sim->solid->load_mean[i] = 0;
+  for (PetscInt i = 0; i < 3; i++) ph->solid->support_mean[i] = ph->solid->load_mean[i] = 0;
   if (am) PetscCall(PetscArrayzero(am, P->dim * P->n));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
 /* Kick-drift-kick like WCSPHStep, with density and stress as position-like variables:
  * v+ = v + dt/2 a;  (rho, S)' from the rates at (x, v+);  x' = x + dt v+;  v' = v+ + dt/2 a'. */
-PetscErrorCode SolidStep(Sim sim, PetscReal dt)
+PetscErrorCode SolidStep(Physics *ph, PetscReal dt)
 {
-  Particles     P     = sim->P;
+  Particles     P     = ph->P;
   const FieldId vel[] = {FIELD_V};
 
   PetscFunctionBeginUser;
-  Kick(sim, 0.5 * dt);
-  if (sim->scene->prescribe) PetscCall(sim->scene->prescribe(sim));
-  PetscCall(HaloRefreshKinds(sim->halo, P, SolidKeep, 1, vel)); /* only the solids were kicked */
-  if (sim->solid->formulation == SOLID_UPDATED) PetscCall(SolidUpdatedDeform(sim, dt)); /* total: F follows from the positions */
+  Kick(ph, 0.5 * dt);
+  if (ph->prescribe) PetscCall(ph->prescribe(ph->prescribe_ctx));
+  PetscCall(HaloRefreshKinds(ph->halo, P, SolidKeep, 1, vel)); /* only the solids were kicked */
+  if (ph->solid->formulation == SOLID_UPDATED) PetscCall(SolidUpdatedDeform(ph, dt)); /* total: F follows from the positions */
   {
     PetscReal *x = PField(P, FIELD_X), *v = PField(P, FIELD_V);
     for (PetscInt a = 0; a < P->n; a++) {
@@ -341,16 +340,16 @@ PetscErrorCode SolidStep(Sim sim, PetscReal dt)
       for (PetscInt i = 0; i < P->dim; i++) x[P->dim * a + i] += dt * v[P->dim * a + i];
     }
   }
-  PetscCall(SolidRefresh(sim));
-  PetscCall(SolidRates(sim));
-  Kick(sim, 0.5 * dt);
+  PetscCall(SolidRefresh(ph));
+  PetscCall(SolidRates(ph));
+  Kick(ph, 0.5 * dt);
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode SolidEnergy(Sim sim, PetscReal *ekin, PetscReal *estrain)
+PetscErrorCode SolidEnergy(Physics *ph, PetscReal *ekin, PetscReal *estrain)
 {
-  Particles            P = sim->P;
-  const SolidMaterial *m = &sim->sl;
+  Particles            P = ph->P;
+  const SolidMaterial *m = &ph->sl;
   const PetscReal     *v = PField(P, FIELD_V), *rho = PField(P, FIELD_RHO), *mass = PField(P, FIELD_M), *S = PField(P, FIELD_S), *p = PField(P, FIELD_P);
   PetscReal            e[2] = {0, 0};
 
@@ -369,21 +368,21 @@ PetscErrorCode SolidEnergy(Sim sim, PetscReal *ekin, PetscReal *estrain)
     e[0] += 0.5 * mass[a] * VDot(v + D * a, v + D * a, D);
     e[1] += mass[a] / rho[a] * ((m->G > 0 ? SS / (4 * m->G) : 0) + pa * pa / (2 * m->K));
   }
-  if (sim->solid->formulation == SOLID_TOTAL) e[1] = SolidTotalStrainEnergy(sim);
-  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, e, 2, MPIU_REAL, MPI_SUM, sim->comm));
+  if (ph->solid->formulation == SOLID_TOTAL) e[1] = SolidTotalStrainEnergy(ph);
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, e, 2, MPIU_REAL, MPI_SUM, ph->comm));
   *ekin    = e[0];
   *estrain = e[1];
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode SolidView(Sim sim, PetscViewer v)
+PetscErrorCode SolidView(Physics *ph, PetscViewer v)
 {
-  const SolidMaterial *m = &sim->sl;
+  const SolidMaterial *m = &ph->sl;
   PetscFunctionBeginUser;
-  if (sim->solid->formulation == SOLID_TOTAL) {
-    PetscCall(PetscViewerASCIIPrintf(v, "Solid: total-Lagrangian neo-Hookean, rho0 %g, K %g Pa, G %g Pa, c0 %g m/s; artificial viscosity alpha %g; hourglass control %g%s\n", (double)m->rho0, (double)m->K, (double)m->G, (double)m->c0, (double)m->alpha, (double)sim->solid->hourglass, m->eps > 0 ? "; -solid_art_stress not used" : ""));
+  if (ph->solid->formulation == SOLID_TOTAL) {
+    PetscCall(PetscViewerASCIIPrintf(v, "Solid: total-Lagrangian neo-Hookean, rho0 %g, K %g Pa, G %g Pa, c0 %g m/s; artificial viscosity alpha %g; hourglass control %g%s\n", (double)m->rho0, (double)m->K, (double)m->G, (double)m->c0, (double)m->alpha, (double)ph->solid->hourglass, m->eps > 0 ? "; -solid_art_stress not used" : ""));
     PetscFunctionReturn(PETSC_SUCCESS);
   }
-  PetscCall(PetscViewerASCIIPrintf(v, "Solid: rho0 %g, K %g Pa, G %g Pa, c0 %g m/s; artificial viscosity alpha %g; artificial stress e %g n %g%s; velocity gradient %s\n", (double)m->rho0, (double)m->K, (double)m->G, (double)m->c0, (double)m->alpha, (double)m->eps, (double)m->n, m->eps > 0 ? "" : " (off)", SolidGradients[sim->solid->gradient]));
+  PetscCall(PetscViewerASCIIPrintf(v, "Solid: rho0 %g, K %g Pa, G %g Pa, c0 %g m/s; artificial viscosity alpha %g; artificial stress e %g n %g%s; velocity gradient %s\n", (double)m->rho0, (double)m->K, (double)m->G, (double)m->c0, (double)m->alpha, (double)m->eps, (double)m->n, m->eps > 0 ? "" : " (off)", SolidGradients[ph->solid->gradient]));
   PetscFunctionReturn(PETSC_SUCCESS);
 }

@@ -4,7 +4,7 @@
  * Particles of kind `clamp` are the part of a body held fixed: their density and stress evolve
  * like the solid's, so the stress field runs on into the clamp, but they never move. */
 #pragma once
-#include "run/sim.h"
+#include "physics/physics.h"
 
 typedef enum { SOLID_GRAD_STANDARD = 0, SOLID_GRAD_CORRECTED } SolidGradient;
 extern const char *const SolidGradients[];
@@ -58,31 +58,31 @@ struct _p_Solid {
   PetscInt      nsub_last, nsub_max; /* solid sub-steps in the last / any fluid step (progress line, summary) */
 };
 
-/* Creates sim->solid and reads its options under the prefix -solid_ (the scene's material defaults
- * are in sim->sl), and with a fluid the coupling's under -fsi_; then the set-up (fields, neighbour
+/* Creates ph->solid and reads its options under the prefix -solid_ (the scene's material defaults
+ * are in ph->sl), and with a fluid the coupling's under -fsi_; then the set-up (fields, neighbour
  * list), before ParticlesSetUp. */
-PetscErrorCode SolidSetFromOptions(Sim sim);
-PetscErrorCode SolidSetUp(Sim sim);
+PetscErrorCode SolidSetFromOptions(Physics *ph);
+PetscErrorCode SolidSetUp(Physics *ph);
 PetscErrorCode SolidDestroy(Solid *s);
 /* Neighbour list of the solids after a rebuild (SimRebuild): the sub-steps move the solids
  * without a rebuild until one has moved half the skin. */
-PetscErrorCode SolidPrepare(Sim sim);
+PetscErrorCode SolidPrepare(Physics *ph);
 /* Before the sub-steps of a fluid step: reset the means over them (acceleration, support). */
-PetscErrorCode SolidBeginSubsteps(Sim sim);
+PetscErrorCode SolidBeginSubsteps(Physics *ph);
 /* Pressure, artificial stress and accelerations of solids at the current state (after
  * SolidPrepare or a sub-step). */
-PetscErrorCode SolidRates(Sim sim);
+PetscErrorCode SolidRates(Physics *ph);
 /* ISPH + solid: the largest fluid step, -fsi_dt_transit times the solid's extent over its c0
  * (PETSC_MAX_REAL without a limit); collective at its first call, which SimSetUp makes on the
  * solids as built. */
-PetscErrorCode SolidTransitLimit(Sim sim, PetscReal *dt);
+PetscErrorCode SolidTransitLimit(Physics *ph, PetscReal *dt);
 /* Step limit from the solid sound speed: cfl h / (c0 + |v|), and the force limit. */
-PetscErrorCode SolidTimeStep(Sim sim, PetscReal *dt);
+PetscErrorCode SolidTimeStep(Physics *ph, PetscReal *dt);
 /* One kick-drift-kick step of length dt of the solids (fluids held still): ghosts refreshed, no
  * rebuild unless a solid has moved half the skin since SolidPrepare. */
-PetscErrorCode SolidStep(Sim sim, PetscReal dt);
+PetscErrorCode SolidStep(Physics *ph, PetscReal dt);
 /* Kinetic and strain energy of owned solids at the state of the last SolidRates (collective):
  * strain energy density
  * S:S / (4 G) + P^2 / (2 K), S_zz = -(S_xx + S_yy) in plane strain (2D). */
-PetscErrorCode SolidEnergy(Sim sim, PetscReal *ekin, PetscReal *estrain);
-PetscErrorCode SolidView(Sim sim, PetscViewer v);
+PetscErrorCode SolidEnergy(Physics *ph, PetscReal *ekin, PetscReal *estrain);
+PetscErrorCode SolidView(Physics *ph, PetscViewer v);

@@ -79,16 +79,16 @@ static PetscBool ClampFace(Particles P, PetscInt b)
   return moved;
 }
 
-SPH_INLINE PetscErrorCode ClampFacesD(Sim sim, const PetscInt D)
+SPH_INLINE PetscErrorCode ClampFacesD(Physics *ph, const PetscInt D)
 {
-  Cells            C = sim->solid->nl;
-  Particles        P = sim->P;
+  Cells            C = ph->solid->nl;
+  Particles        P = ph->P;
   PetscReal       *X = PField(P, FIELD_X0);
   const PetscReal *h = PField(P, FIELD_H);
   const FieldId    x0[] = {FIELD_X0};
   PetscFunctionBeginUser;
   for (PetscInt a = 0; a < P->n; a++) {
-    PetscReal lim = 1.5 * h[a] / sim->kernel.h_factor, best = lim * lim, mid[3];
+    PetscReal lim = 1.5 * h[a] / ph->kernel.h_factor, best = lim * lim, mid[3];
     PetscInt  nearest = -1;
     if (P->kind[a] != KIND_CLAMP || ClampFace(P, a)) continue;
     for (PetscInt k = C->nstart[a]; k < C->nstart[a + 1]; k++) {
@@ -103,15 +103,15 @@ SPH_INLINE PetscErrorCode ClampFacesD(Sim sim, const PetscInt D)
     for (PetscInt i = 0; i < D; i++) mid[i] = 0.5 * (X[D * a + i] + X[D * nearest + i]);
     for (PetscInt i = 0; i < D; i++) X[D * a + i] = mid[i];
   }
-  PetscCall(HaloRefresh(sim->halo, P, 1, x0));
+  PetscCall(HaloRefresh(ph->halo, P, 1, x0));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
 /* A clamp face point c pairs with solid a while the clamp particle itself is within the support
  * of a: the neighbour search, which runs at the particles' positions, then always holds the pair. */
-SPH_INLINE PetscBool FaceInSupport(Sim sim, PetscInt a, PetscInt c, const PetscInt D)
+SPH_INLINE PetscBool FaceInSupport(Physics *ph, PetscInt a, PetscInt c, const PetscInt D)
 {
-  const PetscReal *x = PField(sim->P, FIELD_X), *X = PField(sim->P, FIELD_X0), *h = PField(sim->P, FIELD_H);
+  const PetscReal *x = PField(ph->P, FIELD_X), *X = PField(ph->P, FIELD_X0), *h = PField(ph->P, FIELD_H);
   PetscReal        d[3], r = 2 * PairH(h[a], h[c]);
   VSub(x + D * c, X + D * a, d, D);
   return (PetscBool)(VDot(d, d, D) < r * r);
@@ -128,10 +128,10 @@ static PetscBool InFit(Solid s, Particles P, PetscInt a, PetscInt b)
 
 /* The solid's own arrays (solid.h) for this rebuild's particles: each owned and ghost solid's slot,
  * the room, and the SF that refreshes the ghosts' slots. */
-static PetscErrorCode SolidSlots(Sim sim, const PetscInt D)
+static PetscErrorCode SolidSlots(Physics *ph, const PetscInt D)
 {
-  Solid          s = sim->solid;
-  Particles      P = sim->P;
+  Solid          s = ph->solid;
+  Particles      P = ph->P;
   const PetscInt nb = NB(D), nt = P->n + P->ng;
   PetscFunctionBeginUser;
   if (nt > s->cap_slot) {
@@ -153,28 +153,28 @@ static PetscErrorCode SolidSlots(Sim sim, const PetscInt D)
     s->cap_FQ = (3 * s->nslot) / 2 + 16;
     PetscCall(PetscMalloc2(D * D * s->cap_FQ, &s->Fd, D * nb * s->cap_FQ, &s->Qd));
   }
-  PetscCall(HaloSlotSF(sim->halo, P, s->slot, s->nown, &s->sf_slot));
+  PetscCall(HaloSlotSF(ph->halo, P, s->slot, s->nown, &s->sf_slot));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-SPH_INLINE PetscErrorCode TotalPrepareD(Sim sim, const PetscInt D)
+SPH_INLINE PetscErrorCode TotalPrepareD(Physics *ph, const PetscInt D)
 {
-  Solid            s = sim->solid;
+  Solid            s = ph->solid;
   Cells            C = s->nl;
-  Particles        P = sim->P;
-  const PetscReal *X = PField(P, FIELD_X0), *m = PField(P, FIELD_M), *h = PField(P, FIELD_H), rho0 = sim->sl.rho0;
+  Particles        P = ph->P;
+  const PetscReal *X = PField(P, FIELD_X0), *m = PField(P, FIELD_M), *h = PField(P, FIELD_H), rho0 = ph->sl.rho0;
   const PetscInt   nbmax = NB(D), nb = s->order == 2 ? nbmax : D, n2 = nbmax * nbmax;
   PetscInt         npair = 0, npairs = C->nstart[C->npart];
 
   PetscFunctionBeginUser;
-  if (s->clamp_face && !s->faces_placed) PetscCall(ClampFacesD(sim, D)); /* the reference never changes: once per run (a restart finds them in X0) */
+  if (s->clamp_face && !s->faces_placed) PetscCall(ClampFacesD(ph, D)); /* the reference never changes: once per run (a restart finds them in X0) */
   s->faces_placed = PETSC_TRUE;
   if (npairs > s->cap_ref) {
     PetscCall(PetscFree(s->f0));
     s->cap_ref = C->cap_nbr;
     PetscCall(PetscMalloc1(s->cap_ref, &s->f0));
   }
-  PetscCall(SolidSlots(sim, D));
+  PetscCall(SolidSlots(ph, D));
   for (PetscInt a = 0; a < P->n; a++) {
     PetscReal M[81] = {0}, M2[81] = {0}, *G;
     if (!KindIsSolid(P->kind[a])) continue;
@@ -186,9 +186,9 @@ SPH_INLINE PetscErrorCode TotalPrepareD(Sim sim, const PetscInt D)
       for (PetscInt k = C->nstart[a]; k < C->nstart[a + 1]; k++) {
         PetscInt  b = C->nbr[k];
         PetscReal d[3];
-        if (P->kind[b] != KIND_SOLID || !FaceInSupport(sim, b, a, D)) continue;
+        if (P->kind[b] != KIND_SOLID || !FaceInSupport(ph, b, a, D)) continue;
         VSub(X + D * b, X + D * a, d, D);
-        s->f0[k] = KernelF(&sim->kernel, PetscSqrtReal(VDot(d, d, D)), PairH(h[a], h[b]));
+        s->f0[k] = KernelF(&ph->kernel, PetscSqrtReal(VDot(d, d, D)), PairH(h[a], h[b]));
         if (s->f0[k] != 0) npair++;
       }
       continue;
@@ -196,9 +196,9 @@ SPH_INLINE PetscErrorCode TotalPrepareD(Sim sim, const PetscInt D)
     for (PetscInt k = C->nstart[a]; k < C->nstart[a + 1]; k++) {
       PetscInt  b = C->nbr[k];
       PetscReal d[3], w, p[9];
-      if (!InFit(s, P, a, b) || (P->kind[b] == KIND_CLAMP && !FaceInSupport(sim, a, b, D))) continue;
+      if (!InFit(s, P, a, b) || (P->kind[b] == KIND_CLAMP && !FaceInSupport(ph, a, b, D))) continue;
       VSub(X + D * b, X + D * a, d, D);
-      s->f0[k] = KernelF(&sim->kernel, PetscSqrtReal(VDot(d, d, D)), PairH(h[a], h[b]));
+      s->f0[k] = KernelF(&ph->kernel, PetscSqrtReal(VDot(d, d, D)), PairH(h[a], h[b]));
       if (s->f0[k] == 0) continue;
       npair++;
       w = -m[b] / rho0 * s->f0[k];
@@ -213,22 +213,22 @@ SPH_INLINE PetscErrorCode TotalPrepareD(Sim sim, const PetscInt D)
   }
   /* the search runs in the current configuration: a body stretched by more than the skin over
    * 2 h loses pairs of its reference configuration, which the global count shows */
-  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &npair, 1, MPIU_INT, MPI_SUM, sim->comm));
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &npair, 1, MPIU_INT, MPI_SUM, ph->comm));
   if (!s->npair_ref) s->npair_ref = npair;
   /* a fault (guard.h): a body torn this far is a blow-up in all but the most extreme loadings */
-  PetscCheck(npair == s->npair_ref, sim->comm, PETSC_ERR_NOT_CONVERGED, "The solid stretched so far that %" PetscInt_FMT " of its %" PetscInt_FMT " reference-configuration pairs left the neighbour search (2 h + %g dx): raise -solid_skin (at most 2) or use -solid_formulation updated", s->npair_ref - npair, s->npair_ref, (double)s->skin);
+  PetscCheck(npair == s->npair_ref, ph->comm, PETSC_ERR_NOT_CONVERGED, "The solid stretched so far that %" PetscInt_FMT " of its %" PetscInt_FMT " reference-configuration pairs left the neighbour search (2 h + %g dx): raise -solid_skin (at most 2) or use -solid_formulation updated", s->npair_ref - npair, s->npair_ref, (double)s->skin);
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode SolidTotalPrepare(Sim sim) { return SPH_DIM_DISPATCH(sim->dim, TotalPrepareD, sim); }
+PetscErrorCode SolidTotalPrepare(Physics *ph) { return SPH_DIM_DISPATCH(ph->dim, TotalPrepareD, ph); }
 
 /* A_a = sum_b w_ab (x_b - x_a) (x) p_ab (D x NB): F_a = A G01^T, the second derivatives A G2^T. */
-SPH_INLINE void Fit(Sim sim, PetscInt a, PetscReal *A, const PetscInt D)
+SPH_INLINE void Fit(Physics *ph, PetscInt a, PetscReal *A, const PetscInt D)
 {
-  Solid            s = sim->solid;
+  Solid            s = ph->solid;
   Cells            C = s->nl;
-  Particles        P = sim->P;
-  const PetscReal *X = PField(P, FIELD_X0), *x = PField(P, FIELD_X), *m = PField(P, FIELD_M), *h = PField(P, FIELD_H), ir0 = 1.0 / sim->sl.rho0;
+  Particles        P = ph->P;
+  const PetscReal *X = PField(P, FIELD_X0), *x = PField(P, FIELD_X), *m = PField(P, FIELD_M), *h = PField(P, FIELD_H), ir0 = 1.0 / ph->sl.rho0;
   const PetscInt   nb = NB(D);
   for (PetscInt i = 0; i < D * nb; i++) A[i] = 0;
   for (PetscInt k = C->nstart[a]; k < C->nstart[a + 1]; k++) {
@@ -295,11 +295,11 @@ SPH_INLINE PetscBool ParticleEnergy(const SolidMaterial *sm, const PetscReal *G,
 
 /* F_a and Q_a of owned solids (refreshed on ghosts); density, pressure and deviatoric stress of
  * owned and ghost solids from their F. */
-SPH_INLINE PetscErrorCode DeformationAndStressD(Sim sim, const PetscInt D)
+SPH_INLINE PetscErrorCode DeformationAndStressD(Physics *ph, const PetscInt D)
 {
-  Solid                s = sim->solid;
-  Particles            P = sim->P;
-  const SolidMaterial *sm = &sim->sl;
+  Solid                s = ph->solid;
+  Particles            P = ph->P;
+  const SolidMaterial *sm = &ph->sl;
   const PetscReal     *h = PField(P, FIELD_H);
   PetscReal           *rho = PField(P, FIELD_RHO), *p = PField(P, FIELD_P), *S = PField(P, FIELD_S);
   const PetscInt       nb = NB(D), ns = D * (D + 1) / 2, *slot = s->slot;
@@ -308,7 +308,7 @@ SPH_INLINE PetscErrorCode DeformationAndStressD(Sim sim, const PetscInt D)
 
   PetscFunctionBeginUser;
   for (PetscInt a = 0; a < P->n; a++) {
-    PetscReal A[27], dxa = h[a] / sim->kernel.h_factor, W, *Fa, *Qa;
+    PetscReal A[27], dxa = h[a] / ph->kernel.h_factor, W, *Fa, *Qa;
     if (!KindIsSolid(P->kind[a])) continue;
     Fa = s->Fd + D * D * slot[a];
     Qa = s->Qd + D * nb * slot[a];
@@ -317,11 +317,11 @@ SPH_INLINE PetscErrorCode DeformationAndStressD(Sim sim, const PetscInt D)
       PetscCall(PetscArrayzero(Qa, D * nb));
       continue;
     }
-    Fit(sim, a, A, D);
+    Fit(ph, a, A, D);
     if (!ParticleEnergy(sm, s->G0 + nb * nb * slot[a], A, h[a], s->quadrature ? dxa * dxa / 24 : 0, Fa, Qa, &W, D)) /* inverted: the run guard stops on the NaN and names the particle */
       for (PetscInt q = 0; q < D * nb; q++) Qa[q] = NAN;
   }
-  PetscCall(HaloRefreshSlots(sim->halo, s->sf_slot, s->nown, 2, width, FQ));
+  PetscCall(HaloRefreshSlots(ph->halo, s->sf_slot, s->nown, 2, width, FQ));
   for (PetscInt a = 0; a < P->n + P->ng; a++) {
     const PetscReal *Fa;
     PetscReal        Sk[9], J;
@@ -337,12 +337,12 @@ SPH_INLINE PetscErrorCode DeformationAndStressD(Sim sim, const PetscInt D)
 
 /* Owned solids: the elastic forces over the reference pairs, hourglass control and Eq. 24 on
  * the current pairs, the fluid's loads; clamps held (solid_impl.h). */
-SPH_INLINE PetscErrorCode MomentumD(Sim sim, const PetscInt D)
+SPH_INLINE PetscErrorCode MomentumD(Physics *ph, const PetscInt D)
 {
-  Solid                s = sim->solid;
+  Solid                s = ph->solid;
   Cells                C = s->nl;
-  Particles            P = sim->P;
-  const SolidMaterial *sm = &sim->sl;
+  Particles            P = ph->P;
+  const SolidMaterial *sm = &ph->sl;
   const PetscReal     *X = PField(P, FIELD_X0), *x = PField(P, FIELD_X), *v = PField(P, FIELD_V), *m = PField(P, FIELD_M), *h = PField(P, FIELD_H), *rho = PField(P, FIELD_RHO);
   const PetscReal     *F = s->Fd, *Q = s->Qd;
   const PetscInt      *slot = s->slot;
@@ -359,7 +359,7 @@ SPH_INLINE PetscErrorCode MomentumD(Sim sim, const PetscInt D)
     for (PetscInt k = C->nstart[a]; k < C->nstart[a + 1]; k++) {
       PetscInt  b = C->nbr[k];
       PetscReal d[3];
-      if (KindIsFluid(P->kind[b])) { if (C->f[k] != 0) FluidLoad(sim, a, b, C->f[k], fl, D); continue; }
+      if (KindIsFluid(P->kind[b])) { if (C->f[k] != 0) FluidLoad(ph, a, b, C->f[k], fl, D); continue; }
       if (!KindIsSolid(P->kind[b])) continue;
       VSub(x + D * a, x + D * b, d, D);
       if (s->f0[k] != 0) {
@@ -385,45 +385,45 @@ SPH_INLINE PetscErrorCode MomentumD(Sim sim, const PetscInt D)
       }
     }
     for (PetscInt i = 0; i < D; i++) ac[i] += hg[i];
-    SolidAccelerate(sim, a, ac, fl, acc, support, load, D);
+    SolidAccelerate(ph, a, ac, fl, acc, support, load, D);
   }
   for (PetscInt i = 0; i < D; i++) { s->support[i] = support[i]; s->load[i] = load[i]; }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode SolidTotalRates(Sim sim)
+PetscErrorCode SolidTotalRates(Physics *ph)
 {
   PetscFunctionBeginUser;
-  PetscCall(SPH_DIM_DISPATCH(sim->dim, DeformationAndStressD, sim));
-  PetscCall(SPH_DIM_DISPATCH(sim->dim, MomentumD, sim));
+  PetscCall(SPH_DIM_DISPATCH(ph->dim, DeformationAndStressD, ph));
+  PetscCall(SPH_DIM_DISPATCH(ph->dim, MomentumD, ph));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-SPH_INLINE PetscReal TotalStrainEnergyD(Sim sim, const PetscInt D)
+SPH_INLINE PetscReal TotalStrainEnergyD(Physics *ph, const PetscInt D)
 {
-  Solid            s = sim->solid;
+  Solid            s = ph->solid;
   Cells            C = s->nl;
-  Particles        P = sim->P;
+  Particles        P = ph->P;
   const PetscReal *m = PField(P, FIELD_M), *X = PField(P, FIELD_X0), *x = PField(P, FIELD_X), *h = PField(P, FIELD_H);
-  const PetscReal  ir0 = 1.0 / sim->sl.rho0;
+  const PetscReal  ir0 = 1.0 / ph->sl.rho0;
   const PetscInt   nb = NB(D);
   PetscReal        e = 0;
   for (PetscInt a = 0; a < P->n; a++) {
-    PetscReal A[27], Fa[9], dxa = h[a] / sim->kernel.h_factor, ea;
+    PetscReal A[27], Fa[9], dxa = h[a] / ph->kernel.h_factor, ea;
     if (!KindIsSolid(P->kind[a]) || (s->clamp_face && P->kind[a] == KIND_CLAMP)) continue;
-    Fit(sim, a, A, D);
-    if (!ParticleEnergy(&sim->sl, s->G0 + nb * nb * s->slot[a], A, h[a], s->quadrature ? dxa * dxa / 24 : 0, Fa, NULL, &ea, D)) ea = NAN;
+    Fit(ph, a, A, D);
+    if (!ParticleEnergy(&ph->sl, s->G0 + nb * nb * s->slot[a], A, h[a], s->quadrature ? dxa * dxa / 24 : 0, Fa, NULL, &ea, D)) ea = NAN;
     if (s->hourglass > 0)
       for (PetscInt k = C->nstart[a]; k < C->nstart[a + 1]; k++) {
         PetscInt  b = C->nbr[k];
         PetscReal Xab[3], xab[3];
         VSub(X + D * b, X + D * a, Xab, D);
         VSub(x + D * b, x + D * a, xab, D);
-        if (s->f0[k] != 0) ea += HourglassEnergy(0.5 * s->hourglass * sim->sl.G * m[b] * ir0 * -s->f0[k], Fa, Xab, xab, D);
+        if (s->f0[k] != 0) ea += HourglassEnergy(0.5 * s->hourglass * ph->sl.G * m[b] * ir0 * -s->f0[k], Fa, Xab, xab, D);
       }
     e += m[a] * ir0 * ea;
   }
   return e;
 }
 
-PetscReal SolidTotalStrainEnergy(Sim sim) { return SPH_DIM_DISPATCH(sim->dim, TotalStrainEnergyD, sim); }
+PetscReal SolidTotalStrainEnergy(Physics *ph) { return SPH_DIM_DISPATCH(ph->dim, TotalStrainEnergyD, ph); }

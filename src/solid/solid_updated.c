@@ -10,11 +10,11 @@
 
 /* Pressure (Eq. 20) and artificial stress (Eqs. 25-34) of owned and ghost solids: both are
  * functions of the particle's own density and stress, so ghosts compute theirs. */
-SPH_INLINE PetscErrorCode PressureAndArtificialStressD(Sim sim, const PetscInt D)
+SPH_INLINE PetscErrorCode PressureAndArtificialStressD(Physics *ph, const PetscInt D)
 {
-  Particles            P = sim->P;
-  Solid                s = sim->solid;
-  const SolidMaterial *m = &sim->sl;
+  Particles            P = ph->P;
+  Solid                s = ph->solid;
+  const SolidMaterial *m = &ph->sl;
   const PetscReal     *rho = PField(P, FIELD_RHO), *S = PField(P, FIELD_S);
   PetscReal           *p = PField(P, FIELD_P);
   PetscInt             N = P->n + P->ng;
@@ -57,13 +57,13 @@ SPH_INLINE void SymRow(const PetscReal *T, PetscInt i, PetscReal c, PetscReal s,
  * accelerate: what would, the support takes (Solid.support).  With the corrected gradient each
  * particle's stress acts through its own corrected kernel gradient, sigma_a L_a grad W +
  * sigma_b L_b grad W (pair terms with the mean), which keeps the pair forces opposite. */
-SPH_INLINE PetscErrorCode MomentumD(Sim sim, const PetscInt D)
+SPH_INLINE PetscErrorCode MomentumD(Physics *ph, const PetscInt D)
 {
-  Particles            P = sim->P;
-  Cells                C = sim->solid->nl;
-  const SolidMaterial *m = &sim->sl;
+  Particles            P = ph->P;
+  Cells                C = ph->solid->nl;
+  const SolidMaterial *m = &ph->sl;
   const PetscReal     *x = PField(P, FIELD_X), *v = PField(P, FIELD_V), *rho = PField(P, FIELD_RHO), *p = PField(P, FIELD_P);
-  const PetscReal     *mass = PField(P, FIELD_M), *h = PField(P, FIELD_H), *S = PField(P, FIELD_S), *R = sim->solid->R, *L = PField(P, FIELD_KCORR);
+  const PetscReal     *mass = PField(P, FIELD_M), *h = PField(P, FIELD_H), *S = PField(P, FIELD_S), *R = ph->solid->R, *L = PField(P, FIELD_KCORR);
   PetscReal           *acc = PField(P, FIELD_ACC), support[3] = {0, 0, 0}, load[3] = {0, 0, 0};
   const PetscInt       NS = D * (D + 1) / 2;
 
@@ -72,12 +72,12 @@ SPH_INLINE PetscErrorCode MomentumD(Sim sim, const PetscInt D)
     PetscReal ac[3] = {0, 0, 0}, ra = rho[a], ia = 1.0 / (ra * ra), wdx, fl[3] = {0, 0, 0}, sa[9];
     if (!KindIsSolid(P->kind[a])) continue;
     for (PetscInt i = 0; i < D; i++) SymRow(S + NS * a, i, p[a], ia, sa + D * i, D); /* sigma_a / rho_a^2 */
-    wdx = R ? KernelW(&sim->kernel, h[a] / sim->kernel.h_factor, h[a]) : 1;
+    wdx = R ? KernelW(&ph->kernel, h[a] / ph->kernel.h_factor, h[a]) : 1;
     for (PetscInt k = C->nstart[a]; k < C->nstart[a + 1]; k++) {
       PetscInt  b = C->nbr[k];
       PetscReal d[3], g[3], dv[3], r2, rb = rho[b], ib = 1.0 / (rb * rb), ga[3], gb[3], gm[3], pi;
       if (C->f[k] == 0) continue; /* in the skin */
-      if (KindIsFluid(P->kind[b])) { FluidLoad(sim, a, b, C->f[k], fl, D); continue; }
+      if (KindIsFluid(P->kind[b])) { FluidLoad(ph, a, b, C->f[k], fl, D); continue; }
       if (!KindIsSolid(P->kind[b])) continue;
       VSub(x + D * a, x + D * b, d, D);
       VSub(v + D * a, v + D * b, dv, D);
@@ -102,31 +102,31 @@ SPH_INLINE PetscErrorCode MomentumD(Sim sim, const PetscInt D)
         }
       }
     }
-    SolidAccelerate(sim, a, ac, fl, acc, support, load, D);
+    SolidAccelerate(ph, a, ac, fl, acc, support, load, D);
   }
-  for (PetscInt i = 0; i < D; i++) { sim->solid->support[i] = support[i]; sim->solid->load[i] = load[i]; }
+  for (PetscInt i = 0; i < D; i++) { ph->solid->support[i] = support[i]; ph->solid->load[i] = load[i]; }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode SolidUpdatedRates(Sim sim)
+PetscErrorCode SolidUpdatedRates(Physics *ph)
 {
   PetscFunctionBeginUser;
-  PetscCall(SPH_DIM_DISPATCH(sim->dim, PressureAndArtificialStressD, sim));
-  if (sim->solid->gradient == SOLID_GRAD_CORRECTED) {
+  PetscCall(SPH_DIM_DISPATCH(ph->dim, PressureAndArtificialStressD, ph));
+  if (ph->solid->gradient == SOLID_GRAD_CORRECTED) {
     const FieldId kc[] = {FIELD_KCORR};
-    PetscCall(SPHGradientCorrection(sim->P, sim->solid->nl, SolidKeep, PField(sim->P, FIELD_KCORR)));
-    PetscCall(HaloRefreshKinds(sim->halo, sim->P, SolidKeep, 1, kc));
+    PetscCall(SPHGradientCorrection(ph->P, ph->solid->nl, SolidKeep, PField(ph->P, FIELD_KCORR)));
+    PetscCall(HaloRefreshKinds(ph->halo, ph->P, SolidKeep, 1, kc));
   }
-  PetscCall(SPH_DIM_DISPATCH(sim->dim, MomentumD, sim));
+  PetscCall(SPH_DIM_DISPATCH(ph->dim, MomentumD, ph));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
 /* Velocity gradient g_ij = dv_i/dx_j (row-major) of owned solid a from its solid neighbours:
  * Eqs. 35-38 use g = sum V_b (v_b - v_a) (x) grad_a W; corrected, grad_a W becomes L_a grad_a W. */
-SPH_INLINE void VelocityGradient(Sim sim, PetscInt a, PetscReal *g, const PetscInt D)
+SPH_INLINE void VelocityGradient(Physics *ph, PetscInt a, PetscReal *g, const PetscInt D)
 {
-  Particles        P = sim->P;
-  Cells            C = sim->solid->nl;
+  Particles        P = ph->P;
+  Cells            C = ph->solid->nl;
   const PetscReal *x = PField(P, FIELD_X), *v = PField(P, FIELD_V), *rho = PField(P, FIELD_RHO), *m = PField(P, FIELD_M), *L = PField(P, FIELD_KCORR);
 
   for (PetscInt i = 0; i < D * D; i++) g[i] = 0;
@@ -147,26 +147,26 @@ SPH_INLINE void VelocityGradient(Sim sim, PetscInt a, PetscReal *g, const PetscI
  * and clamps over dt, from the current velocities at the positions of the last SolidRates.  The
  * density changes after the loop: neighbours' volumes m/rho must be those of the step's start,
  * owned or ghost alike, or the answer would depend on the decomposition. */
-SPH_INLINE PetscErrorCode DeformD(Sim sim, PetscReal dt, const PetscInt D)
+SPH_INLINE PetscErrorCode DeformD(Physics *ph, PetscReal dt, const PetscInt D)
 {
-  Particles  P = sim->P;
+  Particles  P = ph->P;
   PetscReal *rho = PField(P, FIELD_RHO), *S = PField(P, FIELD_S), *drho = PField(P, FIELD_DRHO);
 
   PetscFunctionBeginUser;
   for (PetscInt a = 0; a < P->n; a++) {
     PetscReal g[9], div;
     if (!KindIsSolid(P->kind[a])) continue;
-    VelocityGradient(sim, a, g, D);
+    VelocityGradient(ph, a, g, D);
     div = g[0] + g[D + 1];
     if (D == 3) div += g[8];
     drho[a] = -rho[a] * div;
     /* D_xy = (du/dy + dv/dx) / 2, spin W_xy = (du/dy - dv/dx) / 2 (Eqs. 37-38) */
-    if (D == 2) JaumannUpdate(sim->sl.G, dt, g[0], 0.5 * (g[1] + g[2]), g[3], 0.5 * (g[1] - g[2]), S + 3 * a);
-    else JaumannUpdate3(sim->sl.G, dt, g, S + 6 * a);
+    if (D == 2) JaumannUpdate(ph->sl.G, dt, g[0], 0.5 * (g[1] + g[2]), g[3], 0.5 * (g[1] - g[2]), S + 3 * a);
+    else JaumannUpdate3(ph->sl.G, dt, g, S + 6 * a);
   }
   for (PetscInt a = 0; a < P->n; a++)
     if (KindIsSolid(P->kind[a])) rho[a] += dt * drho[a];
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode SolidUpdatedDeform(Sim sim, PetscReal dt) { return SPH_DIM_DISPATCH(sim->dim, DeformD, sim, dt); }
+PetscErrorCode SolidUpdatedDeform(Physics *ph, PetscReal dt) { return SPH_DIM_DISPATCH(ph->dim, DeformD, ph, dt); }

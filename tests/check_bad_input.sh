@@ -119,6 +119,8 @@ check "-cylinder_1 (fluid) overlaps -fluid_box_1" -case boxes -dx 0.01 -domain 0
 check "-cylinder_1_kind"             -case boxes -dx 0.01 -domain 0,0,1,1 -fluid_box_1 0,0,1,0.5 -cylinder_1 0.5,0.25,0.1 -cylinder_1_kind rock
 check "-periodic x needs -domain"    -case boxes -dx 0.01 -tank_1 0,1,0,1 -fluid_box_1 0,0,0.5,0.5 -periodic x
 check "-periodic q: the directions are x, y" -case boxes -dx 0.01 -domain 0,0,1,1 -fluid_box_1 0,0,1,0.5 -periodic q
+# a case file's fixed -domain with a -dx whose walls stick out of it (crashed at the first migration before)
+check "outside its domain"          -options_file cases/boxes/dam_break.opts -dx 0.01
 wait
 cat "$OUT"/verdict.* 2>/dev/null
 bad=$(ls "$OUT"/verdict.* 2>/dev/null | wc -l)

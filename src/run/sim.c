@@ -155,6 +155,29 @@ PetscErrorCode SimSetFromOptions(Sim sim)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* Every particle the scene made lies in the domain box (periodic directions wrapped): a scene whose
+ * walls or water stick out of its -domain (e.g. a case file's box with another -dx) is bad input,
+ * not a run that fails at its first migration. */
+static PetscErrorCode CheckInDomain(Sim sim)
+{
+  const PetscInt   D = sim->phys.dim;
+  const PetscReal *x = PField(sim->P, FIELD_X);
+  PetscReal        out[4] = {-1, 0, 0, 0}; /* id and position of one particle outside */
+  PetscInt         n = 0;
+  PetscFunctionBeginUser;
+  for (PetscInt a = 0; a < sim->P->n; a++) {
+    PetscReal y[3] = {0, 0, 0};
+    for (PetscInt d = 0; d < D; d++) y[d] = x[D * a + d];
+    GridWrap(&sim->grid, y);
+    if (GridCellOf(&sim->grid, y) >= 0) continue;
+    if (!n++) { out[0] = sim->P->id[a]; for (PetscInt d = 0; d < D; d++) out[1 + d] = y[d]; }
+  }
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &n, 1, MPIU_INT, MPI_SUM, sim->comm));
+  if (!n) PetscFunctionReturn(PETSC_SUCCESS);
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, out, 4, MPIU_REAL, MPIU_MAX, sim->comm)); /* the one of the highest id */
+  SETERRQ(sim->comm, PETSC_ERR_USER_INPUT, "%" PetscInt_FMT " particle(s) of the scene lie outside its domain [%g, %g] x [%g, %g]%s, e.g. one at (%g, %g%s): its walls or water do not fit the box; choose a larger -domain (or a -dx with which the scene fits it)", n, (double)sim->dom_lo[0], (double)sim->dom_hi[0], (double)sim->dom_lo[1], (double)sim->dom_hi[1], D == 3 ? " x [..]" : "", (double)out[1], (double)out[2], D == 3 ? ", .." : "");
+}
+
 /* The scene's prescribed motion, for the solid's steps (physics.h: the physics does not know the scene). */
 static PetscErrorCode ScenePrescribe(void *ctx)
 {
@@ -308,6 +331,7 @@ PetscErrorCode SimSetUp(Sim sim)
       if (sim->periodic[d]) sim->nbhd.skin = PetscMin(sim->nbhd.skin, PetscMax(0, (1 - 1e-9) * (sim->dom_hi[d] - sim->dom_lo[d]) / 3 - reach));
     PetscCall(GridSetUp(&sim->grid, sim->phys.dim, sim->dom_lo, sim->dom_hi, reach + sim->nbhd.skin, sim->periodic));
   }
+  PetscCall(CheckInDomain(sim));
   sim->decomp->split_solids = (PetscBool)(sim->decomp->split_solids && sim->phys.has_fluid && sim->phys.has_solid);
   PetscCall(DecompSetUp(sim->decomp, &sim->grid));
   PetscCall(CellsCreate(&sim->grid, &sim->phys.kernel, &sim->cells));

@@ -114,16 +114,18 @@ SPH_INLINE void KernelShapePair(const KernelType t, PetscReal R, PetscReal sw, P
 /* W(r, h) */
 static inline PetscReal KernelW(const SPHKernel *K, PetscReal r, PetscReal h)
 {
-  PetscReal s = KernelSigma(K, h), w, f;
-  KernelShape(K->type, r / h, s, s / (h * h), &w, &f);
+  PetscReal R = r / h, s = KernelSigma(K, h), w, f;
+  if (R >= 2.0) return 0.0; /* (before reading K->type: the terms' loops over far particles) */
+  KernelShape(K->type, R, s, s / (h * h), &w, &f);
   return w;
 }
 
 /* F_ab = (dW/dr) / r, so that grad_a W_ab = F_ab (x_a - x_b) */
 static inline PetscReal KernelF(const SPHKernel *K, PetscReal r, PetscReal h)
 {
-  PetscReal s = KernelSigma(K, h), w, f;
-  KernelShape(K->type, r / h, s, s / (h * h), &w, &f);
+  PetscReal R = r / h, s = KernelSigma(K, h), w, f;
+  if (R >= 2.0) return 0.0;
+  KernelShape(K->type, R, s, s / (h * h), &w, &f);
   return f;
 }
 

@@ -264,7 +264,10 @@ PetscErrorCode ShapesPopulate(Sim sim, Shapes *S)
 {
   const PetscInt  D = sim->phys.dim;
   const PetscReal hmin = D == 3 ? PetscMin(S->h[0], PetscMin(S->h[1], S->h[2])) : PetscMin(S->h[0], S->h[1]);
+  const PetscInt  n0   = sim->P->n;
+  PetscLogDouble  t0, t1;
   PetscFunctionBeginUser;
+  PetscCall(PetscTime(&t0));
   for (PetscInt pass = 0; pass < 2; pass++) /* water first, then the bodies in the order given */
     for (PetscInt i = 0; i < S->n; i++) {
       const Shape *s = &S->s[i];
@@ -304,6 +307,8 @@ PetscErrorCode ShapesPopulate(Sim sim, Shapes *S)
         PetscCall(SceneHydrostaticDensity(sim, first, top));
       }
     }
+  PetscCall(PetscTime(&t1));
+  if (S->n) PetscCall(PetscInfo(NULL, "shapes: %d particles on this rank in %g s\n", (int)(sim->P->n - n0), (double)(t1 - t0)));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

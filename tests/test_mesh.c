@@ -157,6 +157,23 @@ static PetscErrorCode ReadFails(const char *file, PetscBool *fails)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* nt triangles t as an ASCII STL file. */
+static PetscErrorCode WriteAscii(const char *file, PetscInt nt, const PetscReal t[])
+{
+  FILE *f = fopen(file, "w");
+  PetscFunctionBeginUser;
+  CHECK(f, "cannot write %s", file);
+  fprintf(f, "solid cube\n");
+  for (PetscInt k = 0; k < nt; k++) {
+    fprintf(f, " facet normal 0 0 0\n  outer loop\n");
+    for (PetscInt j = 0; j < 3; j++) fprintf(f, "   vertex %.17g %.17g %.17g\n", (double)t[9 * k + 3 * j], (double)t[9 * k + 3 * j + 1], (double)t[9 * k + 3 * j + 2]);
+    fprintf(f, "  endloop\n endfacet\n");
+  }
+  fprintf(f, "endsolid cube\n");
+  fclose(f);
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 static PetscErrorCode CheckFiles(void)
 {
   PetscReal t[108];
@@ -184,16 +201,7 @@ static PetscErrorCode CheckFiles(void)
     }
   }
   fclose(f);
-  f = fopen(asc, "w");
-  CHECK(f, "cannot write %s", asc);
-  fprintf(f, "solid cube\n");
-  for (PetscInt k = 0; k < 12; k++) {
-    fprintf(f, " facet normal 0 0 0\n  outer loop\n");
-    for (PetscInt j = 0; j < 3; j++) fprintf(f, "   vertex %.17g %.17g %.17g\n", (double)t[9 * k + 3 * j], (double)t[9 * k + 3 * j + 1], (double)t[9 * k + 3 * j + 2]);
-    fprintf(f, "  endloop\n endfacet\n");
-  }
-  fprintf(f, "endsolid cube\n");
-  fclose(f);
+  PetscCall(WriteAscii(asc, 12, t));
   PetscCall(GeomMeshReadSTL(PETSC_COMM_SELF, "-stl_1", bin, &a));
   PetscCall(GeomMeshReadSTL(PETSC_COMM_SELF, "-stl_1", asc, &b));
   CHECK(a.nt == 12 && b.nt == 12, "read %d and %d triangles, not 12", (int)a.nt, (int)b.nt);
@@ -211,15 +219,7 @@ static PetscErrorCode CheckFiles(void)
   fclose(f);
   PetscCall(ReadFails(bad, &fails));
   CHECK(fails, "a facet of two vertices is read");
-  f = fopen(bad, "w"); /* the cube without its last triangle: open */
-  fprintf(f, "solid cube\n");
-  for (PetscInt k = 0; k < 11; k++) {
-    fprintf(f, " facet normal 0 0 0\n  outer loop\n");
-    for (PetscInt j = 0; j < 3; j++) fprintf(f, "   vertex %.17g %.17g %.17g\n", (double)t[9 * k + 3 * j], (double)t[9 * k + 3 * j + 1], (double)t[9 * k + 3 * j + 2]);
-    fprintf(f, "  endloop\n endfacet\n");
-  }
-  fprintf(f, "endsolid cube\n");
-  fclose(f);
+  PetscCall(WriteAscii(bad, 11, t)); /* the cube without its last triangle: open */
   PetscCall(ReadFails(bad, &fails));
   CHECK(fails, "an open surface is read");
   remove(bin);

@@ -16,26 +16,13 @@ one() { # fluid n phi
   [ -f "$d/summary.json" ] && grep -q '"completed"' "$d/summary.json" && return
   ${MPIEXEC:-mpiexec} $FLAGS -n "${NP:-1}" "${BIN:-bin/sphfsi}" -options_file cases/boxes/sphere_array.opts -fluid "$f" -dx "$(python3 -c "print(0.1 / $n)")" -sphere_1 "0.05,0.05,0.05,$a" -t_end "$t" -output_interval "$t" -progress_every 0 -overwrite -output_dir "$d" > "$d.log" 2>&1
 }
-for phi in $PHIS; do for f in $FLUIDS; do for n in $NS; do
-  while [ "$(jobs -rp | wc -l)" -ge "${JOBS:-1}" ]; do wait -n; done
-  one "$f" "$n" "$phi" &
-done; done; done
+for phi in $PHIS; do
+  for f in $FLUIDS; do
+    for n in $NS; do # JOBS at a time
+      while [ "$(jobs -rp | wc -l)" -ge "${JOBS:-1}" ]; do wait -n; done
+      one "$f" "$n" "$phi" &
+    done
+  done
+done
 wait
-python3 - "$OUT" "$NS" "$PHIS" "$FLUIDS" <<'PY'
-import json, math, sys
-out, ns, phis, fluids = sys.argv[1], sys.argv[2].split(), sys.argv[3].split(), sys.argv[4].split()
-print("| phi | fluid | L/dx | K | reference | error | phi_lattice | error at phi_lattice | Re | wall time (s) |")
-print("|---|---|---|---|---|---|---|---|---|---|")
-for phi in phis:
-    for f in fluids:
-        errs = []
-        for n in ns:
-            try:
-                s = json.load(open(f"{out}/{f}_{phi}_{n}/summary.json")); e = s["errors"]
-            except (OSError, KeyError, ValueError):
-                print(f"| {phi} | {f} | {n} | (no result) |"); continue
-            errs.append((int(n), e["drag_rel_err"]))
-            print(f"| {phi} | {f} | {n} | {e['K']:.3f} | {e['K_reference']:.3f} | {100 * e['drag_rel_err']:+.2f} % | {e['phi_lattice']:.4f} | {100 * e['drag_rel_err_phi_lattice']:+.2f} % | {e['re']:.2g} | {s['wall_s']:.0f} |")
-        orders = [math.log(abs(a[1] / b[1])) / math.log(b[0] / a[0]) for a, b in zip(errs, errs[1:]) if a[1] and b[1]]
-        if orders: print(f"| {phi} | {f} | observed order | " + ", ".join(f"{o:.2f}" for o in orders) + " | | | | | | |")
-PY
+python3 tools/array_study_table.py "$OUT" "$NS" "$PHIS" "$FLUIDS" sphere

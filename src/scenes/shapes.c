@@ -211,7 +211,7 @@ static PetscBool TakenByClamp(const Shapes *S, PetscInt si, const PetscReal p[])
 {
   if (S->s[si].kind != SHAPE_SOLID) return PETSC_FALSE;
   for (PetscInt j = 0; j < S->n; j++)
-    if (S->s[j].kind == SHAPE_CLAMP && GeomSignedDistanceNear(&S->s[j].g, p, S->h[0]) <= 0) return PETSC_TRUE;
+    if (S->s[j].kind == SHAPE_CLAMP && GeomSignedDistanceNear(&S->s[j].g, p, 0) <= 0) return PETSC_TRUE; /* the sign only */
   return PETSC_FALSE;
 }
 
@@ -243,11 +243,11 @@ PetscErrorCode ShapesSetUp(Sim sim, Shapes *S, PetscInt nbox, const PetscReal (*
         for (idx[0] = lo[0]; idx[0] <= hi[0]; idx[0]++) {
           PetscReal p[3] = {0, 0, 0};
           LatticePoint(S, idx, D, p);
-          if (GeomSignedDistanceNear(&S->s[i].g, p, S->h[0]) > 0) continue;
+          if (GeomSignedDistanceNear(&S->s[i].g, p, 0) > 0) continue;
           for (PetscInt j = i + 1; j < S->n; j++) {
             const ShapeKind ki = S->s[i].kind, kj = S->s[j].kind;
             if (IsBody(ki) != IsBody(kj) || (ki == SHAPE_SOLID && kj == SHAPE_CLAMP) || (kj == SHAPE_SOLID && ki == SHAPE_CLAMP)) continue; /* water is cut by bodies; a clamp takes from a solid */
-            PetscCheck(GeomSignedDistanceNear(&S->s[j].g, p, S->h[0]) > 0, sim->comm, PETSC_ERR_ARG_INCOMP, "%s (%s) overlaps %s (%s) at (%g, %g): shapes of these kinds cannot share space", S->s[i].name, ShapeKinds[ki], S->s[j].name, ShapeKinds[kj], (double)p[0], (double)p[1]);
+            PetscCheck(GeomSignedDistanceNear(&S->s[j].g, p, 0) > 0, sim->comm, PETSC_ERR_ARG_INCOMP, "%s (%s) overlaps %s (%s) at (%g, %g): shapes of these kinds cannot share space", S->s[i].name, ShapeKinds[ki], S->s[j].name, ShapeKinds[kj], (double)p[0], (double)p[1]);
           }
           if (S->s[i].kind != SHAPE_FLUID) continue;
           for (PetscInt b = 0; b < nbox; b++) {
@@ -276,6 +276,7 @@ PetscErrorCode ShapesPopulate(Sim sim, Shapes *S)
       const PetscReal *h = s->own ? sp : S->h;
       const PetscBool  dry = (PetscBool)(s->g.type == GEOM_MESH && s->g.mesh->dry);
       const PetscReal  hw  = s->own ? sim->phys.dx : hmin; /* a wall row's depth: a wall box's is -dx */
+      const PetscReal  dmax = s->kind != SHAPE_WALL ? 0 : (s->own ? 2 : S->rows + 1) * hw; /* how far the distance matters */
       if ((pass == 0) != (s->kind == SHAPE_FLUID)) continue;
       if (s->own) OwnLattice(sim, &s->g, D, f0, sp, lo, hi);
       else LatticeRange(S, &s->g, D, lo, hi);
@@ -287,7 +288,7 @@ PetscErrorCode ShapesPopulate(Sim sim, Shapes *S)
             if (s->own)
               for (PetscInt d = 0; d < D; d++) p[d] = f0[d] + idx[d] * sp[d];
             else LatticePoint(S, idx, D, p);
-            sd = GeomSignedDistanceNear(&s->g, p, (S->rows + 1) * hmin); /* exact within the wall rows */
+            sd = GeomSignedDistanceNear(&s->g, p, dmax); /* exact within the wall rows; else the sign */
             if (sd > 0 || TakenByClamp(S, i, p)) continue;
             top = PetscMax(top, p[D - 1] + 0.5 * h[D - 1]);
             switch (s->kind) {
@@ -334,7 +335,7 @@ PetscErrorCode ShapesCutWater(Sim sim, const Shapes *S, PetscInt first, const Pe
       PetscBool        box = PETSC_TRUE;
       if (!IsBody(S->s[i].kind)) continue;
       for (PetscInt d = 0; d < D; d++) box = (PetscBool)(box && x[D * a + d] >= g->lo[d] - gap && x[D * a + d] <= g->hi[d] + gap);
-      if (box && GeomSignedDistanceNear(g, x + D * a, gap + S->h[0]) <= gap) drop[a] = any = PETSC_TRUE;
+      if (box && GeomSignedDistanceNear(g, x + D * a, 2 * gap) <= gap) drop[a] = any = PETSC_TRUE;
     }
   }
   if (any) PetscCall(ParticlesRemove(P, drop));

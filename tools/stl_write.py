@@ -5,6 +5,7 @@
   tools/stl_write.py box x0,y0,z0,x1,y1,z1 OUT.stl [--ascii]      an axis-aligned box, 12 triangles
   tools/stl_write.py sphere x,y,z,r OUT.stl [--subdiv N] [--ascii] an icosphere, 20 * 4^N triangles
   tools/stl_write.py box ... OUT.stl --open 1                       drop N triangles (bad input, tests)
+  tools/stl_write.py --ascii box -- -0.1,-0.05,0,0.1,0.05,0.2 OUT.stl   numbers beginning with '-': options first, then --
 
 The triangles face outwards (counter-clockwise seen from outside).  A binary file holds float32
 numbers (the format's), so a box corner 0.6635 becomes 0.66350001; an ASCII file writes the numbers

@@ -174,7 +174,7 @@ install: all
 	install -d $(DESTDIR)$(PREFIX)/bin $(SHARE)/cases/boxes $(SHARE)/tools $(SHARE)/refdata
 	install -m 755 $(BIN) $(DESTDIR)$(PREFIX)/bin/sphfsi
 	install -m 644 cases/*.opts $(SHARE)/cases/
-	install -m 644 cases/boxes/*.opts cases/boxes/*.txt $(SHARE)/cases/boxes/
+	install -m 644 cases/boxes/*.opts cases/boxes/*.txt cases/boxes/*.stl $(SHARE)/cases/boxes/
 	install -m 755 tools/*.py tools/*.sh $(SHARE)/tools/
 	@if [ -d "$(REFDATA)" ]; then install -m 644 $(REFDATA)/*.csv $(SHARE)/refdata/; else echo "sphfsi: no reference data at $(REFDATA) (REFDATA=...): summary.json will have no errors against experiments"; fi
 	@echo "installed: $(DESTDIR)$(PREFIX)/bin/sphfsi; cases in $(SHARE)/cases"

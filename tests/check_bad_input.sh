@@ -121,6 +121,19 @@ check "-periodic x needs -domain"    -case boxes -dx 0.01 -tank_1 0,1,0,1 -fluid
 check "-periodic q: the directions are x, y" -case boxes -dx 0.01 -domain 0,0,1,1 -fluid_box_1 0,0,1,0.5 -periodic q
 # a case file's fixed -domain with a -dx whose walls stick out of it (crashed at the first migration before)
 check "outside its domain"          -options_file cases/boxes/dam_break.opts -dx 0.01
+# issue 48: bad STL surfaces (-stl_K; docs/geometry.md): an open surface, a missing file, a truncated
+# binary file, an ASCII facet of two vertices, an STL in 2D, a surface reaching outside the domain
+B3="-case boxes -dim 3 -dx 0.05 -domain 0,0,0,1,1,1 -fluid_box_1 0,0,0,1,1,0.5"
+python3 tools/stl_write.py box 0.3,0.3,0.1,0.6,0.6,0.3 "$OUT/open.stl" --open 1 > /dev/null
+python3 tools/stl_write.py box 0.3,0.3,0.1,0.6,0.6,0.3 "$OUT/cube.stl" > /dev/null
+head -c 500 "$OUT/cube.stl" > "$OUT/truncated.stl"
+printf 'solid x\n facet normal 0 0 1\n  outer loop\n   vertex 0 0 0\n   vertex 1 0 0\n  endloop\n endfacet\nendsolid x\n' > "$OUT/two.stl"
+check "is not closed: 3 open edges"  $B3 -stl_1 "$OUT/open.stl"
+check "no_such.stl cannot be opened" $B3 -stl_1 "$OUT/no_such.stl"
+check "binary STL of 12 triangles by its header, which takes 684 bytes, but has 500" $B3 -stl_1 "$OUT/truncated.stl"
+check "a facet with 2 vertices, not 3" $B3 -stl_1 "$OUT/two.stl"
+check "STL surfaces are 3D"          -case boxes -dx 0.01 -domain 0,0,1,1 -fluid_box_1 0,0,1,0.5 -stl_1 "$OUT/cube.stl"
+check "-stl_1 reaches outside the domain" $B3 -stl_1 "$OUT/cube.stl" -stl_1_translate 0.5,0,0
 wait
 cat "$OUT"/verdict.* 2>/dev/null
 bad=$(ls "$OUT"/verdict.* 2>/dev/null | wc -l)

@@ -7,7 +7,11 @@
 #     fraction the lattice makes (measured: WCSPH -0.4 %, ISPH +1.3 %) and within 10 % at phi = 0.1
 #     (+7 %, +9 %: at L/dx = 20 the circle holds 44 lattice points for its 40 dx^2);
 #  2. still water over a half-cylinder trough (cases/boxes/still_trough.opts, ISPH, 1 s): after
-#     0.5 s no water faster than 0.01 sqrt(g H), no particle farther than 0.5 dx from its start.
+#     0.5 s no water faster than 0.01 sqrt(g H), no particle farther than 0.5 dx from its start;
+#  3. STL surfaces (3D): SPHERIC Test 2 with its box from an STL file (cases/boxes/spheric_test2_stl.opts)
+#     is the boxes run bit for bit over 3 steps; a sphere obstacle from an STL icosphere (5120
+#     triangles) against -sphere_1 of the same radius: the same water, walls and dummies but for
+#     lattice points within the icosphere's chord error (0.2 % of r) of the sphere.
 MPI=$1; OUT=$2
 mkdir -p "$OUT"
 bad=0
@@ -36,4 +40,27 @@ done
 timeout 300 $MPI $BIN -options_file cases/boxes/still_trough.opts -fluid isph -t_end 1 -output_interval 1 -progress_every 0 -output_dir "$OUT/trough" > "$OUT/trough.log" 2>&1 || { echo "geometry: the still trough failed"; bad=1; }
 r=$(python3 tools/still_check.py "$OUT/trough" --t0 0.5 --vbound 0.01 --drift 0.5 2>&1) || bad=1
 echo "geometry: $r (bounds 0.01 sqrt(gH), 0.5 dx)"
+for c in spheric_test2 spheric_test2_stl; do
+  timeout 300 $MPI $BIN -options_file cases/boxes/$c.opts -max_steps 3 -output_interval 1e-9 -progress_every 0 -output_dir "$OUT/$c" > "$OUT/$c.log" 2>&1 || { echo "geometry: $c failed"; bad=1; }
+done
+if r=$(python3 tests/compare_snapshots.py "$OUT/spheric_test2" "$OUT/spheric_test2_stl" 0 2>&1); then
+  echo "geometry: SPHERIC Test 2 with the box from an STL file: bit for bit the wall box's run (3 steps; $r)"
+else bad=1; echo "geometry: the STL box differs from the wall box: $r"; fi
+python3 tools/stl_write.py sphere 0.05,0.05,0.05,0.03 "$OUT/ball.stl" --subdiv 4 > /dev/null
+ARR="-case boxes -dim 3 -dx 0.005 -domain 0,0,0,0.1,0.1,0.1 -periodic x,y,z -fluid_box_1 0,0,0,0.1,0.1,0.1 -gravity 1e-10,0,0 -mu 1e-3 -c0 5e-4 -alpha 0 -delta 0 -max_steps 1 -output_interval 1e-9 -progress_every 0"
+timeout 300 $MPI $BIN $ARR -sphere_1 0.05,0.05,0.05,0.03 -output_dir "$OUT/ball_sphere" > "$OUT/ball_sphere.log" 2>&1 || { echo "geometry: -sphere_1 failed"; bad=1; }
+timeout 300 $MPI $BIN $ARR -stl_1 "$OUT/ball.stl" -output_dir "$OUT/ball_stl" > "$OUT/ball_stl.log" 2>&1 || { echo "geometry: -stl_1 (a sphere) failed"; bad=1; }
+python3 - "$OUT/ball_sphere" "$OUT/ball_stl" <<'PY' || bad=1
+import sys
+import h5py, numpy as np
+def kinds(d):
+    with h5py.File(d + "/particles_00000.h5") as f:
+        return {tuple(np.round(p / 1e-7).astype(np.int64)): k for p, k in zip(f["x"][:], f["kind"][:].ravel())}
+a, b = kinds(sys.argv[1]), kinds(sys.argv[2])
+r, h = 0.03, 0.005
+off = [p for p in set(a) | set(b) if a.get(p) != b.get(p)]
+far = [p for p in off if min(abs(np.linalg.norm(np.array(p) * 1e-7 - 0.05) - r + c * h) for c in (0, 1, 3)) > 0.002 * r]
+print(f"geometry: a sphere from an STL icosphere (5120 triangles) against -sphere_1: {len(a)} and {len(b)} particles, {len(off)} lattice points of another kind, {len(far)} of them farther than 0.2 % of r from a row's boundary")
+assert not far and len(off) < 0.01 * len(a), "the STL sphere's particles"
+PY
 exit $bad

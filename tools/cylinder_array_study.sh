@@ -20,21 +20,4 @@ for phi in $PHIS; do for f in $FLUIDS; do for n in $NS; do
   one "$f" "$n" "$phi" &
 done; done; done
 wait
-python3 - "$OUT" "$NS" "$PHIS" "$FLUIDS" <<'PY'
-import json, math, sys
-out, ns, phis, fluids = sys.argv[1], sys.argv[2].split(), sys.argv[3].split(), sys.argv[4].split()
-print("| phi | fluid | L/dx | drag F/(mu U) | reference | error | phi_lattice | error at phi_lattice | Re | wall time (s) |")
-print("|---|---|---|---|---|---|---|---|---|---|")
-for phi in phis:
-    for f in fluids:
-        errs = []
-        for n in ns:
-            try:
-                s = json.load(open(f"{out}/{f}_{phi}_{n}/summary.json")); e = s["errors"]
-            except (OSError, KeyError, ValueError):
-                print(f"| {phi} | {f} | {n} | (no result) |"); continue
-            errs.append((int(n), e["drag_rel_err"]))
-            print(f"| {phi} | {f} | {n} | {e['drag_coefficient']:.3f} | {e['drag_reference']:.2f} | {100 * e['drag_rel_err']:+.2f} % | {e['phi_lattice']:.4f} | {100 * e['drag_rel_err_phi_lattice']:+.2f} % | {e['re']:.2g} | {s['wall_s']:.0f} |")
-        orders = [math.log(abs(a[1] / b[1])) / math.log(b[0] / a[0]) for a, b in zip(errs, errs[1:]) if a[1] and b[1]]
-        if orders: print(f"| {phi} | {f} | observed order | " + ", ".join(f"{o:.2f}" for o in orders) + " | | | | | | |")
-PY
+python3 tools/array_study_table.py "$OUT" "$NS" "$PHIS" "$FLUIDS" cylinder

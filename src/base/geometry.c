@@ -105,11 +105,37 @@ PetscErrorCode GeomPolygon(PetscInt n, const PetscReal xy[], GeomShape *s)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+PetscErrorCode GeomMeshShape(MPI_Comm comm, const char *opt, const char *file, GeomShape *s)
+{
+  PetscFunctionBeginUser;
+  PetscCall(PetscMemzero(s, sizeof(*s)));
+  s->type = GEOM_MESH;
+  s->dim  = 3;
+  PetscCall(PetscNew(&s->mesh));
+  PetscCall(GeomMeshReadSTL(comm, opt, file, s->mesh));
+  for (PetscInt d = 0; d < 3; d++) { s->lo[d] = s->mesh->lo[d]; s->hi[d] = s->mesh->hi[d]; }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode GeomTransform3(GeomShape *s, PetscReal scale, const PetscReal ang[3], const PetscReal t[])
+{
+  PetscFunctionBeginUser;
+  PetscCheck(s->type == GEOM_MESH, PETSC_COMM_SELF, PETSC_ERR_ARG_WRONG, "GeomTransform3 is for meshes");
+  PetscCall(GeomMeshTransform(s->mesh, scale, ang, t));
+  for (PetscInt d = 0; d < 3; d++) { s->lo[d] = s->mesh->lo[d]; s->hi[d] = s->mesh->hi[d]; }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 PetscErrorCode GeomTransform(GeomShape *s, PetscReal scale, PetscReal angle, const PetscReal t[])
 {
   const PetscReal cs = PetscCosReal(angle), sn = PetscSinReal(angle);
   PetscFunctionBeginUser;
   PetscCheck(scale > 0, PETSC_COMM_SELF, PETSC_ERR_ARG_OUTOFRANGE, "A shape's scale %g must be > 0", (double)scale);
+  if (s->type == GEOM_MESH) { /* about z */
+    const PetscReal ang[3] = {0, 0, angle};
+    PetscCall(GeomTransform3(s, scale, ang, t));
+    PetscFunctionReturn(PETSC_SUCCESS);
+  }
   if (s->type == GEOM_SPHERE) {
     PetscReal c[3] = {0, 0, 0};
     for (PetscInt d = 0; d < s->dim; d++) c[d] = scale * s->c[d];
@@ -135,6 +161,8 @@ PetscErrorCode GeomDestroy(GeomShape *s)
 {
   PetscFunctionBeginUser;
   PetscCall(PetscFree(s->v));
+  if (s->mesh) PetscCall(GeomMeshDestroy(s->mesh));
+  PetscCall(PetscFree(s->mesh));
   s->nv = 0;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -155,6 +183,7 @@ static PetscInt Winding(const GeomShape *s, const PetscReal x[])
 PetscBool GeomInside(const GeomShape *s, const PetscReal x[])
 {
   if (s->type == GEOM_POLYGON) return (PetscBool)(Winding(s, x) != 0);
+  if (s->type == GEOM_MESH) return (PetscBool)(GeomMeshDistance(s->mesh, x, 0, NULL, NULL) > 0 && GeomMeshInside(s->mesh, x));
   return (PetscBool)(GeomSignedDistance(s, x) < 0);
 }
 
@@ -174,8 +203,18 @@ static PetscReal PolygonClosest(const GeomShape *s, const PetscReal x[], PetscRe
   return best;
 }
 
+PetscReal GeomSignedDistanceNear(const GeomShape *s, const PetscReal x[], PetscReal dmax)
+{
+  if (s->type == GEOM_MESH) {
+    const PetscReal d = GeomMeshDistance(s->mesh, x, dmax, NULL, NULL);
+    return d > 0 && GeomMeshInside(s->mesh, x) ? -d : d; /* on the surface: 0 */
+  }
+  return GeomSignedDistance(s, x);
+}
+
 PetscReal GeomSignedDistance(const GeomShape *s, const PetscReal x[])
 {
+  if (s->type == GEOM_MESH) return GeomSignedDistanceNear(s, x, PETSC_MAX_REAL);
   if (s->type == GEOM_SPHERE) {
     PetscReal r2 = 0;
     for (PetscInt d = 0; d < s->dim; d++) r2 += (x[d] - s->c[d]) * (x[d] - s->c[d]);
@@ -202,6 +241,18 @@ PetscReal GeomNormal(const GeomShape *s, const PetscReal x[], PetscReal n[])
     else { /* the centre: any direction */
       for (PetscInt d = 0; d < s->dim; d++) n[d] = 0;
       n[0] = 1;
+    }
+    return sd;
+  }
+  if (s->type == GEOM_MESH) {
+    const PetscReal o = GeomMeshVolume(s->mesh) > 0 ? 1 : -1; /* the triangles' orientation */
+    dist = GeomMeshDistance(s->mesh, x, PETSC_MAX_REAL, q, &e);
+    sd   = dist > 0 && GeomMeshInside(s->mesh, x) ? -dist : dist;
+    if (dist > 1e-12 * (s->hi[0] - s->lo[0] + s->hi[1] - s->lo[1] + s->hi[2] - s->lo[2])) {
+      for (PetscInt d = 0; d < 3; d++) n[d] = (sd < 0 ? -1 : 1) * (x[d] - q[d]) / dist;
+    } else {
+      GeomMeshTriangleNormal(s->mesh, e, n);
+      for (PetscInt d = 0; d < 3; d++) n[d] *= o;
     }
     return sd;
   }
@@ -236,5 +287,6 @@ PetscReal GeomNormal(const GeomShape *s, const PetscReal x[], PetscReal n[])
 PetscReal GeomMeasure(const GeomShape *s)
 {
   if (s->type == GEOM_SPHERE) return s->dim == 3 ? 4.0 / 3.0 * PETSC_PI * s->r * s->r * s->r : PETSC_PI * s->r * s->r;
+  if (s->type == GEOM_MESH) return PetscAbsReal(GeomMeshVolume(s->mesh));
   return 0.5 * PetscAbsReal(Area2(s->nv, s->v));
 }

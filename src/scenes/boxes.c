@@ -352,6 +352,14 @@ static PetscErrorCode Populate(Sim sim)
   for (PetscInt i = 0; i < c->nsolid; i++) PetscCall(SceneAddBox(sim, KIND_SOLID, c->solid[i].b, sim->phys.dx, sim->phys.sl.rho0));
   for (PetscInt i = 0; i < c->nclamp; i++) PetscCall(SceneAddBox(sim, KIND_CLAMP, c->clamp[i].b, sim->phys.dx, sim->phys.sl.rho0));
   for (PetscInt i = 0; i < c->nwall; i++) PetscCall(SceneAddWallBox(sim, c->wall[i].b, sim->phys.dx, c->wall[i].face));
+  if (D == 3 && c->shapes.n) { /* an STL obstacle's faces resting on these walls are dry */
+    PetscReal dry[6 * SHAPES_MAX][6];
+    PetscInt  n = 0;
+    for (PetscInt i = 0; i < c->ntank && n + 5 <= 6 * SHAPES_MAX; i++) n += TankWalls(&c->tank[i], D, dry + n);
+    for (PetscInt i = 0; i < c->nwall && n < 6 * SHAPES_MAX; i++, n++)
+      for (PetscInt k = 0; k < 6; k++) dry[n][k] = c->wall[i].b[k];
+    PetscCall(ShapesSetDry(sim, &c->shapes, n, (const PetscReal(*)[6])dry));
+  }
   PetscCall(ShapesPopulate(sim, &c->shapes));
   PetscFunctionReturn(PETSC_SUCCESS);
 }

@@ -1,4 +1,4 @@
-/* Circles, spheres and polygons of -case boxes (shapes.h; docs/geometry.md). */
+/* Circles, spheres, polygons and STL surfaces of -case boxes (shapes.h; docs/geometry.md). */
 #include "scenes/shapes.h"
 #include "base/options_used.h"
 #include "base/refdata.h"
@@ -48,7 +48,7 @@ static PetscErrorCode ReadShapeOptions(Sim sim, PetscOptionItems *PetscOptionsOb
 {
   char      opt[64];
   PetscInt  kind = SHAPE_WALL, nt = 3;
-  PetscReal scale = 1, deg = 0, t[3] = {0, 0, 0};
+  PetscReal scale = 1, deg = 0, t[3] = {0, 0, 0}, ang[3] = {0, 0, 0};
   PetscBool set_s, set_r, set_t;
   PetscFunctionBeginUser;
   PetscCall(PetscSNPrintf(opt, sizeof(opt), "%s_kind", s->name));
@@ -57,13 +57,21 @@ static PetscErrorCode ReadShapeOptions(Sim sim, PetscOptionItems *PetscOptionsOb
   PetscCall(PetscSNPrintf(opt, sizeof(opt), "%s_scale", s->name));
   PetscCall(PetscOptionsReal(opt, "Scale of the shape about the origin (applied first)", "", scale, &scale, &set_s));
   PetscCall(PetscSNPrintf(opt, sizeof(opt), "%s_rotate", s->name));
-  PetscCall(PetscOptionsReal(opt, "Rotation of the shape about the origin, degrees anticlockwise (2D; after the scale)", "", deg, &deg, &set_r));
+  if (s->g.type == GEOM_MESH) {
+    PetscInt nr = 3;
+    PetscCall(PetscOptionsRealArray(opt, "Rotation of the surface about the origin, degrees: about z (one number), or about x, then y, then z (three; after the scale)", "", ang, &nr, &set_r));
+    PetscCheck(!set_r || nr == 1 || nr == 3, sim->comm, PETSC_ERR_USER_INPUT, "%s takes 1 number (about z) or 3 (about x, y, z), not %d", opt, (int)nr);
+    if (set_r && nr == 1) { ang[2] = ang[0]; ang[0] = 0; }
+  } else PetscCall(PetscOptionsReal(opt, "Rotation of the shape about the origin, degrees anticlockwise (2D; after the scale)", "", deg, &deg, &set_r));
   PetscCall(PetscSNPrintf(opt, sizeof(opt), "%s_translate", s->name));
   PetscCall(PetscOptionsRealArray(opt, "Translation of the shape x,y (3D x,y,z) (m; last)", "", t, &nt, &set_t));
   if (set_t) PetscCheck(nt == sim->phys.dim, sim->comm, PETSC_ERR_USER_INPUT, "%s takes %d numbers, not %d", opt, (int)sim->phys.dim, (int)nt);
   if (set_s) PetscCheck(scale > 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "%s_scale %g must be > 0", s->name, (double)scale);
-  PetscCheck(!set_r || sim->phys.dim == 2, sim->comm, PETSC_ERR_ARG_INCOMP, "%s_rotate: a sphere does not turn (rotation is for 2D shapes)", s->name);
-  if (set_s || set_r || set_t) PetscCall(GeomTransform(&s->g, scale, deg * PETSC_PI / 180, t));
+  PetscCheck(!set_r || sim->phys.dim == 2 || s->g.type == GEOM_MESH, sim->comm, PETSC_ERR_ARG_INCOMP, "%s_rotate: a sphere does not turn (rotation is for 2D shapes and STL surfaces)", s->name);
+  if (s->g.type == GEOM_MESH && (set_s || set_r || set_t)) {
+    for (PetscInt d = 0; d < 3; d++) ang[d] *= PETSC_PI / 180;
+    PetscCall(GeomTransform3(&s->g, scale, ang, t));
+  } else if (set_s || set_r || set_t) PetscCall(GeomTransform(&s->g, scale, deg * PETSC_PI / 180, t));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -122,6 +130,22 @@ PetscErrorCode ShapesRead(Sim sim, PetscOptionItems *PetscOptionsObject, Shapes 
     PetscCall(ReadShapeOptions(sim, PetscOptionsObject, &S->s[S->n++]));
   }
   PetscCall(PetscFree(xy));
+  for (PetscInt k = 1; k <= SHAPES_MAX; k++) { /* closed triangulated surfaces from STL files (3D) */
+    const char *const lattices[] = {"shared", "own", "Lattice", "", NULL};
+    char              file[PETSC_MAX_PATH_LEN] = "", fopt[64];
+    PetscInt          own = 0;
+    PetscCall(PetscSNPrintf(name, sizeof(name), "-stl_%d", (int)k));
+    PetscCall(PetscOptionsString(name, "STL file (binary or ASCII) of a closed surface (3D; m, before _scale, _rotate, _translate)", "", file, file, sizeof(file), &set));
+    if (!set) continue;
+    PetscCheck(D == 3, sim->comm, PETSC_ERR_ARG_INCOMP, "%s: STL surfaces are 3D; a 2D case takes -polygon_K", name);
+    PetscCheck(file[0], sim->comm, PETSC_ERR_USER_INPUT, "%s needs a file name", name);
+    PetscCall(GeomMeshShape(sim->comm, name, file, &S->s[S->n].g));
+    PetscCall(PetscStrncpy(S->s[S->n].name, name, sizeof(S->s[0].name)));
+    PetscCall(PetscSNPrintf(fopt, sizeof(fopt), "%s_lattice", name));
+    PetscCall(OptEList(fopt, "Lattice of the surface's particles: shared (the water's, interlocking with it) or own (its bounding box filled at -dx as a wall box is: an STL box then gives a wall box's particles)", "", lattices, 2, lattices[0], &own, NULL));
+    S->s[S->n].own = (PetscBool)(own == 1);
+    PetscCall(ReadShapeOptions(sim, PetscOptionsObject, &S->s[S->n++]));
+  }
   PetscCall(OptBool("-flow_probe", "Probe columns u_mean (the superficial velocity along x: the fluid's volume-weighted x-velocity summed over the domain's area, i.e. the flow rate over the width) and drag (the body force on the water per obstacle shape over mu u_mean); summary.json: the drag at the end against the reference for a periodic array", "", S->flow, &S->flow, NULL));
   if (S->flow) PetscCall(SceneKeepSeries(sim, &S->drag));
   PetscFunctionReturn(PETSC_SUCCESS);
@@ -142,6 +166,43 @@ static void LatticePoint(const Shapes *S, const PetscInt i[], PetscInt D, PetscR
   for (PetscInt d = 0; d < D; d++) p[d] = S->origin[d] + (i[d] + 0.5) * S->h[d];
 }
 
+/* A shape's own lattice (-stl_K_lattice own): its bounding box filled at -dx as SceneAddBox fills a
+ * box (the same spacing, points and order), indices 0 .. n - 1. */
+static void OwnLattice(Sim sim, const GeomShape *g, PetscInt D, PetscReal first[], PetscReal s[], PetscInt lo[], PetscInt hi[])
+{
+  for (PetscInt d = 0; d < 3; d++) { lo[d] = hi[d] = 0; s[d] = sim->phys.dx; first[d] = 0; }
+  for (PetscInt d = 0; d < D; d++) {
+    PetscInt n;
+    s[d]     = SceneFitSpacing(g->hi[d] - g->lo[d], sim->phys.dx, &n);
+    first[d] = g->lo[d] + 0.5 * s[d];
+    hi[d]    = n - 1;
+  }
+}
+
+static PetscBool InDryBox(const PetscReal p[], void *ctx)
+{
+  const Shapes *S = (const Shapes *)ctx;
+  for (PetscInt b = 0; b < S->ndry; b++)
+    if (p[0] > S->dry[b][0] && p[0] < S->dry[b][3] && p[1] > S->dry[b][1] && p[1] < S->dry[b][4] && p[2] > S->dry[b][2] && p[2] < S->dry[b][5]) return PETSC_TRUE;
+  return PETSC_FALSE;
+}
+
+PetscErrorCode ShapesSetDry(Sim sim, Shapes *S, PetscInt n, const PetscReal (*box)[6])
+{
+  PetscFunctionBeginUser;
+  PetscCheck(n <= 6 * SHAPES_MAX, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "At most %d wall boxes", 6 * SHAPES_MAX);
+  S->ndry = n;
+  for (PetscInt b = 0; b < n; b++)
+    for (PetscInt k = 0; k < 6; k++) S->dry[b][k] = box[b][k];
+  for (PetscInt i = 0; i < S->n; i++) {
+    PetscInt ndry;
+    if (S->s[i].g.type != GEOM_MESH || S->s[i].kind != SHAPE_WALL || !n) continue;
+    PetscCall(GeomMeshSetDry(S->s[i].g.mesh, 0.25 * sim->phys.dx, InDryBox, S, &ndry));
+    PetscCall(PetscInfo(NULL, "%s: %d of its %d triangles rest on other walls (dry)\n", S->s[i].name, (int)ndry, (int)S->s[i].g.mesh->nt));
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 static PetscBool IsBody(ShapeKind k) { return (PetscBool)(k != SHAPE_FLUID); }
 
 /* Whether the lattice point p is in or on another shape of the solid kinds that takes it from s: a
@@ -150,7 +211,7 @@ static PetscBool TakenByClamp(const Shapes *S, PetscInt si, const PetscReal p[])
 {
   if (S->s[si].kind != SHAPE_SOLID) return PETSC_FALSE;
   for (PetscInt j = 0; j < S->n; j++)
-    if (S->s[j].kind == SHAPE_CLAMP && GeomSignedDistance(&S->s[j].g, p) <= 0) return PETSC_TRUE;
+    if (S->s[j].kind == SHAPE_CLAMP && GeomSignedDistanceNear(&S->s[j].g, p, 0) <= 0) return PETSC_TRUE; /* the sign only */
   return PETSC_FALSE;
 }
 
@@ -182,11 +243,11 @@ PetscErrorCode ShapesSetUp(Sim sim, Shapes *S, PetscInt nbox, const PetscReal (*
         for (idx[0] = lo[0]; idx[0] <= hi[0]; idx[0]++) {
           PetscReal p[3] = {0, 0, 0};
           LatticePoint(S, idx, D, p);
-          if (GeomSignedDistance(&S->s[i].g, p) > 0) continue;
+          if (GeomSignedDistanceNear(&S->s[i].g, p, 0) > 0) continue;
           for (PetscInt j = i + 1; j < S->n; j++) {
             const ShapeKind ki = S->s[i].kind, kj = S->s[j].kind;
             if (IsBody(ki) != IsBody(kj) || (ki == SHAPE_SOLID && kj == SHAPE_CLAMP) || (kj == SHAPE_SOLID && ki == SHAPE_CLAMP)) continue; /* water is cut by bodies; a clamp takes from a solid */
-            PetscCheck(GeomSignedDistance(&S->s[j].g, p) > 0, sim->comm, PETSC_ERR_ARG_INCOMP, "%s (%s) overlaps %s (%s) at (%g, %g): shapes of these kinds cannot share space", S->s[i].name, ShapeKinds[ki], S->s[j].name, ShapeKinds[kj], (double)p[0], (double)p[1]);
+            PetscCheck(GeomSignedDistanceNear(&S->s[j].g, p, 0) > 0, sim->comm, PETSC_ERR_ARG_INCOMP, "%s (%s) overlaps %s (%s) at (%g, %g): shapes of these kinds cannot share space", S->s[i].name, ShapeKinds[ki], S->s[j].name, ShapeKinds[kj], (double)p[0], (double)p[1]);
           }
           if (S->s[i].kind != SHAPE_FLUID) continue;
           for (PetscInt b = 0; b < nbox; b++) {
@@ -203,39 +264,52 @@ PetscErrorCode ShapesPopulate(Sim sim, Shapes *S)
 {
   const PetscInt  D = sim->phys.dim;
   const PetscReal hmin = D == 3 ? PetscMin(S->h[0], PetscMin(S->h[1], S->h[2])) : PetscMin(S->h[0], S->h[1]);
+  const PetscInt  n0   = sim->P->n;
+  PetscLogDouble  t0, t1;
   PetscFunctionBeginUser;
+  PetscCall(PetscTime(&t0));
   for (PetscInt pass = 0; pass < 2; pass++) /* water first, then the bodies in the order given */
     for (PetscInt i = 0; i < S->n; i++) {
       const Shape *s = &S->s[i];
       PetscInt     lo[3], hi[3], idx[3], first = sim->P->n;
-      PetscReal    top = -PETSC_MAX_REAL; /* water: the highest point's top */
+      PetscReal    top = -PETSC_MAX_REAL, f0[3], sp[3]; /* water: the highest point's top; an own lattice */
+      const PetscReal *h = s->own ? sp : S->h;
+      const PetscBool  dry = (PetscBool)(s->g.type == GEOM_MESH && s->g.mesh->dry);
+      const PetscReal  hw  = s->own ? sim->phys.dx : hmin; /* a wall row's depth: a wall box's is -dx */
+      const PetscReal  dmax = s->kind != SHAPE_WALL ? 0 : (s->own ? 2 : S->rows + 1) * hw; /* how far the distance matters */
       if ((pass == 0) != (s->kind == SHAPE_FLUID)) continue;
-      LatticeRange(S, &s->g, D, lo, hi);
+      if (s->own) OwnLattice(sim, &s->g, D, f0, sp, lo, hi);
+      else LatticeRange(S, &s->g, D, lo, hi);
       for (idx[2] = lo[2]; idx[2] <= hi[2]; idx[2]++)
         for (idx[1] = lo[1]; idx[1] <= hi[1]; idx[1]++)
           for (idx[0] = lo[0]; idx[0] <= hi[0]; idx[0]++) {
             PetscReal    p[3] = {0, 0, 0}, sd;
             ParticleKind kind;
-            LatticePoint(S, idx, D, p);
-            sd = GeomSignedDistance(&s->g, p);
+            if (s->own)
+              for (PetscInt d = 0; d < D; d++) p[d] = f0[d] + idx[d] * sp[d];
+            else LatticePoint(S, idx, D, p);
+            sd = GeomSignedDistanceNear(&s->g, p, dmax); /* exact within the wall rows; else the sign */
             if (sd > 0 || TakenByClamp(S, i, p)) continue;
-            top = PetscMax(top, p[D - 1] + 0.5 * S->h[D - 1]);
+            top = PetscMax(top, p[D - 1] + 0.5 * h[D - 1]);
             switch (s->kind) {
             case SHAPE_WALL: /* the row next to the surface is wall, the deeper rows dummies, down to rows deep */
-              if (sd <= -S->rows * hmin) continue;
-              kind = sd > -hmin ? KIND_WALL : KIND_DUMMY;
+              if (sd <= -S->rows * hw && !s->own) continue; /* an own lattice fills the inside, as a wall box */
+              kind = sd > -hw ? KIND_WALL : KIND_DUMMY;
+              if (dry && kind == KIND_WALL && GeomMeshDistanceWet(s->g.mesh, p, hw) >= hw) kind = KIND_DUMMY; /* near dry faces only */
               break;
             case SHAPE_FLUID: kind = KIND_FLUID; break;
             case SHAPE_SOLID: kind = KIND_SOLID; break;
             default: kind = KIND_CLAMP; break;
             }
-            PetscCall(SceneAddPoint(sim, kind, p, S->h, sim->phys.dx, kind == KIND_SOLID || kind == KIND_CLAMP ? sim->phys.sl.rho0 : sim->phys.fl.rho0));
+            PetscCall(SceneAddPoint(sim, kind, p, h, sim->phys.dx, kind == KIND_SOLID || kind == KIND_CLAMP ? sim->phys.sl.rho0 : sim->phys.fl.rho0));
           }
       if (s->kind == SHAPE_FLUID) {
         PetscCall(ShapesCutWater(sim, S, first, NULL, NULL, 0));
         PetscCall(SceneHydrostaticDensity(sim, first, top));
       }
     }
+  PetscCall(PetscTime(&t1));
+  if (S->n) PetscCall(PetscInfo(NULL, "shapes: %d particles on this rank in %g s\n", (int)(sim->P->n - n0), (double)(t1 - t0)));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -261,7 +335,7 @@ PetscErrorCode ShapesCutWater(Sim sim, const Shapes *S, PetscInt first, const Pe
       PetscBool        box = PETSC_TRUE;
       if (!IsBody(S->s[i].kind)) continue;
       for (PetscInt d = 0; d < D; d++) box = (PetscBool)(box && x[D * a + d] >= g->lo[d] - gap && x[D * a + d] <= g->hi[d] + gap);
-      if (box && GeomSignedDistance(g, x + D * a) <= gap) drop[a] = any = PETSC_TRUE;
+      if (box && GeomSignedDistanceNear(g, x + D * a, 2 * gap) <= gap) drop[a] = any = PETSC_TRUE;
     }
   }
   if (any) PetscCall(ParticlesRemove(P, drop));

@@ -17,6 +17,7 @@ typedef struct {
   GeomShape g;
   ShapeKind kind;
   char      name[32]; /* the option that gave it, e.g. -cylinder_1 */
+  PetscBool own;      /* -stl_K_lattice own: its bounding box's lattice at -dx (as a wall box), not the shared one */
 } Shape;
 
 typedef struct {
@@ -27,6 +28,8 @@ typedef struct {
   PetscBool flow;           /* -flow_probe: superficial velocity and drag columns */
   PetscReal flow_measure;   /* the domain's area (volume) */
   Series    drag;           /* the drag column's history (for its mean over the run's last tenth) */
+  PetscInt  ndry;           /* boxes of wall particles (tanks' walls, wall boxes): an STL obstacle's */
+  PetscReal dry[6 * SHAPES_MAX][6]; /* faces resting on them are dry, their rows dummies */
 } Shapes;
 
 /* In the boxes' options block: -cylinder_K / -sphere_K, -polygon_K (or -polygon_K_file) with
@@ -38,6 +41,9 @@ PetscErrorCode ShapesRead(Sim sim, PetscOptionItems *PetscOptionsObject, Shapes 
  * point with each other or with water boxes (box: the low corner, then the high corner of each of the
  * nbox water boxes; spacing: their nominal spacings). */
 PetscErrorCode ShapesSetUp(Sim sim, Shapes *S, PetscInt nbox, const PetscReal (*box)[6], const PetscReal *spacing);
+/* The boxes that other walls fill (x0,y0,z0,x1,y1,z1), at most 6 * SHAPES_MAX: the faces of an STL
+ * obstacle against them meet no water, and its rows there are dummies (as a wall box's faces not given). */
+PetscErrorCode ShapesSetDry(Sim sim, Shapes *S, PetscInt n, const PetscReal (*box)[6]);
 /* Add the shapes' particles: water shapes (each at the hydrostatic density below its top), then
  * obstacles, solids and clamps in the order given. */
 PetscErrorCode ShapesPopulate(Sim sim, Shapes *S);

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""The table of a periodic-array study (tools/cylinder_array_study.sh, tools/sphere_array_study.sh):
+"""The table of a periodic-array study (tools/array_study.sh cylinder, tools/array_study.sh sphere):
 one row per run OUT/FLUID_PHI_N/summary.json (the drag against the reference at phi and at the
 lattice's phi, Re, wall time) and the observed order of each series.
 Usage: array_study_table.py OUT "NS" "PHIS" "FLUIDS" cylinder|sphere"""

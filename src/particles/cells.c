@@ -356,23 +356,26 @@ PetscErrorCode CellsBuildSubList(Cells c, Particles P, PetscBool (*keep)(PetscIn
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode CellsUpdatePairs(Cells sub, Particles P)
+static PetscErrorCode UpdatePairs(Cells sub, Particles P, PetscBool with_w)
 {
   const PetscReal *x = PField(P, FIELD_X), *h = PField(P, FIELD_H);
   const PetscInt   D = P->dim;
   PetscFunctionBeginUser;
-  PetscCheck(!sub->drop_w, PETSC_COMM_SELF, PETSC_ERR_ARG_WRONGSTATE, "CellsUpdatePairs needs a list that keeps W");
+  PetscCheck(!sub->drop_w || !with_w, PETSC_COMM_SELF, PETSC_ERR_ARG_WRONGSTATE, "CellsUpdatePairs needs a list that keeps W");
   for (PetscInt a = 0; a < sub->npart; a++)
     for (PetscInt k = sub->nstart[a]; k < sub->nstart[a + 1]; k++) {
       PetscInt  b = sub->nbr[k];
       PetscReal dx = x[D * a] - x[D * b], dy = x[D * a + 1] - x[D * b + 1], r2 = dx * dx + dy * dy, r, hab = PairH(h[a], h[b]);
       if (D == 3) r2 += (x[D * a + 2] - x[D * b + 2]) * (x[D * a + 2] - x[D * b + 2]);
-      r         = PetscSqrtReal(r2);
-      sub->w[k] = KernelW(sub->kernel, r, hab);
+      r = PetscSqrtReal(r2);
+      if (with_w) sub->w[k] = KernelW(sub->kernel, r, hab);
       sub->f[k] = KernelF(sub->kernel, r, hab);
     }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
+
+PetscErrorCode CellsUpdatePairs(Cells sub, Particles P) { return UpdatePairs(sub, P, PETSC_TRUE); }
+PetscErrorCode CellsUpdatePairsF(Cells sub, Particles P) { return UpdatePairs(sub, P, PETSC_FALSE); }
 
 /* The list just built (r < 2 h_ab + skin) becomes the candidates. */
 static PetscErrorCode KeepCandidates(Cells c)

@@ -43,8 +43,10 @@ PetscErrorCode CellsCreateList(const SPHKernel *K, Cells *c);
  * `c` and radius 2 h_ab + skin (skin + 2 h_max <= cell size), so that it stays complete while the
  * particles move less than skin / 2; kernel values at the current positions (zero beyond 2 h_ab). */
 PetscErrorCode CellsBuildSubList(Cells c, Particles P, PetscBool (*keep)(PetscInt), PetscReal skin, Cells sub);
-/* Kernel values of the pairs of a list at the current positions. */
+/* Kernel values of the pairs of a list at the current positions: W and F (grad W = F r_ab); F only
+ * (the total-Lagrangian solid reads no W: it would be a sixth of its step's work). */
 PetscErrorCode CellsUpdatePairs(Cells sub, Particles P);
+PetscErrorCode CellsUpdatePairsF(Cells sub, Particles P);
 /* Neighbour list and pair kernel values only, for the same binning but new positions (e.g. ISPH
  * predictor); particles must not have left their cell's stencil. */
 PetscErrorCode CellsBuildNeighbours(Cells c, Particles P);

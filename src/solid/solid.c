@@ -237,7 +237,8 @@ static PetscErrorCode SolidRefresh(Physics *ph)
 PetscErrorCode SolidRates(Physics *ph)
 {
   PetscFunctionBeginUser;
-  PetscCall(CellsUpdatePairs(ph->solid->nl, ph->P));
+  if (ph->solid->formulation == SOLID_TOTAL) PetscCall(CellsUpdatePairsF(ph->solid->nl, ph->P)); /* W: only the updated solid's artificial stress reads it */
+  else PetscCall(CellsUpdatePairs(ph->solid->nl, ph->P));
   if (ph->solid->formulation == SOLID_TOTAL) {
     if (ph->solid->repulsion) PetscCall(Normals(ph));
     PetscCall(SolidTotalRates(ph));

@@ -105,6 +105,9 @@ $(BINDIR)/test_%: $(BUILD)/tests/test_%.o $(BUILD)/libsphfsi.a
 
 tests: $(BIN) $(TEST_BIN)
 
+# Parallel compilation for `make check` (a clean checkout compiles in half the time on 2 cores)
+BUILD_JOBS ?= $(shell nproc 2>/dev/null || echo 2)
+
 # Installs the Debian packages when PETSc (or METIS) cannot be found; does nothing otherwise.
 deps:
 	@bash tools/install-deps.sh
@@ -117,7 +120,7 @@ run: deps
 # The test suite on 2 MPI ranks; ends with 'N passed, N failed'.  SAN=1: the unit tests built with
 # AddressSanitizer + UndefinedBehaviorSanitizer (bin/san/).
 check: deps
-	@$(MAKE) --no-print-directory all
+	@$(MAKE) --no-print-directory -j$(BUILD_JOBS) all
 	@BINDIR=$(BINDIR) bash tests/run_tests.sh $(if $(filter 1,$(SAN)),--unit-only,)
 
 # Throughput, scaling, memory and the partition model (tools/bench.sh; out/bench/bench.md, ~20 min on 2 cores).

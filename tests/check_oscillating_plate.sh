@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
-# Oscillating plate (Gray et al. 2001) at a coarse resolution, 10 particles across the thickness,
-# run for ~3 periods (0.8 s).  Bounds, from the issue and the physics:
+# Oscillating plate (Gray et al. 2001) at a coarse resolution, PLATE_NY (10) particles across the
+# thickness, run for ~3 periods (0.8 s).  Bounds, from the issue and the physics:
 #  - the period from the zero crossings of tip_y within 15 % of the thin-plate analytic value
 #    (published SPH values are 12-13 % long at ~12 across, paper Table 1); at least 5 crossings;
 #  - the first amplitude within 15 % of the analytic V_f c0 / omega (a softer plate swings wider);
@@ -17,7 +17,7 @@
 set -e
 MPI=$1; OUT=$2; shift 2
 REF=${SPHFSI_REFDATA:-../shared/refdata}
-$MPI bin/sphfsi -options_file cases/oscillating_plate.opts -plate_ny 10 -output_interval 0 -output_dir "$OUT" -progress_every 0 "$@"
+$MPI bin/sphfsi -options_file cases/oscillating_plate.opts -plate_ny ${PLATE_NY:-10} -output_interval 0 -output_dir "$OUT" -progress_every 0 "$@"
 python3 - "$OUT" "$REF/gray2001_oscillating_plate_params_and_analytic.csv" <<'PY'
 import csv, json, os, sys
 out, ref = sys.argv[1], sys.argv[2]

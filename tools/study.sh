@@ -14,6 +14,9 @@
 #                       error: L2 velocity error at t = 2 s (relative)
 #   oscillating_plate   cases/oscillating_plate.opts (WCSPH solid), 6, 10, 14 particles across, to
 #                       0.8 s; error: |period - thin-plate period| / thin-plate period
+#   cantilever          cases/cantilever.opts (total-Lagrangian solid, static load, dynamic relaxation),
+#                       5, 7, 10 particles across, to 0.12 s; error: |sag - Euler-Bernoulli| / E-B
+#                       (plane strain; a 2D FEM of the clamped plate is 0.08 % below it)
 #   elastic_gate        cases/elastic_gate.opts (ISPH + solid), cases/elastic_gate_wcsph.opts (WCSPH +
 #                       solid), uniform dx (-dx_coarse = -dx) 1.667, 1.25, 1 mm (3, 4, 5 particles
 #                       across the gate; the scene needs at least 3; the case files' 1 mm at the gate
@@ -27,7 +30,7 @@
 # Environment:
 #   NP             ranks per run (2)
 #   STUDY_SCENES   subset, space-separated (dam_break dam_break_lobovsky taylor_green poiseuille oscillating_plate
-#                  elastic_gate); the report covers every scene with a plan.tsv in out/study
+#                  cantilever elastic_gate); the report covers every scene with a plan.tsv in out/study
 #   STUDY_REUSE=1  keep the result of an earlier run with the same options (its run.json)
 #   STUDY_SIZE     default | cluster | quick.  cluster: 4-5 resolutions per scheme (the default ones and
 #                  finer ones: dam break to a/320, Taylor-Green to L/400, Poiseuille to Hc/80,
@@ -47,7 +50,7 @@ BIN=${BINDIR:-bin}
 NP=${NP:-2}
 OUT=out/study
 SIZE=${STUDY_SIZE:-default}
-SCENES=${STUDY_SCENES:-dam_break dam_break_lobovsky taylor_green poiseuille oscillating_plate elastic_gate}
+SCENES=${STUDY_SCENES:-dam_break dam_break_lobovsky taylor_green poiseuille oscillating_plate cantilever elastic_gate}
 TMO=${STUDY_TIMEOUT:-3600}
 [ -x $BIN/sphfsi ] || { echo "$BIN/sphfsi missing: run make first (or make study)" >&2; exit 1; }
 case $SIZE in default|cluster|quick) ;; *) echo "STUDY_SIZE must be default, cluster or quick" >&2; exit 1;; esac
@@ -79,6 +82,9 @@ scene() {
   oscillating_plate)
     SCHEMES="solid:-options_file cases/oscillating_plate.opts"
     for d in $(pick "6 10 14" "6 10 14 20 30" "4 6"); do RES="$RES;ny$d:$(f7 0.02/$d):-plate_ny $d"; done ;;
+  cantilever) # the static cantilever's sag (cases/cantilever.opts): 5 across 14 s, 10 across 126 s here
+    SCHEMES="solid:-options_file cases/cantilever.opts"
+    for d in $(pick "5 7 10" "5 10 20 40" "4 5"); do RES="$RES;ny$d:$(f7 0.005/$d):-plate_ny $d"; done ;;
   elastic_gate)
     SCHEMES="isph:-options_file cases/elastic_gate.opts;wcsph:-options_file cases/elastic_gate_wcsph.opts"
     for d in $(pick "3 4 5" "3 4 5 7 10" "3"); do
@@ -87,7 +93,7 @@ scene() {
   *) echo "unknown scene $1 (STUDY_SCENES)" >&2; return 1;;
   esac
   # every scene runs to its case file's t_end, but for STUDY_SIZE=quick
-  [ $SIZE = quick ] && COMMON="$COMMON -t_end $(case $1 in oscillating_plate) echo 0.3;; elastic_gate) echo 0.01;; *) echo 0.1;; esac)"
+  [ $SIZE = quick ] && COMMON="$COMMON -t_end $(case $1 in oscillating_plate) echo 0.3;; cantilever) echo 0.02;; elastic_gate) echo 0.01;; *) echo 0.1;; esac)"
   RES=${RES#;}
 }
 

@@ -41,6 +41,8 @@ SCENES = {
                    ("u_center_rel_err_final", "centre speed")),
     "oscillating_plate": ("Oscillating plate", "period_rel_err", "|period − thin-plate period| / thin-plate period", "%", 100,
                           ("amplitude_rel_err", "amplitude")),
+    "cantilever": ("Static cantilever", "sag_eb_rel_err", "|sag − Euler–Bernoulli sag (plane strain)| / E–B", "%", 100,
+                   ("sag_rel_err", "with Timoshenko shear")),
     "elastic_gate": ("Elastic gate", "tip_dx_err_rms", "rms error of the gate tip's tip_dx against the experiment", "mm", 1e3,
                      ("tip_dy_err_rms", "tip_dy rms")),
 }

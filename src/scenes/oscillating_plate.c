@@ -165,7 +165,7 @@ static PetscErrorCode Errors(Sim sim, FILE *f)
   if (f && c->vf == 0) { /* a static load (-gravity) instead of the mode: the end's sag against beam theory */
     PetscReal g = PetscSqrtReal(sim->phys.g[0] * sim->phys.g[0] + sim->phys.g[1] * sim->phys.g[1] + sim->phys.g[2] * sim->phys.g[2]), L = c->L, H = c->H;
     PetscReal eb = 1.5 * m->rho0 * g * PetscPowReal(L, 4) / (Ep * H * H), shear = m->rho0 * g * L * L / (2 * (5.0 / 6.0) * m->G), sag = c->tip.n ? -c->tip.y[c->tip.n - 1] : 0;
-    fprintf(f, "\"g\": %.6g, \"sag\": %.6g, \"sag_beam\": %.6g, \"sag_rel_err\": %.6g, \"sag_euler_bernoulli\": %.6g, \"plate_ny\": %d, \"kinetic_over_strain_energy\": %.6g, ", (double)g, (double)sag, (double)(eb + shear), (double)(sag / (eb + shear) - 1), (double)eb, (int)c->ny, (double)(es > 0 ? ek / es : 0));
+    fprintf(f, "\"g\": %.6g, \"sag\": %.6g, \"sag_beam\": %.6g, \"sag_rel_err\": %.6g, \"sag_euler_bernoulli\": %.6g, \"sag_eb_rel_err\": %.6g, \"plate_ny\": %d, \"kinetic_over_strain_energy\": %.6g, ", (double)g, (double)sag, (double)(eb + shear), (double)(sag / (eb + shear) - 1), (double)eb, (double)(sag / eb - 1), (int)c->ny, (double)(es > 0 ? ek / es : 0));
     fprintf(f, "\"reference\": \"sag of the end under the uniform load rho g H: Euler-Bernoulli q L^4 / (8 E' I), E' = E / (1 - nu^2), plus Timoshenko shear q L^2 / (2 (5/6) G H); the end at rest when kinetic_over_strain_energy is small (-solid_damping)\"");
     PetscFunctionReturn(PETSC_SUCCESS);
   }

@@ -116,7 +116,13 @@ check "in 3D give -sphere_1"         -case boxes -dim 3 -dx 0.01 -domain 0,0,0,1
 check "-cylinder_1 reaches outside the domain" -case boxes -dx 0.01 -domain 0,0,1,1 -fluid_box_1 0,0,1,0.5 -cylinder_1 0.95,0.25,0.1
 check "-cylinder_1 (wall) overlaps -cylinder_2 (wall)" -case boxes -dx 0.01 -domain 0,0,1,1 -fluid_box_1 0,0,1,0.5 -cylinder_1 0.5,0.25,0.1 -cylinder_2 0.6,0.25,0.1
 check "-cylinder_1 (fluid) overlaps -fluid_box_1" -case boxes -dx 0.01 -domain 0,0,1,1 -fluid_box_1 0,0,1,0.5 -cylinder_1 0.5,0.6,0.2 -cylinder_1_kind fluid
+check "-cylinder_1 is wider than the periodic domain in x" -case boxes -dx 0.01 -domain 0,0,0.2,1 -periodic x -fluid_box_1 0,0,0.2,0.5 -cylinder_1 0.1,0.25,0.15
 check "-cylinder_1_kind"             -case boxes -dx 0.01 -domain 0,0,1,1 -fluid_box_1 0,0,1,0.5 -cylinder_1 0.5,0.25,0.1 -cylinder_1_kind rock
+# a shape sharing space with a box of walls, solid or clamp (they may touch: SPHERIC Test 2's STL box
+# rests on the tank's floor)
+check "-cylinder_1 (wall) overlaps the walls of -tank_1" -case boxes -dx 0.01 -tank_1 0,1,0,1 -fluid_box_1 0,0,0.5,0.5 -cylinder_1 0.5,0.01,0.03
+check "-cylinder_1 (fluid) overlaps -wall_box_1" -case boxes -dx 0.01 -domain 0,0,1,1 -fluid_box_1 0,0,1,0.3 -wall_box_1 0.4,0.4,0.6,0.6 -cylinder_1 0.5,0.7,0.15 -cylinder_1_kind fluid
+check "-polygon_1 (solid) overlaps -clamp_box_1" -case boxes -dx 0.01 -domain 0,0,1,1 -fluid_box_1 0,0,1,0.3 -clamp_box_1 0.4,0.4,0.5,0.6 -polygon_1 0.45,0.4,0.8,0.4,0.8,0.6,0.45,0.6 -polygon_1_kind solid
 check "-periodic x needs -domain"    -case boxes -dx 0.01 -tank_1 0,1,0,1 -fluid_box_1 0,0,0.5,0.5 -periodic x
 check "-periodic q: the directions are x, y" -case boxes -dx 0.01 -domain 0,0,1,1 -fluid_box_1 0,0,1,0.5 -periodic q
 # a case file's fixed -domain with a -dx whose walls stick out of it (crashed at the first migration before)
@@ -134,6 +140,7 @@ check "binary STL of 12 triangles by its header, which takes 684 bytes, but has 
 check "a facet with 2 vertices, not 3" $B3 -stl_1 "$OUT/two.stl"
 check "STL surfaces are 3D"          -case boxes -dx 0.01 -domain 0,0,1,1 -fluid_box_1 0,0,1,0.5 -stl_1 "$OUT/cube.stl"
 check "-stl_1 reaches outside the domain" $B3 -stl_1 "$OUT/cube.stl" -stl_1_translate 0.5,0,0
+check "-stl_1 (wall) overlaps -wall_box_1" $B3 -stl_1 "$OUT/cube.stl" -stl_1_translate 0,0,0.35 -wall_box_1 0.5,0.5,0.5,0.8,0.8,0.8
 wait
 cat "$OUT"/verdict.* 2>/dev/null
 bad=$(ls "$OUT"/verdict.* 2>/dev/null | wc -l)

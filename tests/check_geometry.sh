@@ -5,10 +5,13 @@
 #     deeper, the water's volume within 2 % of the cell less the circle, no water particle closer
 #     than dx to a wall particle) and the drag F/(mu U) within 3 % of Sangani & Acrivos at the
 #     fraction the lattice makes (measured: WCSPH -0.4 %, ISPH +1.3 %) and within 10 % at phi = 0.1
-#     (+7 %, +9 %: at L/dx = 20 the circle holds 44 lattice points for its 40 dx^2);
+#     (+7 %, +9 %: at L/dx = 20 the circle holds 44 lattice points for its 40 dx^2).  The same
+#     cylinder across the periodic corner gives the same drag (a shape across a periodic boundary);
 #  2. still water over a half-cylinder trough (cases/boxes/still_trough.opts, ISPH, 1 s): after
 #     0.5 s no water faster than 0.01 sqrt(g H), no particle farther than 0.5 dx from its start;
-#  3. STL surfaces (3D): SPHERIC Test 2 with its box from an STL file (cases/boxes/spheric_test2_stl.opts)
+#  3. still water in a hemispherical bowl (cases/boxes/still_bowl.opts, 3D, ISPH, 1 s), the same bounds
+#     with H = 0.06 m (the depth over the flat floor);
+#  4. STL surfaces (3D): SPHERIC Test 2 with its box from an STL file (cases/boxes/spheric_test2_stl.opts)
 #     is the boxes run bit for bit over 3 steps; a sphere obstacle from an STL icosphere (5120
 #     triangles) against -sphere_1 of the same radius: the same water, walls and dummies but for
 #     lattice points within the icosphere's chord error (0.2 % of r) of the sphere.
@@ -37,8 +40,22 @@ assert abs(vol - 1) < 0.02 and near >= 0.999, "water volume or spacing"
 assert abs(e["drag_rel_err"]) < 0.10 and abs(e["drag_rel_err_phi_lattice"]) < 0.03, "drag"
 PY
 done
+# the same array with its cylinder across the periodic corner (the cell shifted by half a period, whole
+# spacings): the same lattice cut, so the same drag to round-off (bound 1e-6)
+timeout 300 $MPI $BIN -options_file cases/boxes/cylinder_array.opts -dx 0.005 -cylinder_1 0,0,0.0178412 -output_interval 4000 -progress_every 0 -output_dir "$OUT/cyl_corner" > "$OUT/cyl_corner.log" 2>&1 || { echo "geometry: the cylinder across the periodic corner failed"; bad=1; }
+python3 - "$OUT/cyl_wcsph" "$OUT/cyl_corner" <<'PY' || bad=1
+import json, sys
+a, b = (json.load(open(d + "/summary.json")) for d in sys.argv[1:3])
+da, db = a["errors"]["drag_mean_last_tenth"], b["errors"]["drag_mean_last_tenth"]
+print(f"geometry: the cylinder across the periodic corner: {b['particles']} particles ({a['particles']} centred), drag {db:.9g} against {da:.9g} centred (relative {abs(db / da - 1):.1e}, bound 1e-6)")
+assert a["particles"] == b["particles"] and abs(db / da - 1) < 1e-6, "a shape across the periodic boundary differs from the same shape inside the cell"
+PY
 timeout 300 $MPI $BIN -options_file cases/boxes/still_trough.opts -fluid isph -t_end 1 -output_interval 1 -progress_every 0 -output_dir "$OUT/trough" > "$OUT/trough.log" 2>&1 || { echo "geometry: the still trough failed"; bad=1; }
 r=$(python3 tools/still_check.py "$OUT/trough" --t0 0.5 --vbound 0.01 --drift 0.5 2>&1) || bad=1
+echo "geometry: $r (bounds 0.01 sqrt(gH), 0.5 dx)"
+# 3D: still water in a hemispherical bowl, the tank one STL surface (cases/boxes/still_bowl.opts, ISPH, 1 s)
+timeout 300 $MPI $BIN -options_file cases/boxes/still_bowl.opts -fluid isph -t_end 1 -output_interval 1 -progress_every 0 -output_dir "$OUT/bowl" > "$OUT/bowl.log" 2>&1 || { echo "geometry: the still bowl failed"; bad=1; }
+r=$(python3 tools/still_check.py "$OUT/bowl" --h 0.06 --t0 0.5 --vbound 0.01 --drift 0.5 2>&1) || bad=1
 echo "geometry: $r (bounds 0.01 sqrt(gH), 0.5 dx)"
 for c in spheric_test2 spheric_test2_stl; do
   timeout 300 $MPI $BIN -options_file cases/boxes/$c.opts -max_steps 3 -output_interval 1e-9 -progress_every 0 -output_dir "$OUT/$c" > "$OUT/$c.log" 2>&1 || { echo "geometry: $c failed"; bad=1; }
@@ -47,7 +64,7 @@ if r=$(python3 tests/compare_snapshots.py "$OUT/spheric_test2" "$OUT/spheric_tes
   echo "geometry: SPHERIC Test 2 with the box from an STL file: bit for bit the wall box's run (3 steps; $r)"
 else bad=1; echo "geometry: the STL box differs from the wall box: $r"; fi
 python3 tools/stl_write.py sphere 0.05,0.05,0.05,0.03 "$OUT/ball.stl" --subdiv 4 > /dev/null
-ARR="-case boxes -dim 3 -dx 0.005 -domain 0,0,0,0.1,0.1,0.1 -periodic x,y,z -fluid_box_1 0,0,0,0.1,0.1,0.1 -gravity 1e-10,0,0 -mu 1e-3 -c0 5e-4 -alpha 0 -delta 0 -max_steps 1 -output_interval 1e-9 -progress_every 0"
+ARR="-case boxes -dim 3 -dx 0.005 -domain 0,0,0,0.1,0.1,0.1 -periodic x,y,z -fluid_box_1 0,0,0,0.1,0.1,0.1 -gravity 1e-10,0,0 -fluid_mu 1e-3 -fluid_c0 5e-4 -wcsph_alpha 0 -wcsph_delta 0 -max_steps 1 -output_interval 1e-9 -progress_every 0"
 timeout 300 $MPI $BIN $ARR -sphere_1 0.05,0.05,0.05,0.03 -output_dir "$OUT/ball_sphere" > "$OUT/ball_sphere.log" 2>&1 || { echo "geometry: -sphere_1 failed"; bad=1; }
 timeout 300 $MPI $BIN $ARR -stl_1 "$OUT/ball.stl" -output_dir "$OUT/ball_stl" > "$OUT/ball_stl.log" 2>&1 || { echo "geometry: -stl_1 (a sphere) failed"; bad=1; }
 python3 - "$OUT/ball_sphere" "$OUT/ball_stl" <<'PY' || bad=1

@@ -2,7 +2,7 @@
  * of a grid that puts points on its faces' diagonals, edges and corners in projection: inside, and the
  * signed distance against the box's exact one), a UV sphere of 64 x 32 against the sphere it is
  * inscribed in, the volume, the normals, a transform; STL files written here, binary and ASCII, read
- * back; an open cube (3 open edges), a truncated binary file, a missing file and an ASCII facet of two
+ * back; zero-area triangles; an open cube (3 open edges), a truncated binary file, a missing file and an ASCII facet of two
  * vertices refused. */
 #include "base/geometry.h"
 #include <stdio.h>
@@ -78,6 +78,42 @@ static PetscErrorCode CheckCube(void)
     CHECK(open == 3, "open cube: %d open edges, not 3", (int)open);
     PetscCall(GeomMeshDestroy(&o));
   }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* Triangles of zero area, as exporters leave them (slivers along an edge): the cube with two more,
+ * a - m - c along its top face's diagonal, once each way (the surface stays closed), must give the
+ * same inside test and signed distance at every lattice point as the cube alone. */
+static PetscErrorCode CheckDegenerate(void)
+{
+  GeomShape s;
+  PetscReal t[126];
+  PetscInt  open, wrong = 0;
+  const PetscReal a[3] = {0, 0, 1}, m[3] = {0.5, 0.5, 1}, c[3] = {1, 1, 1};
+  PetscFunctionBeginUser;
+  Cube((PetscReal[]){0, 0, 0}, (PetscReal[]){1, 1, 1}, t);
+  for (PetscInt d = 0; d < 3; d++) {
+    t[108 + d] = a[d]; t[111 + d] = m[d]; t[114 + d] = c[d];
+    t[117 + d] = a[d]; t[120 + d] = c[d]; t[123 + d] = m[d];
+  }
+  PetscCall(PetscMemzero(&s, sizeof(s)));
+  s.type = GEOM_MESH;
+  s.dim  = 3;
+  PetscCall(PetscNew(&s.mesh));
+  PetscCall(GeomMeshCreate(14, t, s.mesh, &open));
+  CHECK(open == 0, "cube with slivers: %d open edges", (int)open);
+  for (PetscInt d = 0; d < 3; d++) { s.lo[d] = s.mesh->lo[d]; s.hi[d] = s.mesh->hi[d]; }
+  for (PetscInt i = -2; i <= 10; i++)
+    for (PetscInt j = -2; j <= 10; j++)
+      for (PetscInt k = -2; k <= 10; k++) {
+        const PetscReal x[3] = {i / 8.0, j / 8.0, k / 8.0}, want = BoxSD(x), sd = GeomSignedDistance(&s, x);
+        if (!(PetscAbsReal(sd - want) <= 1e-15)) wrong++; /* NaN counts as wrong */
+        if (want < 0 && !GeomMeshInside(s.mesh, x)) wrong++;
+        if (want > 0 && GeomMeshInside(s.mesh, x)) wrong++;
+      }
+  CHECK(wrong == 0, "cube with slivers: %d of 2197 lattice points with a wrong signed distance or inside test", (int)wrong);
+  CHECK(PetscAbsReal(GeomMeasure(&s) - 1) < 1e-15, "cube with slivers: volume %g", (double)GeomMeasure(&s));
+  PetscCall(GeomDestroy(&s));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -232,6 +268,7 @@ int main(int argc, char **argv)
 {
   PetscCall(PetscInitialize(&argc, &argv, NULL, NULL));
   PetscCall(CheckCube());
+  PetscCall(CheckDegenerate());
   PetscCall(CheckSphere());
   PetscCall(CheckFiles());
   PetscCall(PetscPrintf(PETSC_COMM_WORLD, "test_mesh: ok\n"));

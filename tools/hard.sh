@@ -39,6 +39,11 @@
 #     (gravity 450 m/s^2), brought to rest by -solid_damping, to 0.4 s: at rest, the end turned past
 #     45 degrees, the end's sag within 5 % of the elastica (inextensible Euler-Bernoulli beam with the
 #     plane-strain modulus, solved in tools/hard_check.py), closest pair >= 0.75 dx, one piece.
+#  9. (issue 48) still_trough_{wcsph,isph}, still_bowl_{wcsph,isph}: still water over a curved floor
+#     for 10 s, cases/boxes/still_trough.opts (2D, a half-cylinder trough from polygons, dx = 5 mm) and
+#     cases/boxes/still_bowl.opts (3D, a hemispherical bowl in a tank from one STL, dx = 10 mm): from
+#     5 s on no water faster than 0.01 sqrt(g H) (H: the depth over the flat floor), no water particle
+#     farther than 1 dx from its start after 10 s, the mass exact, the output finite.
 #  6. dt_too_large: the WCSPH dam break (cases/dam_break.opts) with -dt 100x the adaptive step of its
 #     first steps (measured by a 20-step run, dt_reference): exit 4, "status": "fault", a message
 #     and a finite last_good.h5.
@@ -48,7 +53,8 @@
 #                 dam_break_wcsph_shift dam_break_isph dam_break_isph_noshift taylor_green_re1000
 #                 plate_vf005 gate_soft gate_stiff dt_too_large taylor_green_l200
 #                 dam_break_isph_a100_rtol1e-4 dam_break_lobovsky_isph dam_break_obstacle_isph
-#                 cantilever_large (default: all)
+#                 cantilever_large still_trough_wcsph still_trough_isph still_bowl_wcsph
+#                 still_bowl_isph (default: all)
 #   HARD_REUSE=1  do not run again what out/hard/RUN/hard_run.json says has run: only check
 #   NP            MPI ranks (2)
 #   MPIEXEC, MPIEXEC_FLAGS, BINDIR (bin), HARD_TIMEOUT (s per run, 2400), HARD_OUT (out/hard)
@@ -58,7 +64,7 @@ MPI="${MPIEXEC:-mpiexec} ${MPIEXEC_FLAGS:-} -n $NP"
 BIN=${BINDIR:-bin}
 OUT=${HARD_OUT:-out/hard}
 TMO=${HARD_TIMEOUT:-2400}
-ALL="hydrostatic_wcsph hydrostatic_isph dam_break_wcsph dam_break_wcsph_shift dam_break_isph dam_break_isph_noshift taylor_green_re1000 plate_vf005 gate_soft gate_stiff dt_too_large taylor_green_l200 dam_break_isph_a100_rtol1e-4 dam_break_lobovsky_isph dam_break_obstacle_isph cantilever_large"
+ALL="hydrostatic_wcsph hydrostatic_isph dam_break_wcsph dam_break_wcsph_shift dam_break_isph dam_break_isph_noshift taylor_green_re1000 plate_vf005 gate_soft gate_stiff dt_too_large taylor_green_l200 dam_break_isph_a100_rtol1e-4 dam_break_lobovsky_isph dam_break_obstacle_isph cantilever_large still_trough_wcsph still_trough_isph still_bowl_wcsph still_bowl_isph"
 CASES=${HARD_CASES:-$ALL}
 for c in $CASES; do [[ " $ALL " == *" $c "* ]] || { echo "HARD_CASES: unknown case $c (cases: $ALL)" >&2; exit 2; }; done
 [ -x "$BIN/sphfsi" ] || { echo "run make hard (needs $BIN/sphfsi)" >&2; exit 1; }
@@ -131,6 +137,14 @@ if has plate_vf005; then
   check plate_vf005
 fi
 
+for c in still_trough_wcsph still_trough_isph still_bowl_wcsph still_bowl_isph; do
+  has $c || continue
+  case $c in
+    still_trough_*) run $c depth=0.1 -- -options_file cases/boxes/still_trough.opts -fluid ${c##*_} -t_end 10 ;;
+    still_bowl_*) run $c depth=0.06 -- -options_file cases/boxes/still_bowl.opts -fluid ${c##*_} -t_end 10 ;;
+  esac
+  check $c
+done
 if has cantilever_large; then
   run cantilever_large -- -options_file cases/oscillating_plate.opts -solid_formulation total -plate_length 0.079 -plate_thickness 0.005 -solid_rho 1100 -solid_K 2e7 -solid_G 4.27e6 -plate_vf 0 -gravity 0,-450 -solid_damping 185 -t_end 0.4 -plate_ny 10 -output_interval 0.05
   check cantilever_large

@@ -43,6 +43,11 @@ HYD_DRIFT = 1.0  # max displacement (by id) between the first and the last snaps
 HYD_FS_DEPTH = 3.0  # ISPH: a fluid particle flagged free surface more than 3 dx below the top row is
 # spurious: the kernel support is 2h = 2.6 dx, so below that the density summation is complete.
 
+# ---- issue 48. still water over a curved floor (a half-cylinder trough in 2D, a hemispherical bowl in 3D), 10 s
+STILL_T_LATE = 5.0  # the issue's targets: the largest water speed from t = 5 s on, in sqrt(g H) (H: the
+STILL_VMAX = 0.01   # depth over the flat floor), and the largest displacement by id over the run, in dx
+STILL_DRIFT = 1.0
+
 # ---- 2. dam break to t sqrt(g/H) >= 6 ---------------------------------------------------------------
 DB_H = 2 * 0.05715  # column height H = 2a
 DB_TAU = 6.0  # t sqrt(g/H): through the impact on the far wall (tau ~ 2.5) and the overturning
@@ -138,6 +143,11 @@ CASES = [  # case, runs (first = the one judged), scheme label
     ("dam_break_lobovsky_isph", ["dam_break_lobovsky_isph"], "ISPH, Lobovsky H/40"),
     ("dam_break_obstacle_isph", ["dam_break_obstacle_isph"], "ISPH, onto an obstacle, dx = 2 mm"),
     ("cantilever_large", ["cantilever_large"], "solid (total-Lagrangian), 10 across"),
+    # issue 48 (real geometry): still water over curved walls for 10 s
+    ("still_trough_wcsph", ["still_trough_wcsph"], "WCSPH, 2D, polygons"),
+    ("still_trough_isph", ["still_trough_isph"], "ISPH, 2D, polygons"),
+    ("still_bowl_wcsph", ["still_bowl_wcsph"], "WCSPH, 3D, STL"),
+    ("still_bowl_isph", ["still_bowl_isph"], "ISPH, 3D, STL"),
 ]
 
 
@@ -566,7 +576,38 @@ def check_dt(runs):
     return verdict(fails, meas, bound)
 
 
-CHECKS = {"hydrostatic": check_hydrostatic, "dam_break": check_dam_break, "taylor_green": check_taylor_green,
+def check_still(runs):
+    """Still water over a curved floor (issue 48): from STILL_T_LATE on no water faster than
+    STILL_VMAX sqrt(g H) (H: the depth over the flat floor, the run's key "depth"), no water particle
+    farther than STILL_DRIFT dx from where it started, the mass exact, the output finite."""
+    r = runs[0]
+    if r.problem():
+        return False, r.problem(), "completed", "completed"
+    dx, H = r.summary["dx"], float(r.meta["depth"])
+    pr = r.probes()
+    late = pr["t"] >= STILL_T_LATE
+    if not late.any():
+        return False, f"no probe rows after t = {STILL_T_LATE:g} s", "no late probes", ""
+    vb, vmax = STILL_VMAX * math.sqrt(G * H), pr["v_max"][late].max()
+    snaps = r.snapshots()
+    first, last = snap(snaps[0]), snap(snaps[-1])
+    i0, x0 = fluid_by_id(first)
+    i1, x1 = fluid_by_id(last)
+    ok_ids = np.array_equal(i0, i1)
+    drift = np.linalg.norm(x1 - x0, axis=1).max() / dx if ok_ids else float("inf")
+    fails = []
+    if vmax > vb: fails.append("max speed")
+    if drift > STILL_DRIFT: fails.append("drift" if ok_ids else "fluid ids differ between the first and last snapshot")
+    if r.summary["mass_rel_drift"] != 0: fails.append(f"mass_rel_drift {r.summary['mass_rel_drift']}")
+    bad = nonfinite_outputs(r)
+    if bad: fails.append(f"non-finite output: {bad}")
+    meas = (f"v_max {vmax:.2g} m/s = {vmax / math.sqrt(G * H):.2g} √(gH) from t = {STILL_T_LATE:g} s; drift {drift:.2f} dx "
+            f"(t = {first['time']:.3g} → {last['time']:.3g} s); {len(i0)} water particles")
+    bound = f"v_max ≤ {vb:.2g} m/s ({STILL_VMAX:g} √(gH), H = {H:g} m); drift ≤ {STILL_DRIFT:g} dx"
+    return verdict(fails, meas, bound)
+
+
+CHECKS = {"hydrostatic": check_hydrostatic, "still": check_still, "dam_break": check_dam_break, "taylor_green": check_taylor_green,
           "plate": check_plate, "gate": check_gate, "dt": check_dt, "cantilever": check_cantilever}
 
 

@@ -42,6 +42,7 @@ typedef struct {
 
 typedef struct {
   Box       fluid[NBOX], tank[NTANK], solid[NBOX], clamp[NBOX], wall[NBOX];
+  ShapesBoxes bodies; /* the walls', solids' and clamps' boxes, for the shapes' overlap check */
   PetscInt  nfluid, ntank, nsolid, nclamp, nwall, nlevel, npress, nsgauge;
   PetscReal level[NGAUGE][2], press[NGAUGE][3], sgauge[NGAUGE][6];
   char      names[SCENE_MAX_PROBES][32];
@@ -98,6 +99,29 @@ static PetscInt TankWalls(const Box *t, PetscInt D, PetscReal r[5][6])
       for (PetscInt k = 0; k < 6; k++) r[n][k] = w[n][k];
   }
   return n;
+}
+
+/* The boxes of walls, solids and clamps, which no shape may share space with. */
+static PetscErrorCode BodyBoxes(const Boxes *c, PetscInt D, ShapesBoxes *B)
+{
+  const struct { const Box *box; PetscInt n; const char *prefix; } kinds[] = {{c->wall, c->nwall, "wall_box"}, {c->solid, c->nsolid, "solid_box"}, {c->clamp, c->nclamp, "clamp_box"}};
+  PetscFunctionBeginUser;
+  B->n = 0;
+  PetscCheck(5 * c->ntank + c->nwall + c->nsolid + c->nclamp <= SHAPES_MAX_BOXES, PETSC_COMM_SELF, PETSC_ERR_PLIB, "More boxes than SHAPES_MAX_BOXES");
+  for (PetscInt j = 0; j < c->ntank; j++) {
+    PetscReal r[5][6];
+    PetscInt  nr = TankWalls(&c->tank[j], D, r);
+    for (PetscInt q = 0; q < nr; q++, B->n++) {
+      PetscCall(PetscArraycpy(B->b[B->n], r[q], 6));
+      PetscCall(PetscSNPrintf(B->name[B->n], sizeof(B->name[0]), "the walls of -tank_%d", (int)j + 1));
+    }
+  }
+  for (PetscInt k = 0; k < 3; k++)
+    for (PetscInt j = 0; j < kinds[k].n; j++, B->n++) {
+      PetscCall(PetscArraycpy(B->b[B->n], kinds[k].box[j].b, 6));
+      PetscCall(PetscSNPrintf(B->name[B->n], sizeof(B->name[0]), "-%s_%d", kinds[k].prefix, (int)j + 1));
+    }
+  PetscFunctionReturn(PETSC_SUCCESS);
 }
 
 /* Boxes K = 1..NBOX of one kind (-PREFIX_K); with spacing: a 5th number, the lattice's spacing; with
@@ -306,7 +330,8 @@ static PetscErrorCode Create(Sim sim)
       for (PetscInt k = 0; k < 6; k++) box[i][k] = c->fluid[i].b[k];
       sp[i] = c->fluid[i].s;
     }
-    PetscCall(ShapesSetUp(sim, &c->shapes, c->nfluid, (const PetscReal(*)[6])box, sp));
+    PetscCall(BodyBoxes(c, D, &c->bodies));
+    PetscCall(ShapesSetUp(sim, &c->shapes, c->nfluid, (const PetscReal(*)[6])box, sp, &c->bodies));
   }
   PetscCheck(!c->nsgauge || c->nsolid, sim->comm, PETSC_ERR_ARG_INCOMP, "-gauge_solid_1 needs a -solid_box_1");
   /* c0 = 10 x the speed of a fall from the highest water surface to the lowest water */

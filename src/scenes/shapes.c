@@ -166,6 +166,35 @@ static void LatticePoint(const Shapes *S, const PetscInt i[], PetscInt D, PetscR
   for (PetscInt d = 0; d < D; d++) p[d] = S->origin[d] + (i[d] + 0.5) * S->h[d];
 }
 
+/* The signed distance of p to shape s or, for a shape across a periodic boundary, to the nearest of
+ * its periodic images (exact within dmax, else the sign: GeomSignedDistanceNear). */
+static PetscReal ShapeDistance(const Shape *s, const PetscReal p[], PetscReal dmax, PetscInt D)
+{
+  PetscReal best = GeomSignedDistanceNear(&s->g, p, dmax);
+  if (!s->wraps) return best;
+  for (PetscInt k = 1; k < (D == 3 ? 27 : 9); k++) { /* the images k = (k0, k1[, k2]) in {-1, 0, 1}^D but 0 */
+    PetscReal q[3] = {p[0], p[1], D == 3 ? p[2] : 0};
+    PetscInt  kk = k, skip = 0;
+    for (PetscInt d = 0; d < D; d++, kk /= 3) {
+      const PetscInt e = kk % 3 == 2 ? -1 : kk % 3;
+      if (e && s->period[d] == 0) skip = 1;
+      q[d] += e * s->period[d];
+    }
+    if (!skip) best = PetscMin(best, GeomSignedDistanceNear(&s->g, q, dmax));
+  }
+  return best;
+}
+
+/* A point of a shape across a periodic boundary, brought into the domain. */
+static void Wrap(const Shapes *S, const Shape *s, PetscReal p[], PetscInt D)
+{
+  for (PetscInt d = 0; d < D && s->wraps; d++) {
+    if (s->period[d] == 0) continue;
+    if (p[d] >= S->hi[d]) p[d] -= s->period[d];
+    else if (p[d] < S->lo[d]) p[d] += s->period[d];
+  }
+}
+
 /* A shape's own lattice (-stl_K_lattice own): its bounding box filled at -dx as SceneAddBox fills a
  * box (the same spacing, points and order), indices 0 .. n - 1. */
 static void OwnLattice(Sim sim, const GeomShape *g, PetscInt D, PetscReal first[], PetscReal s[], PetscInt lo[], PetscInt hi[])
@@ -211,11 +240,11 @@ static PetscBool TakenByClamp(const Shapes *S, PetscInt si, const PetscReal p[])
 {
   if (S->s[si].kind != SHAPE_SOLID) return PETSC_FALSE;
   for (PetscInt j = 0; j < S->n; j++)
-    if (S->s[j].kind == SHAPE_CLAMP && GeomSignedDistanceNear(&S->s[j].g, p, 0) <= 0) return PETSC_TRUE; /* the sign only */
+    if (S->s[j].kind == SHAPE_CLAMP && ShapeDistance(&S->s[j], p, 0, S->dim) <= 0) return PETSC_TRUE; /* the sign only */
   return PETSC_FALSE;
 }
 
-PetscErrorCode ShapesSetUp(Sim sim, Shapes *S, PetscInt nbox, const PetscReal (*box)[6], const PetscReal *spacing)
+PetscErrorCode ShapesSetUp(Sim sim, Shapes *S, PetscInt nbox, const PetscReal (*box)[6], const PetscReal *spacing, const ShapesBoxes *bodies)
 {
   const PetscInt D = sim->phys.dim;
   PetscFunctionBeginUser;
@@ -227,12 +256,27 @@ PetscErrorCode ShapesSetUp(Sim sim, Shapes *S, PetscInt nbox, const PetscReal (*
       S->h[d]      = SceneFitSpacing(box[0][D + d] - box[0][d], sim->phys.dx, &n);
     }
   S->flow_measure = 1;
-  for (PetscInt d = 0; d < D; d++) S->flow_measure *= sim->dom_hi[d] - sim->dom_lo[d];
+  S->dim          = D;
+  for (PetscInt d = 0; d < D; d++) {
+    S->flow_measure *= sim->dom_hi[d] - sim->dom_lo[d];
+    S->lo[d] = sim->dom_lo[d];
+    S->hi[d] = sim->dom_hi[d];
+  }
   for (PetscInt i = 0; i < S->n; i++) {
-    const GeomShape *g  = &S->s[i].g;
+    Shape           *s  = &S->s[i];
+    const GeomShape *g  = &s->g;
     PetscBool        in = PETSC_TRUE;
-    for (PetscInt d = 0; d < D; d++) in = (PetscBool)(in && g->lo[d] >= sim->dom_lo[d] && g->hi[d] <= sim->dom_hi[d]);
-    PetscCheck(in, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "%s reaches outside the domain (it spans x %g to %g, y %g to %g): move it, or widen -domain (a shape across a periodic boundary is not supported)", S->s[i].name, (double)g->lo[0], (double)g->hi[0], (double)g->lo[1], (double)g->hi[1]);
+    for (PetscInt d = 0; d < D; d++) {
+      const PetscReal L = sim->dom_hi[d] - sim->dom_lo[d];
+      if (g->lo[d] >= sim->dom_lo[d] && g->hi[d] <= sim->dom_hi[d]) continue;
+      if (!sim->periodic[d]) { in = PETSC_FALSE; continue; }
+      /* across a periodic boundary: its particles beyond it are placed on the other side, on the lattice */
+      PetscCheck(g->hi[d] - g->lo[d] < L, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "%s is wider than the periodic domain in %c (%g m against %g m)", s->name, "xyz"[d], (double)(g->hi[d] - g->lo[d]), (double)L);
+      PetscCheck(!s->own && PetscAbsReal(L / S->h[d] - RoundToInt(L / S->h[d])) < 1e-9, sim->comm, PETSC_ERR_ARG_INCOMP, "%s crosses the periodic boundary in %c: the period %g m must hold whole lattice spacings (%g m)%s", s->name, "xyz"[d], (double)L, (double)S->h[d], s->own ? " and the surface the shared lattice (-stl_K_lattice shared)" : "");
+      s->period[d] = L;
+      s->wraps     = PETSC_TRUE;
+    }
+    PetscCheck(in, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "%s reaches outside the domain (it spans x %g to %g, y %g to %g): move it, or widen -domain (or make the domain periodic there)", s->name, (double)g->lo[0], (double)g->hi[0], (double)g->lo[1], (double)g->hi[1]);
   }
   /* points shared: bodies with bodies (but a clamp with a solid), water shapes with water */
   for (PetscInt i = 0; i < S->n; i++) {
@@ -244,10 +288,16 @@ PetscErrorCode ShapesSetUp(Sim sim, Shapes *S, PetscInt nbox, const PetscReal (*
           PetscReal p[3] = {0, 0, 0};
           LatticePoint(S, idx, D, p);
           if (GeomSignedDistanceNear(&S->s[i].g, p, 0) > 0) continue;
+          Wrap(S, &S->s[i], p, D);
           for (PetscInt j = i + 1; j < S->n; j++) {
             const ShapeKind ki = S->s[i].kind, kj = S->s[j].kind;
             if (IsBody(ki) != IsBody(kj) || (ki == SHAPE_SOLID && kj == SHAPE_CLAMP) || (kj == SHAPE_SOLID && ki == SHAPE_CLAMP)) continue; /* water is cut by bodies; a clamp takes from a solid */
-            PetscCheck(GeomSignedDistanceNear(&S->s[j].g, p, 0) > 0, sim->comm, PETSC_ERR_ARG_INCOMP, "%s (%s) overlaps %s (%s) at (%g, %g): shapes of these kinds cannot share space", S->s[i].name, ShapeKinds[ki], S->s[j].name, ShapeKinds[kj], (double)p[0], (double)p[1]);
+            PetscCheck(ShapeDistance(&S->s[j], p, 0, D) > 0, sim->comm, PETSC_ERR_ARG_INCOMP, "%s (%s) overlaps %s (%s) at (%g, %g): shapes of these kinds cannot share space", S->s[i].name, ShapeKinds[ki], S->s[j].name, ShapeKinds[kj], (double)p[0], (double)p[1]);
+          }
+          for (PetscInt b = 0; b < bodies->n; b++) { /* strictly inside: touching is fine */
+            PetscBool inbox = PETSC_TRUE;
+            for (PetscInt d = 0; d < D; d++) inbox = (PetscBool)(inbox && p[d] > bodies->b[b][d] && p[d] < bodies->b[b][D + d]);
+            PetscCheck(!inbox, sim->comm, PETSC_ERR_ARG_INCOMP, "%s (%s) overlaps %s at (%g, %g%s): a shape cannot share space with walls, solids or clamps (they may touch)", S->s[i].name, ShapeKinds[S->s[i].kind], bodies->name[b], (double)p[0], (double)p[1], D == 3 ? ", ..." : "");
           }
           if (S->s[i].kind != SHAPE_FLUID) continue;
           for (PetscInt b = 0; b < nbox; b++) {
@@ -283,19 +333,22 @@ PetscErrorCode ShapesPopulate(Sim sim, Shapes *S)
       for (idx[2] = lo[2]; idx[2] <= hi[2]; idx[2]++)
         for (idx[1] = lo[1]; idx[1] <= hi[1]; idx[1]++)
           for (idx[0] = lo[0]; idx[0] <= hi[0]; idx[0]++) {
-            PetscReal    p[3] = {0, 0, 0}, sd;
+            PetscReal    p[3] = {0, 0, 0}, pu[3], sd;
             ParticleKind kind;
             if (s->own)
               for (PetscInt d = 0; d < D; d++) p[d] = f0[d] + idx[d] * sp[d];
             else LatticePoint(S, idx, D, p);
             sd = GeomSignedDistanceNear(&s->g, p, dmax); /* exact within the wall rows; else the sign */
-            if (sd > 0 || TakenByClamp(S, i, p)) continue;
+            if (sd > 0) continue;
+            for (PetscInt d = 0; d < 3; d++) pu[d] = p[d]; /* in the shape's frame */
+            Wrap(S, s, p, D);
+            if (TakenByClamp(S, i, p)) continue;
             top = PetscMax(top, p[D - 1] + 0.5 * h[D - 1]);
             switch (s->kind) {
             case SHAPE_WALL: /* the row next to the surface is wall, the deeper rows dummies, down to rows deep */
               if (sd <= -S->rows * hw && !s->own) continue; /* an own lattice fills the inside, as a wall box */
               kind = sd > -hw ? KIND_WALL : KIND_DUMMY;
-              if (dry && kind == KIND_WALL && GeomMeshDistanceWet(s->g.mesh, p, hw) >= hw) kind = KIND_DUMMY; /* near dry faces only */
+              if (dry && kind == KIND_WALL && GeomMeshDistanceWet(s->g.mesh, pu, hw) >= hw) kind = KIND_DUMMY; /* near dry faces only */
               break;
             case SHAPE_FLUID: kind = KIND_FLUID; break;
             case SHAPE_SOLID: kind = KIND_SOLID; break;
@@ -335,7 +388,7 @@ PetscErrorCode ShapesCutWater(Sim sim, const Shapes *S, PetscInt first, const Pe
       PetscBool        box = PETSC_TRUE;
       if (!IsBody(S->s[i].kind)) continue;
       for (PetscInt d = 0; d < D; d++) box = (PetscBool)(box && x[D * a + d] >= g->lo[d] - gap && x[D * a + d] <= g->hi[d] + gap);
-      if (box && GeomSignedDistanceNear(g, x + D * a, 2 * gap) <= gap) drop[a] = any = PETSC_TRUE;
+      if ((box || S->s[i].wraps) && ShapeDistance(&S->s[i], x + D * a, 2 * gap, D) <= gap) drop[a] = any = PETSC_TRUE;
     }
   }
   if (any) PetscCall(ParticlesRemove(P, drop));

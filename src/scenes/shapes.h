@@ -18,6 +18,8 @@ typedef struct {
   ShapeKind kind;
   char      name[32]; /* the option that gave it, e.g. -cylinder_1 */
   PetscBool own;      /* -stl_K_lattice own: its bounding box's lattice at -dx (as a wall box), not the shared one */
+  PetscReal period[3]; /* the domain's period in the directions in which the shape crosses a periodic boundary, else 0 */
+  PetscBool wraps;     /* it crosses one: its particles beyond the boundary go to the other side */
 } Shape;
 
 typedef struct {
@@ -25,6 +27,8 @@ typedef struct {
   PetscInt  n;
   PetscInt  rows;           /* an obstacle's rows of wall + dummy particles inside its surface */
   PetscReal origin[3], h[3]; /* the lattice: points at origin + (i + 1/2) h */
+  PetscReal lo[3], hi[3];    /* the domain */
+  PetscInt  dim;
   PetscBool flow;           /* -flow_probe: superficial velocity and drag columns */
   PetscReal flow_measure;   /* the domain's area (volume) */
   Series    drag;           /* the drag column's history (for its mean over the run's last tenth) */
@@ -35,12 +39,21 @@ typedef struct {
 /* In the boxes' options block: -cylinder_K / -sphere_K, -polygon_K (or -polygon_K_file) with
  * _kind, _scale, _rotate, _translate; -flow_probe.  rows: the obstacles' wall rows. */
 PetscErrorCode ShapesRead(Sim sim, PetscOptionItems *PetscOptionsObject, Shapes *S, PetscInt rows);
+/* The boxes of the scene a shape must not share space with, each the low corner, then the high one. */
+#define SHAPES_MAX_BOXES 64
+typedef struct {
+  PetscInt  n;
+  PetscReal b[SHAPES_MAX_BOXES][6];
+  char      name[SHAPES_MAX_BOXES][48]; /* e.g. "-wall_box_2", "the walls of -tank_1" */
+} ShapesBoxes;
+
 /* After the domain is known: the lattice (that of the first water box when its spacing is -dx, else
  * the domain's corner at -dx), shapes inside the domain, no two solid shapes (wall, solid, clamp)
  * sharing a lattice point (a clamp takes the points it shares with a solid), water shapes sharing no
  * point with each other or with water boxes (box: the low corner, then the high corner of each of the
- * nbox water boxes; spacing: their nominal spacings). */
-PetscErrorCode ShapesSetUp(Sim sim, Shapes *S, PetscInt nbox, const PetscReal (*box)[6], const PetscReal *spacing);
+ * nbox water boxes; spacing: their nominal spacings), and no shape sharing a point with the boxes of
+ * walls, solids and clamps (bodies; they may touch). */
+PetscErrorCode ShapesSetUp(Sim sim, Shapes *S, PetscInt nbox, const PetscReal (*box)[6], const PetscReal *spacing, const ShapesBoxes *bodies);
 /* The boxes that other walls fill (x0,y0,z0,x1,y1,z1), at most 6 * SHAPES_MAX: the faces of an STL
  * obstacle against them meet no water, and its rows there are dummies (as a wall box's faces not given). */
 PetscErrorCode ShapesSetDry(Sim sim, Shapes *S, PetscInt n, const PetscReal (*box)[6]);

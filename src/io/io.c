@@ -392,7 +392,7 @@ PetscErrorCode IOSummary(Sim sim)
     }
   }
   if (!sim->rank) { /* the reference files the errors above lacked (filled by the scene's errors) */
-    fprintf(f, "},\n  \"reference_missing\": [%s]\n}\n", sim->refdata_missing ? sim->refdata_missing : "");
+    fprintf(f, "},\n  \"reference_missing\": [%s]\n}\n", sim->refdata.missing ? sim->refdata.missing : "");
     fclose(f);
     if (rename(tmp, path)) err = errno;
   }

@@ -24,6 +24,7 @@ PetscErrorCode SimCreate(MPI_Comm comm, Sim *sim)
   s->comm = comm;
   PetscCallMPI(MPI_Comm_rank(comm, &s->rank));
   PetscCallMPI(MPI_Comm_size(comm, &s->size));
+  s->refdata.rank   = s->rank;
   s->t_end          = -1;
   s->max_steps      = PETSC_MAX_INT;
   s->progress_every = 5;
@@ -84,7 +85,7 @@ PetscErrorCode SimDestroy(Sim *sim)
   PetscCall(DecompDestroy(&s->decomp));
   PetscCall(ParticlesDestroy(&s->P));
   PetscCall(PetscFree(s->snaps));
-  PetscCall(PetscFree(s->refdata_missing));
+  PetscCall(RefDataDestroy(&s->refdata));
   PetscCall(GuardDestroy(&s->guard));
   PetscCall(SizeGuardDestroy(&s->size_guard));
   PetscCall(PetscFree(*sim));
@@ -126,7 +127,7 @@ PetscErrorCode SimSetFromOptions(Sim sim)
   PetscCall(OptInt("-progress_every", "Seconds of wall time between progress lines; 0 = none", "", sim->progress_every, &sim->progress_every, NULL));
   PetscCall(OptReal("-checkpoint_interval", "Checkpoint interval in physical time (s), OUTDIR/checkpoint.h5, also at the end; 0 = none (a stop by signal or -max_wall_time writes one anyway)", "", sim->ckpt_interval, &sim->ckpt_interval, NULL));
   PetscCall(PetscOptionsString("-restart", "Continue the run of this checkpoint (OUTDIR/checkpoint.h5 or last_good.h5): the scene and every option come from the checkpoint, options given now override them, output goes on in the checkpoint's directory", "", sim->restart, sim->restart, sizeof(sim->restart), NULL));
-  PetscCall(PetscOptionsString("-refdata_dir", "Reference data for the errors in summary.json (default $SPHFSI_REFDATA, else per file the first of PREFIX/share/sphfsi/refdata, EXEDIR/refdata, the build's SRCDIR/../shared/refdata, ../shared/refdata from the current directory)", "", sim->refdata_dir, sim->refdata_dir, sizeof(sim->refdata_dir), NULL));
+  PetscCall(PetscOptionsString("-refdata_dir", "Reference data for the errors in summary.json (default $SPHFSI_REFDATA, else per file the first of PREFIX/share/sphfsi/refdata, EXEDIR/refdata, the build's SRCDIR/../shared/refdata, ../shared/refdata from the current directory)", "", sim->refdata.dir, sim->refdata.dir, sizeof(sim->refdata.dir), NULL));
   PetscOptionsEnd();
   sim->phys.fluid = (FluidScheme)fluid;
   PetscCheck(hfac >= 1 && hfac <= 3, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-h_factor %g must be in [1, 3] (h / dx; 1.3 for the cubic spline, 1.5-2.5 for the Wendland kernels)", (double)hfac);

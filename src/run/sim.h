@@ -3,13 +3,13 @@
 #pragma once
 #include "particles/grid.h"
 #include "physics/physics.h"
+#include "base/refdata.h"
 
 typedef enum { STAGE_NEIGHBOUR, STAGE_HALO, STAGE_PHYSICS, STAGE_PPE_ASSEMBLY, STAGE_PPE_SOLVE, STAGE_SOLID, STAGE_OUTPUT, STAGE_GUARD, STAGE_COUNT } SimStage;
 
 typedef struct _p_Sim *Sim;
 typedef struct _SceneOps SceneOps;
 typedef struct _p_Guard *Guard;     /* guard.h */
-typedef struct _n_Series Series;    /* refdata.h */
 typedef struct _n_SizeGuard *SizeGuard; /* size_guard.h */
 #define SIM_MAX_KEEP 16             /* scene histories and scalars a checkpoint carries (SceneKeep*) */
 
@@ -55,8 +55,7 @@ struct _p_Sim {
   PetscReal      wall_used; /* time-loop wall time of the runs before a restart */
   /* checkpoint, restart, early stops and faults (checkpoint.h, guard.h) */
   char      restart[PETSC_MAX_PATH_LEN]; /* -restart FILE; empty: a fresh start */
-  char      refdata_dir[PETSC_MAX_PATH_LEN];
-  char     *refdata_missing;             /* rank 0: reference files not found, "a.csv", "b.csv" (refdata.h) */
+  RefData   refdata;                     /* where the scenes' reference files are, and those missing (refdata.h) */
   PetscReal ckpt_interval, next_ckpt;    /* physical time between checkpoints; 0 = none */
   PetscInt  nckpt, ckpt_step;            /* checkpoints written by this run, step of the last complete one */
   PetscReal ckpt_t;                      /* time of the last complete checkpoint (-1: none) */

@@ -23,13 +23,13 @@ static void Slots(Sim sim, PetscReal *r[STATE_NREAL], PetscInt *i[STATE_NINT], P
 {
   PPE   ppe = sim->phys.isph ? sim->phys.isph->ppe : NULL;
   Solid s   = sim->phys.solid;
-  r[0] = &sim->phys.t; r[1] = &sim->phys.dt; r[2] = &sim->next_out; r[3] = &sim->next_probe; r[4] = &sim->next_ckpt;
+  r[0] = &sim->phys.t; r[1] = &sim->phys.dt; r[2] = &sim->out.next_snap; r[3] = &sim->out.next_probe; r[4] = &sim->out.next_ckpt;
   r[5] = &sim->mass0; r[6] = &sim->nbhd.mass_out; r[7] = &sim->particle_steps; r[8] = &sim->wall_used;
   r[9] = &sim->guard->dt_first[0]; r[10] = &sim->guard->dt_first[1]; r[11] = ppe ? &ppe->its_sum : rd;
   i[0] = &sim->phys.step; i[1] = &sim->nbhd.nparticles; i[2] = &sim->next_id; i[3] = &sim->decomp->nrepartition;
   i[4] = s ? &s->nsub_last : id; i[5] = s ? &s->nsub_max : id; i[6] = s ? &s->nrebuild : id;
   i[7] = ppe ? &ppe->nsolve : id; i[8] = ppe ? &ppe->its_max : id; i[9] = ppe ? &ppe->its_last : id;
-  i[10] = sim->phys.isph ? &sim->phys.isph->nfree : id; i[11] = &sim->snap;
+  i[10] = sim->phys.isph ? &sim->phys.isph->nfree : id; i[11] = &sim->out.nsnap;
 }
 
 static PetscErrorCode StateScalars(Sim sim, SimState *s)
@@ -43,8 +43,8 @@ static PetscErrorCode StateScalars(Sim sim, SimState *s)
   for (PetscInt k = 0; k < STATE_NREAL; k++) s->r[k] = *r[k];
   if (sim->wall_start > 0) s->r[8] += now - sim->wall_start; /* wall_used: with this run's loop so far */
   for (PetscInt k = 0; k < STATE_NINT; k++) s->i[k] = *i[k];
-  s->nrows = sim->nprobe_rows;
-  s->nsnap = sim->snap;
+  s->nrows = sim->out.nprobe_rows;
+  s->nsnap = sim->out.nsnap;
   for (PetscInt k = 0; k < sim->nkeep_series; k++) s->series_n[k] = sim->keep_series[k]->n;
   for (PetscInt k = 0; k < sim->nkeep_reals; k++) s->kept[k] = *sim->keep_reals[k];
   s->ncell = GridNumCells(&sim->grid);
@@ -166,8 +166,8 @@ PetscErrorCode CheckpointWrite(Sim sim, const SimState *s, const char *path)
   }
   PetscCall(DatasetWriteInts(v, comm, "partition", sim->rank ? 0 : s->ncell, owner));
   PetscCall(PetscFree(owner));
-  if (s->nrows) PetscCall(DatasetWriteReals(v, comm, "probe_table", sim->rank ? 0 : s->nrows * ncol, 1, sim->probe_rows));
-  if (s->nsnap) PetscCall(DatasetWriteReals(v, comm, "snapshot_table", sim->rank ? 0 : 2 * s->nsnap, 1, sim->snaps));
+  if (s->nrows) PetscCall(DatasetWriteReals(v, comm, "probe_table", sim->rank ? 0 : s->nrows * ncol, 1, sim->out.probe_rows));
+  if (s->nsnap) PetscCall(DatasetWriteReals(v, comm, "snapshot_table", sim->rank ? 0 : 2 * s->nsnap, 1, sim->out.snaps));
   for (PetscInt k = 0; k < sim->nkeep_series; k++) {
     const Series *se = sim->keep_series[k];
     PetscCall(PetscSNPrintf(name, sizeof(name), "kept_series_%d_n", (int)k));
@@ -194,15 +194,15 @@ PetscErrorCode CheckpointSave(Sim sim)
   PetscCall(IOSpaceCheckpoint(sim, &bytes));
   PetscCall(IOSpaceReserve(sim, "checkpoint.h5", bytes, &ok));
   if (!ok) PetscFunctionReturn(PETSC_SUCCESS); /* the previous checkpoint stays */
-  PetscCall(PetscSNPrintf(path, sizeof(path), "%s/checkpoint.h5", sim->outdir));
+  PetscCall(PetscSNPrintf(path, sizeof(path), "%s/checkpoint.h5", sim->out.dir));
   PetscCall(StateView(sim, &s));
   PetscCall(IOSpacePushWrite(path));
   PetscCall(CheckpointWrite(sim, &s, path));
   PetscCall(IOSpacePopWrite());
-  if (sim->io_fault.set) PetscFunctionReturn(PETSC_SUCCESS); /* not renamed into place */
-  sim->nckpt++;
-  if (sim->ckpt_interval > 0)
-    while (sim->next_ckpt <= sim->phys.t + 1e-12 * sim->t_end) sim->next_ckpt += sim->ckpt_interval;
+  if (sim->out.fault.set) PetscFunctionReturn(PETSC_SUCCESS); /* not renamed into place */
+  sim->out.nckpt++;
+  if (sim->out.ckpt_interval > 0)
+    while (sim->out.next_ckpt <= sim->phys.t + 1e-12 * sim->t_end) sim->out.next_ckpt += sim->out.ckpt_interval;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -232,7 +232,7 @@ static PetscErrorCode ReadString(PetscViewer v, const char *name, char *buf, siz
 /* The header: is this a checkpoint of this run's scene, scheme, fields and resolution? */
 static PetscErrorCode CheckHeader(Sim sim, PetscViewer v, PetscInt *ranks, PetscInt *ncell)
 {
-  const char *path = sim->restart;
+  const char *path = sim->out.restart;
   char        buf[1024], fields[1024];
   PetscReal   dx;
   PetscInt    k, want;
@@ -348,15 +348,15 @@ static PetscErrorCode ReadRunState(Sim sim, PetscViewer v)
     PetscCall(PetscSNPrintf(name, sizeof(name), "kept_value_%d", (int)k));
     PetscCall(PetscViewerHDF5ReadAttribute(v, "/", name, PETSC_REAL, NULL, sim->keep_reals[k]));
   }
-  PetscCall(PetscViewerHDF5ReadAttribute(v, "/", "probe_rows", PETSC_INT, NULL, &sim->nprobe_rows));
-  PetscCall(PetscFree(sim->probe_rows));
-  sim->cap_probe_rows = sim->nprobe_rows + 64;
-  PetscCall(PetscMalloc1(sim->cap_probe_rows * ncol, &sim->probe_rows));
-  if (sim->nprobe_rows) PetscCall(DatasetReadReals(v, sim->comm, "probe_table", sim->rank ? 0 : sim->nprobe_rows * ncol, 1, sim->probe_rows));
-  PetscCall(PetscFree(sim->snaps));
-  sim->snap_cap = sim->snap + 16;
-  PetscCall(PetscMalloc1(2 * sim->snap_cap, &sim->snaps));
-  if (sim->snap) PetscCall(ReadRootReals(sim, v, "snapshot_table", 2 * sim->snap, sim->snaps));
+  PetscCall(PetscViewerHDF5ReadAttribute(v, "/", "probe_rows", PETSC_INT, NULL, &sim->out.nprobe_rows));
+  PetscCall(PetscFree(sim->out.probe_rows));
+  sim->out.cap_probe_rows = sim->out.nprobe_rows + 64;
+  PetscCall(PetscMalloc1(sim->out.cap_probe_rows * ncol, &sim->out.probe_rows));
+  if (sim->out.nprobe_rows) PetscCall(DatasetReadReals(v, sim->comm, "probe_table", sim->rank ? 0 : sim->out.nprobe_rows * ncol, 1, sim->out.probe_rows));
+  PetscCall(PetscFree(sim->out.snaps));
+  sim->out.snap_cap = sim->out.nsnap + 16;
+  PetscCall(PetscMalloc1(2 * sim->out.snap_cap, &sim->out.snaps));
+  if (sim->out.nsnap) PetscCall(ReadRootReals(sim, v, "snapshot_table", 2 * sim->out.nsnap, sim->out.snaps));
   for (PetscInt k = 0; k < sim->nkeep_series; k++) {
     Series    *se = sim->keep_series[k];
     PetscInt   n;
@@ -386,7 +386,7 @@ static PetscErrorCode ReadParticles(Sim sim, PetscViewer v, PetscInt ranks)
   if (ranks == sim->size) PetscCall(DatasetReadInts(v, sim->comm, "rank_counts", 1, &n));
   else PetscCall(PetscSplitOwnership(sim->comm, &n, &N));
   PetscCall(MPIU_Allreduce(&n, &nsum, 1, MPIU_INT, MPI_SUM, sim->comm));
-  PetscCheck(nsum == sim->nbhd.nparticles, sim->comm, PETSC_ERR_FILE_UNEXPECTED, "-restart %s: the ranks' blocks hold %d particles, the header says %d", sim->restart, (int)nsum, (int)sim->nbhd.nparticles);
+  PetscCheck(nsum == sim->nbhd.nparticles, sim->comm, PETSC_ERR_FILE_UNEXPECTED, "-restart %s: the ranks' blocks hold %d particles, the header says %d", sim->out.restart, (int)nsum, (int)sim->nbhd.nparticles);
   P->n = P->ng = 0;
   PetscCall(ParticlesReserve(P, n));
   P->n = n;
@@ -417,7 +417,7 @@ PetscErrorCode CheckpointRestart(Sim sim)
 
   PetscFunctionBeginUser;
   if (!sim->rank) { /* readable, and an HDF5 file (its signature), before HDF5 tries */
-    FILE         *f = fopen(sim->restart, "rb");
+    FILE         *f = fopen(sim->out.restart, "rb");
     unsigned char sig[8] = {0};
     if (!f) err = errno;
     else {
@@ -426,13 +426,13 @@ PetscErrorCode CheckpointRestart(Sim sim)
     }
   }
   PetscCallMPI(MPI_Bcast(&err, 1, MPI_INT, 0, sim->comm));
-  PetscCheck(err >= 0, sim->comm, PETSC_ERR_FILE_UNEXPECTED, "-restart %s is not an HDF5 file: give a checkpoint (OUTDIR/checkpoint.h5 or OUTDIR/last_good.h5)", sim->restart);
-  PetscCheck(!err, sim->comm, PETSC_ERR_FILE_OPEN, "Cannot open the restart file -restart %s (%s)", sim->restart, strerror(err));
-  PetscCall(PetscViewerHDF5Open(sim->comm, sim->restart, FILE_MODE_READ, &v));
+  PetscCheck(err >= 0, sim->comm, PETSC_ERR_FILE_UNEXPECTED, "-restart %s is not an HDF5 file: give a checkpoint (OUTDIR/checkpoint.h5 or OUTDIR/last_good.h5)", sim->out.restart);
+  PetscCheck(!err, sim->comm, PETSC_ERR_FILE_OPEN, "Cannot open the restart file -restart %s (%s)", sim->out.restart, strerror(err));
+  PetscCall(PetscViewerHDF5Open(sim->comm, sim->out.restart, FILE_MODE_READ, &v));
   PetscCall(CheckHeader(sim, v, &ranks, &ncell));
   PetscCall(CompareOptions(sim, v));
   PetscCall(ReadRunState(sim, v));
-  PetscCheck(sim->phys.t < sim->t_end * (1 - 1e-12), sim->comm, PETSC_ERR_USER_INPUT, "-restart %s is at t = %g, not before -t_end %g: give a later -t_end to continue the run", sim->restart, (double)sim->phys.t, (double)sim->t_end);
+  PetscCheck(sim->phys.t < sim->t_end * (1 - 1e-12), sim->comm, PETSC_ERR_USER_INPUT, "-restart %s is at t = %g, not before -t_end %g: give a later -t_end to continue the run", sim->out.restart, (double)sim->phys.t, (double)sim->t_end);
   PetscCall(ReadParticles(sim, v, ranks));
   /* the run's last rebuild, at the positions it had then */
   SwapPositions(sim->P, FIELD_XREB);
@@ -459,7 +459,7 @@ PetscErrorCode CheckpointRestart(Sim sim)
     SwapPositions(sim->P, FIELD_XLIST);
   } else if (sim->nbhd.skin > 0) PetscCall(CellsRefreshPairs(sim->cells, sim->P)); /* the main list's pairs now (-wcsph_skin) */
   if (sim->phys.solid) PetscCall(CellsUpdatePairs(sim->phys.solid->nl, sim->P)); /* solid pairs: their current kernel values */
-  sim->ckpt_t = sim->phys.t; /* the state the last checkpoint holds (summary.json) */
-  PetscCall(PetscPrintf(sim->comm, "sphfsi: restarted from %s (written on %d rank(s)) at step %" PetscInt_FMT ", t = %g\n", sim->restart, (int)ranks, sim->phys.step, (double)sim->phys.t));
+  sim->out.ckpt_t = sim->phys.t; /* the state the last checkpoint holds (summary.json) */
+  PetscCall(PetscPrintf(sim->comm, "sphfsi: restarted from %s (written on %d rank(s)) at step %" PetscInt_FMT ", t = %g\n", sim->out.restart, (int)ranks, sim->phys.step, (double)sim->phys.t));
   PetscFunctionReturn(PETSC_SUCCESS);
 }

@@ -18,7 +18,7 @@ static PetscErrorCode RootCheck(Sim sim, int err, const char *what)
 {
   PetscFunctionBeginUser;
   PetscCallMPI(MPI_Bcast(&err, 1, MPI_INT, 0, sim->comm));
-  if (err) PetscCall(IOFault(sim, "%s writing %s/%s", strerror(err), sim->outdir, what));
+  if (err) PetscCall(IOFault(sim, "%s writing %s/%s", strerror(err), sim->out.dir, what));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -39,14 +39,14 @@ PetscErrorCode IOWriteProbes(Sim sim)
   PetscInt ncol = 1 + sim->scene->nprobes;
   PetscFunctionBeginUser;
   if (sim->rank) PetscFunctionReturn(RootCheck(sim, 0, "probes.csv"));
-  PetscCall(PetscSNPrintf(path, sizeof(path), "%s/probes.csv", sim->outdir));
+  PetscCall(PetscSNPrintf(path, sizeof(path), "%s/probes.csv", sim->out.dir));
   PetscCall(PetscSNPrintf(tmp, sizeof(tmp), "%s.part", path));
   if (!(f = fopen(tmp, "w"))) PetscFunctionReturn(RootCheck(sim, errno, "probes.csv"));
   fprintf(f, "t");
   for (PetscInt k = 0; k < sim->scene->nprobes; k++) fprintf(f, ",%s", sim->scene->probe_names[k]);
   fprintf(f, "\n");
-  for (PetscInt r = 0; r < sim->nprobe_rows; r++) {
-    const PetscReal *row = sim->probe_rows + r * ncol;
+  for (PetscInt r = 0; r < sim->out.nprobe_rows; r++) {
+    const PetscReal *row = sim->out.probe_rows + r * ncol;
     for (PetscInt k = 0; k < ncol; k++) fprintf(f, k ? ",%.9g" : "%.9g", (double)row[k]);
     fprintf(f, "\n");
   }
@@ -67,8 +67,8 @@ PetscErrorCode IOSetUp(Sim sim)
 PetscErrorCode IOFinalize(Sim sim)
 {
   PetscFunctionBeginUser;
-  PetscCall(PetscFree(sim->probe_rows));
-  sim->nprobe_rows = sim->cap_probe_rows = 0;
+  PetscCall(PetscFree(sim->out.probe_rows));
+  sim->out.nprobe_rows = sim->out.cap_probe_rows = 0;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -168,7 +168,7 @@ static PetscErrorCode WriteXDMF(Sim sim, const char *xmf, PetscInt n, const char
   PetscFunctionBeginUser;
   int err = 0;
   if (sim->rank) PetscFunctionReturn(RootCheck(sim, 0, xmf));
-  PetscCall(PetscSNPrintf(path, sizeof(path), "%s/%s", sim->outdir, xmf));
+  PetscCall(PetscSNPrintf(path, sizeof(path), "%s/%s", sim->out.dir, xmf));
   PetscCall(PetscSNPrintf(tmp, sizeof(tmp), "%s.part", path));
   if (!(f = fopen(tmp, "w"))) PetscFunctionReturn(RootCheck(sim, errno, xmf));
   fprintf(f, "<?xml version=\"1.0\" ?>\n<Xdmf Version=\"2.0\">\n <Domain>\n  <Grid Name=\"particles\" GridType=\"Collection\" CollectionType=\"Temporal\">\n");
@@ -196,7 +196,7 @@ static PetscErrorCode WriteXDMF(Sim sim, const char *xmf, PetscInt n, const char
 PetscErrorCode IOWriteXDMF(Sim sim)
 {
   PetscFunctionBeginUser;
-  PetscCall(WriteXDMF(sim, "particles.xmf", sim->snap, NULL, sim->snaps));
+  PetscCall(WriteXDMF(sim, "particles.xmf", sim->out.nsnap, NULL, sim->out.snaps));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -214,7 +214,7 @@ PetscErrorCode IOSnapshot(Sim sim)
   PetscReal bytes;
   PetscBool ok;
   PetscFunctionBeginUser;
-  PetscCall(PetscSNPrintf(path, sizeof(path), "particles_%05" PetscInt_FMT ".h5", sim->snap));
+  PetscCall(PetscSNPrintf(path, sizeof(path), "particles_%05" PetscInt_FMT ".h5", sim->out.nsnap));
   PetscCall(IOSpaceSnapshot(sim, &bytes));
   PetscCall(IOSpaceReserve(sim, path, bytes, &ok));
   if (!ok) PetscFunctionReturn(PETSC_SUCCESS);
@@ -225,23 +225,23 @@ PetscErrorCode IOSnapshot(Sim sim)
     for (PetscInt a = 0; a < sim->P->n + sim->P->ng; a++)
       if (KindIsFluid(sim->P->kind[a])) p[a] = EOSPressure(&sim->phys.fl, rho[a]);
   }
-  PetscCall(PetscSNPrintf(path, sizeof(path), "%s/particles_%05" PetscInt_FMT ".h5", sim->outdir, sim->snap));
+  PetscCall(PetscSNPrintf(path, sizeof(path), "%s/particles_%05" PetscInt_FMT ".h5", sim->out.dir, sim->out.nsnap));
   PetscCall(IOSpacePushWrite(path));
   PetscCall(IOWriteParticles(sim, path));
   PetscCall(IOSpacePopWrite());
-  if (sim->snap >= sim->snap_cap) {
+  if (sim->out.nsnap >= sim->out.snap_cap) {
     PetscReal *t;
-    sim->snap_cap = 2 * sim->snap_cap + 16;
-    PetscCall(PetscMalloc1(2 * sim->snap_cap, &t));
-    if (sim->snap) PetscCall(PetscArraycpy(t, sim->snaps, 2 * sim->snap));
-    PetscCall(PetscFree(sim->snaps));
-    sim->snaps = t;
+    sim->out.snap_cap = 2 * sim->out.snap_cap + 16;
+    PetscCall(PetscMalloc1(2 * sim->out.snap_cap, &t));
+    if (sim->out.nsnap) PetscCall(PetscArraycpy(t, sim->out.snaps, 2 * sim->out.nsnap));
+    PetscCall(PetscFree(sim->out.snaps));
+    sim->out.snaps = t;
   }
-  sim->snaps[2 * sim->snap]     = sim->phys.t;
-  sim->snaps[2 * sim->snap + 1] = (PetscReal)sim->nbhd.nparticles;
-  sim->snap++;
-  PetscCall(WriteXDMF(sim, "particles.xmf", sim->snap, NULL, sim->snaps));
-  while (sim->next_out <= sim->phys.t + 1e-12 * sim->t_end) sim->next_out += sim->out_interval;
+  sim->out.snaps[2 * sim->out.nsnap]     = sim->phys.t;
+  sim->out.snaps[2 * sim->out.nsnap + 1] = (PetscReal)sim->nbhd.nparticles;
+  sim->out.nsnap++;
+  PetscCall(WriteXDMF(sim, "particles.xmf", sim->out.nsnap, NULL, sim->out.snaps));
+  while (sim->out.next_snap <= sim->phys.t + 1e-12 * sim->t_end) sim->out.next_snap += sim->out.snap_interval;
   PetscCall(PetscLogStagePop());
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -257,21 +257,21 @@ PetscErrorCode IOProbes(Sim sim)
     if (PetscIsInfOrNanReal(vals[k])) PetscCall(PetscPrintf(sim->comm, "sphfsi: warning: probe %s is %g at t = %g (written so to probes.csv)\n", sim->scene->probe_names[k], (double)vals[k], (double)sim->phys.t));
   if (!sim->rank) {
     PetscReal *row;
-    if (sim->nprobe_rows == sim->cap_probe_rows) {
+    if (sim->out.nprobe_rows == sim->out.cap_probe_rows) {
       PetscReal *rows;
-      sim->cap_probe_rows = 2 * sim->cap_probe_rows + 256;
-      PetscCall(PetscMalloc1(sim->cap_probe_rows * ncol, &rows));
-      if (sim->nprobe_rows) PetscCall(PetscArraycpy(rows, sim->probe_rows, sim->nprobe_rows * ncol));
-      PetscCall(PetscFree(sim->probe_rows));
-      sim->probe_rows = rows;
+      sim->out.cap_probe_rows = 2 * sim->out.cap_probe_rows + 256;
+      PetscCall(PetscMalloc1(sim->out.cap_probe_rows * ncol, &rows));
+      if (sim->out.nprobe_rows) PetscCall(PetscArraycpy(rows, sim->out.probe_rows, sim->out.nprobe_rows * ncol));
+      PetscCall(PetscFree(sim->out.probe_rows));
+      sim->out.probe_rows = rows;
     }
-    row    = sim->probe_rows + sim->nprobe_rows * ncol;
+    row    = sim->out.probe_rows + sim->out.nprobe_rows * ncol;
     row[0] = sim->phys.t;
     PetscCall(PetscArraycpy(row + 1, vals, sim->scene->nprobes));
   }
-  sim->nprobe_rows++;
-  if (sim->probe_interval > 0)
-    while (sim->next_probe <= sim->phys.t + 1e-12 * sim->t_end) sim->next_probe += sim->probe_interval;
+  sim->out.nprobe_rows++;
+  if (sim->out.probe_interval > 0)
+    while (sim->out.next_probe <= sim->phys.t + 1e-12 * sim->t_end) sim->out.next_probe += sim->out.probe_interval;
   PetscCall(PetscLogStagePop());
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -339,7 +339,7 @@ PetscErrorCode IOSummary(Sim sim)
   PetscFunctionBeginUser;
   PetscCallMPI(MPI_Reduce(&rss, &rss_sum, 1, MPI_DOUBLE, MPI_SUM, 0, sim->comm));
   if (!sim->rank) {
-    PetscCall(PetscSNPrintf(path, sizeof(path), "%s/summary.json", sim->outdir));
+    PetscCall(PetscSNPrintf(path, sizeof(path), "%s/summary.json", sim->out.dir));
     PetscCall(PetscSNPrintf(tmp, sizeof(tmp), "%s.part", path));
     if (!(f = fopen(tmp, "w"))) err = errno;
   }
@@ -347,12 +347,12 @@ PetscErrorCode IOSummary(Sim sim)
   if (!sim->rank) {
     fprintf(f, "{\n  \"version\": \"%s\",\n  \"commit\": \"%s\",\n", SphfsiVersion(), SphfsiCommit());
     fprintf(f, "  \"case\": \"%s\",\n  \"dim\": %d,\n  \"fluid\": \"%s\",\n  \"ranks\": %d,\n", sim->scene->name, (int)sim->phys.dim, sim->phys.has_fluid ? FluidSchemes[sim->phys.fluid] : "none", sim->size);
-    JsonString(f, "status", sim->io_fault.set ? "io_error" : (const char *[]){"completed", "stopped", "fault", "io_error"}[sim->guard->state]);
-    if (sim->io_fault.set) JsonString(f, "message", sim->io_fault.msg);
+    JsonString(f, "status", sim->out.fault.set ? "io_error" : (const char *[]){"completed", "stopped", "fault", "io_error"}[sim->guard->state]);
+    if (sim->out.fault.set) JsonString(f, "message", sim->out.fault.msg);
     else if (sim->guard->state) JsonString(f, "message", sim->guard->msg);
-    if (sim->restart[0]) JsonString(f, "restarted_from", sim->restart);
-    fprintf(f, "  \"checkpoints\": %d,\n", (int)sim->nckpt);
-    if (sim->ckpt_t >= 0) JsonReal(f, "checkpoint_t", sim->ckpt_t); /* what checkpoint.h5 holds now */
+    if (sim->out.restart[0]) JsonString(f, "restarted_from", sim->out.restart);
+    fprintf(f, "  \"checkpoints\": %d,\n", (int)sim->out.nckpt);
+    if (sim->out.ckpt_t >= 0) JsonReal(f, "checkpoint_t", sim->out.ckpt_t); /* what checkpoint.h5 holds now */
     else fprintf(f, "  \"checkpoint_t\": null,\n");
     fprintf(f, "  \"particles\": %d,\n  \"steps\": %d,\n", (int)sim->nbhd.nparticles, (int)sim->phys.step);
     JsonReal(f, "t_end", sim->phys.t);

@@ -13,11 +13,11 @@ PetscErrorCode IOFault(Sim sim, const char *fmt, ...)
   va_list ap;
   size_t  len;
   PetscFunctionBeginUser;
-  if (sim->io_fault.set) PetscFunctionReturn(PETSC_SUCCESS);
+  if (sim->out.fault.set) PetscFunctionReturn(PETSC_SUCCESS);
   va_start(ap, fmt);
-  PetscCall(PetscVSNPrintf(sim->io_fault.msg, sizeof(sim->io_fault.msg), fmt, &len, ap));
+  PetscCall(PetscVSNPrintf(sim->out.fault.msg, sizeof(sim->out.fault.msg), fmt, &len, ap));
   va_end(ap);
-  sim->io_fault.set = PETSC_TRUE;
+  sim->out.fault.set = PETSC_TRUE;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -27,11 +27,11 @@ PetscErrorCode IOSpaceReserve(Sim sim, const char *file, PetscReal bytes, PetscB
   PetscFunctionBeginUser;
   if (!sim->rank) {
     struct statvfs fs;
-    if (!statvfs(sim->outdir, &fs)) free_bytes = (double)fs.f_bavail * (double)fs.f_frsize; /* what this user may fill */
+    if (!statvfs(sim->out.dir, &fs)) free_bytes = (double)fs.f_bavail * (double)fs.f_frsize; /* what this user may fill */
   }
   PetscCallMPI(MPI_Bcast(&free_bytes, 1, MPI_DOUBLE, 0, sim->comm));
   *ok = (PetscBool)(free_bytes < 0 || free_bytes >= need); /* unknown: try, and let a failed write say it */
-  if (!*ok) PetscCall(IOFault(sim, "no space left on device writing %s/%s (it needs about %.3g MB, %.3g MB are free): free space or give another -output_dir, then continue from the last checkpoint", sim->outdir, file, need / 1e6, free_bytes / 1e6));
+  if (!*ok) PetscCall(IOFault(sim, "no space left on device writing %s/%s (it needs about %.3g MB, %.3g MB are free): free space or give another -output_dir, then continue from the last checkpoint", sim->out.dir, file, need / 1e6, free_bytes / 1e6));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -59,7 +59,7 @@ PetscErrorCode IOSpaceSnapshot(Sim sim, PetscReal *bytes)
 PetscErrorCode IOSpaceCheckpoint(Sim sim, PetscReal *bytes)
 {
   PetscFunctionBeginUser;
-  *bytes = (PetscReal)sim->nbhd.nparticles * FieldBytes(sim->P, PETSC_FALSE) + (PetscReal)sim->nprobe_rows * (1 + sim->scene->nprobes) * sizeof(PetscReal) + (PetscReal)GridNumCells(&sim->grid) * sizeof(PetscInt) + 2.0 * sim->snap * sizeof(PetscReal);
+  *bytes = (PetscReal)sim->nbhd.nparticles * FieldBytes(sim->P, PETSC_FALSE) + (PetscReal)sim->out.nprobe_rows * (1 + sim->scene->nprobes) * sizeof(PetscReal) + (PetscReal)GridNumCells(&sim->grid) * sizeof(PetscInt) + 2.0 * sim->out.nsnap * sizeof(PetscReal);
   for (PetscInt k = 0; k < sim->nkeep_series; k++) *bytes += 2.0 * sim->keep_series[k]->n * sizeof(PetscReal);
   PetscFunctionReturn(PETSC_SUCCESS);
 }

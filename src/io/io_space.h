@@ -12,7 +12,7 @@
 #include "run/sim.h"
 
 /* Output that cannot be written (collective; every rank passes the same message): recorded in
- * sim->io_fault, the first one kept.  The driver hands it to the guard (GuardCheckIO): the run ends
+ * sim->out.fault, the first one kept.  The driver hands it to the guard (GuardCheckIO): the run ends
  * with SIM_EXIT_IO and writes nothing more but summary.json, if that fits. */
 PetscErrorCode IOFault(Sim sim, const char *fmt, ...) PETSC_ATTRIBUTE_FORMAT(2, 3);
 /* Whether `bytes` fit in the output directory (collective); if not, an I/O fault naming `file`. */

@@ -54,7 +54,7 @@ static PetscErrorCode MakeDir(Sim sim, const char *dir)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-static void LockPath(Sim sim, char *path, size_t len) { (void)PetscSNPrintf(path, len, "%s/%s", sim->outdir, OUTDIR_LOCK); }
+static void LockPath(Sim sim, char *path, size_t len) { (void)PetscSNPrintf(path, len, "%s/%s", sim->out.dir, OUTDIR_LOCK); }
 
 /* Whether process pid of this host has ended: gone, or a zombie (killed, not yet reaped: a launcher
  * that exits before it reaps its ranks leaves them so for a moment). */
@@ -109,7 +109,7 @@ static int TakeLock(Sim sim, Verdict *v)
       } else if (strcmp(their, host) && age > OUTDIR_STALE_S) {
         (void)PetscSNPrintf(v->msg, sizeof(v->msg), "sphfsi: note: %s of process %d on %s was last refreshed %.0f s ago (more than %.0f s): taken over as stale\n", path, pid, their[0] ? their : "an unknown host", age, OUTDIR_STALE_S);
       } else {
-        (void)PetscSNPrintf(v->msg, sizeof(v->msg), "The output directory %s is in use by another run (process %d on %s, lock refreshed %.0f s ago): give another -output_dir, or wait until that run ends (a run that died on another host leaves a lock that is taken over %.0f s after its last refresh; remove %s to take it at once)", sim->outdir, pid, their[0] ? their : "an unknown host", age, OUTDIR_STALE_S, path);
+        (void)PetscSNPrintf(v->msg, sizeof(v->msg), "The output directory %s is in use by another run (process %d on %s, lock refreshed %.0f s ago): give another -output_dir, or wait until that run ends (a run that died on another host leaves a lock that is taken over %.0f s after its last refresh; remove %s to take it at once)", sim->out.dir, pid, their[0] ? their : "an unknown host", age, OUTDIR_STALE_S, path);
         return EEXIST;
       }
       printf("%s", v->msg);
@@ -140,7 +140,7 @@ static PetscBool RunFile(const char *name, PetscBool *snapshot, PetscBool *part)
 /* Rank 0: the run files in the directory (counted, listed in v->msg), removed when `remove`. */
 static int EarlierRun(Sim sim, PetscBool remove, PetscInt *nfiles, char *list, size_t len)
 {
-  DIR           *d = opendir(sim->outdir);
+  DIR           *d = opendir(sim->out.dir);
   struct dirent *e;
   PetscInt       nsnap = 0;
   int            err = 0;
@@ -154,7 +154,7 @@ static int EarlierRun(Sim sim, PetscBool remove, PetscInt *nfiles, char *list, s
     (*nfiles)++;
     if (snapshot && !part) nsnap++;
     else if (!part && strlen(list) + strlen(e->d_name) + 4 < len) (void)PetscSNPrintf(list + strlen(list), len - strlen(list), "%s%s", list[0] ? ", " : "", e->d_name);
-    (void)PetscSNPrintf(path, sizeof(path), "%s/%s", sim->outdir, e->d_name);
+    (void)PetscSNPrintf(path, sizeof(path), "%s/%s", sim->out.dir, e->d_name);
     if (remove && unlink(path) && !err) err = errno;
   }
   closedir(d);
@@ -173,37 +173,37 @@ PetscErrorCode OutDirOpen(Sim sim)
 {
   Verdict v;
   PetscFunctionBeginUser;
-  PetscCall(MakeDir(sim, sim->outdir));
+  PetscCall(MakeDir(sim, sim->out.dir));
   PetscCall(PetscMemzero(&v, sizeof(v)));
   if (!sim->rank) {
     v.code = TakeLock(sim, &v);
-    if (!v.code) sim->lock_held = PETSC_TRUE;
+    if (!v.code) sim->out.lock_held = PETSC_TRUE;
     if (v.code == -1) v.code = 0; /* a lock of this very process: not ours to release */
-    if (v.code && v.code != EEXIST) (void)PetscSNPrintf(v.msg, sizeof(v.msg), "Cannot write the lock %s/%s (%s): choose another -output_dir", sim->outdir, OUTDIR_LOCK, strerror(v.code));
+    if (v.code && v.code != EEXIST) (void)PetscSNPrintf(v.msg, sizeof(v.msg), "Cannot write the lock %s/%s (%s): choose another -output_dir", sim->out.dir, OUTDIR_LOCK, strerror(v.code));
   }
   PetscCall(Share(sim, &v));
   PetscCheck(!v.code, sim->comm, PETSC_ERR_USER_INPUT, "%s", v.msg);
-  PetscCall(PetscTime(&sim->lock_beat));
+  PetscCall(PetscTime(&sim->out.lock_beat));
   /* a restart goes on in its checkpoint's directory; anything else starts afresh */
   if (!sim->rank) {
     char      dir[PETSC_MAX_PATH_LEN], list[512];
     PetscInt  n;
     PetscBool cont = PETSC_FALSE;
-    if (sim->restart[0]) {
+    if (sim->out.restart[0]) {
       char *slash;
-      PetscCall(PetscStrncpy(dir, sim->restart, sizeof(dir)));
+      PetscCall(PetscStrncpy(dir, sim->out.restart, sizeof(dir)));
       slash = strrchr(dir, '/');
       if (slash) *slash = 0;
       else PetscCall(PetscStrncpy(dir, ".", sizeof(dir)));
-      cont = SameDir(dir, sim->outdir);
+      cont = SameDir(dir, sim->out.dir);
     }
     if (!cont) {
-      v.code = EarlierRun(sim, sim->overwrite, &n, list, sizeof(list));
-      if (v.code) (void)PetscSNPrintf(v.msg, sizeof(v.msg), "Cannot remove the earlier run's files in %s (%s)", sim->outdir, strerror(v.code));
-      else if (n && sim->overwrite) printf("sphfsi: note: -overwrite: removed the earlier run's files in %s (%s)\n", sim->outdir, list);
+      v.code = EarlierRun(sim, sim->out.overwrite, &n, list, sizeof(list));
+      if (v.code) (void)PetscSNPrintf(v.msg, sizeof(v.msg), "Cannot remove the earlier run's files in %s (%s)", sim->out.dir, strerror(v.code));
+      else if (n && sim->out.overwrite) printf("sphfsi: note: -overwrite: removed the earlier run's files in %s (%s)\n", sim->out.dir, list);
       else if (n) {
         v.code = EEXIST;
-        (void)PetscSNPrintf(v.msg, sizeof(v.msg), "The output directory %s holds an earlier run's output (%s): give another -output_dir, -overwrite to replace it, or -restart %s/checkpoint.h5 to continue that run", sim->outdir, list, sim->outdir);
+        (void)PetscSNPrintf(v.msg, sizeof(v.msg), "The output directory %s holds an earlier run's output (%s): give another -output_dir, -overwrite to replace it, or -restart %s/checkpoint.h5 to continue that run", sim->out.dir, list, sim->out.dir);
       }
     }
   }
@@ -218,10 +218,10 @@ PetscErrorCode OutDirBeat(Sim sim)
   PetscLogDouble now;
   char           path[PETSC_MAX_PATH_LEN];
   PetscFunctionBeginUser;
-  if (!sim->lock_held) PetscFunctionReturn(PETSC_SUCCESS);
+  if (!sim->out.lock_held) PetscFunctionReturn(PETSC_SUCCESS);
   PetscCall(PetscTime(&now));
-  if (now - sim->lock_beat < OUTDIR_BEAT_S) PetscFunctionReturn(PETSC_SUCCESS);
-  sim->lock_beat = now;
+  if (now - sim->out.lock_beat < OUTDIR_BEAT_S) PetscFunctionReturn(PETSC_SUCCESS);
+  sim->out.lock_beat = now;
   LockPath(sim, path, sizeof(path));
   (void)utimensat(AT_FDCWD, path, NULL, 0); /* a lock that cannot be touched only looks older */
   PetscFunctionReturn(PETSC_SUCCESS);
@@ -232,7 +232,7 @@ PetscErrorCode OutDirTidyRestart(Sim sim)
   PetscInt removed = 0, missing = 0;
   PetscFunctionBeginUser;
   if (!sim->rank) {
-    DIR           *d = opendir(sim->outdir);
+    DIR           *d = opendir(sim->out.dir);
     struct dirent *e;
     while (d && (e = readdir(d))) {
       PetscBool snapshot, part;
@@ -240,23 +240,23 @@ PetscErrorCode OutDirTidyRestart(Sim sim)
       char      path[PETSC_MAX_PATH_LEN];
       if (!RunFile(e->d_name, &snapshot, &part)) continue;
       if (snapshot) (void)sscanf(e->d_name, "particles_%d", &idx);
-      if (!part && !(snapshot && idx >= sim->snap)) continue;
-      (void)PetscSNPrintf(path, sizeof(path), "%s/%s", sim->outdir, e->d_name);
+      if (!part && !(snapshot && idx >= sim->out.nsnap)) continue;
+      (void)PetscSNPrintf(path, sizeof(path), "%s/%s", sim->out.dir, e->d_name);
       if (!unlink(path) && !part) removed++;
     }
     if (d) closedir(d);
     /* the snapshots before the checkpoint that this directory lacks (a restart elsewhere) are left
      * out of particles.xmf: a negative particle count marks them */
-    for (PetscInt s = 0; s < sim->snap; s++) {
+    for (PetscInt s = 0; s < sim->out.nsnap; s++) {
       char path[PETSC_MAX_PATH_LEN];
-      (void)PetscSNPrintf(path, sizeof(path), "%s/particles_%05d.h5", sim->outdir, (int)s);
-      if (access(path, R_OK)) { sim->snaps[2 * s + 1] = -1; missing++; }
+      (void)PetscSNPrintf(path, sizeof(path), "%s/particles_%05d.h5", sim->out.dir, (int)s);
+      if (access(path, R_OK)) { sim->out.snaps[2 * s + 1] = -1; missing++; }
     }
     if (removed) printf("sphfsi: note: removed %d snapshot(s) written after the checkpoint by the interrupted run: this run writes them again\n", (int)removed);
   }
   PetscCallMPI(MPI_Bcast(&missing, 1, MPIU_INT, 0, sim->comm));
-  if (sim->snap) PetscCall(IOWriteXDMF(sim));
-  if (missing) PetscCall(PetscPrintf(sim->comm, "sphfsi: note: %d of the checkpointed run's %d snapshot(s) are not in %s: particles.xmf lists those that are\n", (int)missing, (int)sim->snap, sim->outdir));
+  if (sim->out.nsnap) PetscCall(IOWriteXDMF(sim));
+  if (missing) PetscCall(PetscPrintf(sim->comm, "sphfsi: note: %d of the checkpointed run's %d snapshot(s) are not in %s: particles.xmf lists those that are\n", (int)missing, (int)sim->out.nsnap, sim->out.dir));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -264,9 +264,9 @@ PetscErrorCode OutDirClose(Sim sim)
 {
   char path[PETSC_MAX_PATH_LEN];
   PetscFunctionBeginUser;
-  if (!sim || !sim->lock_held) PetscFunctionReturn(PETSC_SUCCESS);
+  if (!sim || !sim->out.lock_held) PetscFunctionReturn(PETSC_SUCCESS);
   LockPath(sim, path, sizeof(path));
   (void)unlink(path);
-  sim->lock_held = PETSC_FALSE;
+  sim->out.lock_held = PETSC_FALSE;
   PetscFunctionReturn(PETSC_SUCCESS);
 }

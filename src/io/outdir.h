@@ -21,7 +21,7 @@
 PetscErrorCode OutDirOpen(Sim sim);
 /* Rank 0 refreshes the lock when OUTDIR_BEAT_S have passed (not collective). */
 PetscErrorCode OutDirBeat(Sim sim);
-/* After a restart has read its state: remove the snapshots numbered from sim->snap on (collective). */
+/* After a restart has read its state: remove the snapshots numbered from sim->out.nsnap on (collective). */
 PetscErrorCode OutDirTidyRestart(Sim sim);
 /* Release the lock if this run holds it (not collective; safe to call twice). */
 PetscErrorCode OutDirClose(Sim sim);

@@ -301,8 +301,8 @@ PetscErrorCode GuardCheckIO(Sim sim)
 {
   Guard g = sim->guard;
   PetscFunctionBeginUser;
-  if (!sim->io_fault.set || g->state == GUARD_IO) PetscFunctionReturn(PETSC_SUCCESS);
-  PetscCall(PetscStrncpy(g->msg, sim->io_fault.msg, sizeof(g->msg)));
+  if (!sim->out.fault.set || g->state == GUARD_IO) PetscFunctionReturn(PETSC_SUCCESS);
+  PetscCall(PetscStrncpy(g->msg, sim->out.fault.msg, sizeof(g->msg)));
   g->state = GUARD_IO;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -337,7 +337,7 @@ PetscErrorCode GuardFinish(Sim sim)
     PetscCall(PetscFPrintf(sim->comm, PETSC_STDERR, "sphfsi: error: %s (exit status %d)\n", g->msg, SIM_EXIT_IO));
     sim->exit_status = SIM_EXIT_IO;
   } else if (g->state == GUARD_STOP) { /* SimRun announced the stop and wrote the checkpoint */
-    PetscCall(PetscPrintf(sim->comm, "sphfsi: checkpoint written to %s/checkpoint.h5: continue with -restart %s/checkpoint.h5 (its options are taken from it; options given override them) (exit status %d)\n", sim->outdir, sim->outdir, SIM_EXIT_STOPPED));
+    PetscCall(PetscPrintf(sim->comm, "sphfsi: checkpoint written to %s/checkpoint.h5: continue with -restart %s/checkpoint.h5 (its options are taken from it; options given override them) (exit status %d)\n", sim->out.dir, sim->out.dir, SIM_EXIT_STOPPED));
     sim->exit_status = SIM_EXIT_STOPPED;
   } else if (g->state == GUARD_FAULT) {
     PetscCall(PetscPrintf(sim->comm, "sphfsi: FAULT: %s\n", g->msg));
@@ -346,7 +346,7 @@ PetscErrorCode GuardFinish(Sim sim)
       PetscCall(PetscPrintf(sim->comm, "sphfsi: the run has no good state to write (exit status %d)\n", SIM_EXIT_FAULT));
       PetscFunctionReturn(PETSC_SUCCESS);
     }
-    PetscCall(PetscSNPrintf(path, sizeof(path), "%s/last_good.h5", sim->outdir));
+    PetscCall(PetscSNPrintf(path, sizeof(path), "%s/last_good.h5", sim->out.dir));
     {
       PetscReal bytes;
       PetscBool ok;

@@ -215,7 +215,7 @@ int main(int argc, char **argv)
     if (sim->phys.dim == 3) PetscCall(PetscSNPrintf(chosen + strlen(chosen), sizeof(chosen) - strlen(chosen), ",%.17g", (double)sim->phys.g[2]));
     PetscCall(PetscSNPrintf(chosen + strlen(chosen), sizeof(chosen) - strlen(chosen), "\n# -dx %.17g (from the scene's options)\n", (double)sim->phys.dx));
     if (sim->phys.has_fluid) PetscCall(PetscSNPrintf(chosen + strlen(chosen), sizeof(chosen) - strlen(chosen), "-fluid_c0 %.17g\n", (double)sim->phys.fl.c0));
-    PetscCall(OptionsUsedWrite(PETSC_COMM_WORLD, sim->outdir, header, chosen));
+    PetscCall(OptionsUsedWrite(PETSC_COMM_WORLD, sim->out.dir, header, chosen));
   }
   if (ierr && bad_input.quiet) { /* every rank has it: one line from rank 0, then a clean exit */
     PetscCall(PetscFPrintf(PETSC_COMM_WORLD, PETSC_STDERR, "sphfsi: error: %s\n", bad_input.message));

@@ -191,8 +191,8 @@ PetscErrorCode CheckpointSave(Sim sim)
   PetscReal bytes;
   PetscBool ok;
   PetscFunctionBeginUser;
-  PetscCall(IOSpaceCheckpoint(sim, &bytes));
-  PetscCall(IOSpaceReserve(sim, "checkpoint.h5", bytes, &ok));
+  PetscCall(IOSpaceCheckpoint(&sim->out, &bytes));
+  PetscCall(IOSpaceReserve(&sim->out, "checkpoint.h5", bytes, &ok));
   if (!ok) PetscFunctionReturn(PETSC_SUCCESS); /* the previous checkpoint stays */
   PetscCall(PetscSNPrintf(path, sizeof(path), "%s/checkpoint.h5", sim->out.dir));
   PetscCall(StateView(sim, &s));

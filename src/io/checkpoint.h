@@ -30,8 +30,8 @@ typedef struct {
   PetscReal    r[STATE_NREAL];     /* scalars, named in checkpoint.c */
   PetscInt     i[STATE_NINT];
   PetscInt     nrows, nsnap;       /* probe rows and snapshots so far */
-  PetscInt     series_n[SIM_MAX_KEEP];
-  PetscReal    kept[SIM_MAX_KEEP]; /* the scene's kept values */
+  PetscInt     series_n[OUTPUT_MAX_KEPT];
+  PetscReal    kept[OUTPUT_MAX_KEPT]; /* the scene's kept values */
 } SimState;
 
 /* The live state (no copy). */

@@ -18,7 +18,7 @@ static PetscErrorCode RootCheck(Sim sim, int err, const char *what)
 {
   PetscFunctionBeginUser;
   PetscCallMPI(MPI_Bcast(&err, 1, MPI_INT, 0, sim->comm));
-  if (err) PetscCall(IOFault(sim, "%s writing %s/%s", strerror(err), sim->out.dir, what));
+  if (err) PetscCall(IOFault(&sim->out, "%s writing %s/%s", strerror(err), sim->out.dir, what));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -215,8 +215,8 @@ PetscErrorCode IOSnapshot(Sim sim)
   PetscBool ok;
   PetscFunctionBeginUser;
   PetscCall(PetscSNPrintf(path, sizeof(path), "particles_%05" PetscInt_FMT ".h5", sim->out.nsnap));
-  PetscCall(IOSpaceSnapshot(sim, &bytes));
-  PetscCall(IOSpaceReserve(sim, path, bytes, &ok));
+  PetscCall(IOSpaceSnapshot(&sim->out, &bytes));
+  PetscCall(IOSpaceReserve(&sim->out, path, bytes, &ok));
   if (!ok) PetscFunctionReturn(PETSC_SUCCESS);
   PetscCall(PetscLogStagePush(sim->stage[STAGE_OUTPUT]));
   if (!sim->phys.isph) { /* WCSPH: the pressure of the stored density, by the equation of state (Eq. 20) */

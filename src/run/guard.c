@@ -350,8 +350,8 @@ PetscErrorCode GuardFinish(Sim sim)
     {
       PetscReal bytes;
       PetscBool ok;
-      PetscCall(IOSpaceCheckpoint(sim, &bytes));
-      PetscCall(IOSpaceReserve(sim, "last_good.h5", bytes, &ok));
+      PetscCall(IOSpaceCheckpoint(&sim->out, &bytes));
+      PetscCall(IOSpaceReserve(&sim->out, "last_good.h5", bytes, &ok));
       if (!ok) {
         PetscCall(PetscFPrintf(sim->comm, PETSC_STDERR, "sphfsi: error: %s (exit status %d)\n", g->msg, SIM_EXIT_FAULT));
         PetscFunctionReturn(PETSC_SUCCESS);

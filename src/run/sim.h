@@ -12,7 +12,7 @@ typedef struct _p_Sim *Sim;
 typedef struct _SceneOps SceneOps;
 typedef struct _p_Guard *Guard;     /* guard.h */
 typedef struct _n_SizeGuard *SizeGuard; /* size_guard.h */
-#define SIM_MAX_KEEP 16             /* scene histories and scalars a checkpoint carries (SceneKeep*) */
+#define SIM_MAX_KEEP OUTPUT_MAX_KEPT /* scene histories and scalars a checkpoint carries (SceneKeep*; output.h) */
 
 struct _p_Sim {
   MPI_Comm    comm;

@@ -179,7 +179,7 @@ PetscErrorCode CheckpointWrite(Sim sim, const SimState *s, const char *path)
     PetscCall(DatasetWriteReals(v, comm, name, sim->rank ? 0 : s->series_n[k], 1, se->y));
   }
   PetscCall(PetscViewerDestroy(&v));
-  PetscCall(IORenameOnRoot(sim, tmp, path));
+  PetscCall(IORenameOnRoot(&sim->out, tmp, path));
   PetscCall(PetscLogStagePop());
   PetscFunctionReturn(PETSC_SUCCESS);
 }

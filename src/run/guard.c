@@ -360,7 +360,7 @@ PetscErrorCode GuardFinish(Sim sim)
     PetscCall(IOSpacePushWrite(path));
     PetscCall(CheckpointWrite(sim, &g->good, path));
     PetscCall(IOSpacePopWrite());
-    PetscCall(IOWriteXDMFOne(sim, "last_good.xmf", "last_good.h5", g->good.r[0], g->good.i[1]));
+    PetscCall(IOWriteXDMFOne(&sim->out, "last_good.xmf", "last_good.h5", g->good.r[0], g->good.i[1]));
     PetscCall(PetscPrintf(sim->comm, "sphfsi: the last good state, step %" PetscInt_FMT " (t = %g), is in %s: a checkpoint with the datasets of a snapshot, to look at (last_good.xmf in ParaView) or to restart from with -restart %s and a smaller -dt or -cfl.  No NaN was written to any output file (exit status %d)\n", g->good.i[0], (double)g->good.r[0], path, path, SIM_EXIT_FAULT));
     sim->exit_status = SIM_EXIT_FAULT;
   }

@@ -94,15 +94,14 @@ PetscErrorCode SimDestroy(Sim *sim)
   PetscFunctionBeginUser;
   if (!s) PetscFunctionReturn(PETSC_SUCCESS);
   if (s->scene && s->scene->destroy) PetscCall(s->scene->destroy(s));
-  PetscCall(OutDirClose(s));
-  PetscCall(IOFinalize(s));
+  PetscCall(OutDirClose(&s->out));
+  PetscCall(IOFinalize(&s->out));
   PetscCall(ISPHDestroy(&s->phys.isph));
   PetscCall(SolidDestroy(&s->phys.solid));
   PetscCall(CellsDestroy(&s->cells));
   PetscCall(HaloDestroy(&s->halo));
   PetscCall(DecompDestroy(&s->decomp));
   PetscCall(ParticlesDestroy(&s->P));
-  PetscCall(PetscFree(s->out.snaps));
   PetscCall(RefDataDestroy(&s->refdata));
   PetscCall(GuardDestroy(&s->guard));
   PetscCall(SizeGuardDestroy(&s->size_guard));
@@ -355,7 +354,7 @@ PetscErrorCode SimSetUp(Sim sim)
   PetscCall(ParticlesSetUp(sim->P));
   if (sim->help) PetscFunctionReturn(PETSC_SUCCESS); /* listed: no particles, no output */
   PetscCall(SizeGuardCheck(sim)); /* before the particles: a run too large for the memory stops here */
-  PetscCall(OutDirOpen(sim));
+  PetscCall(OutDirOpen(&sim->out));
   PetscCall(GuardCheckSetUp(sim, "before the particles were made"));
   if (sim->guard->state) PetscFunctionReturn(PETSC_SUCCESS);
   PetscCall(sim->scene->populate(sim));
@@ -419,8 +418,8 @@ PetscErrorCode SimSetUp(Sim sim)
     else if (sim->phys.has_fluid) PetscCall(Staged(sim, STAGE_PHYSICS, WCSPHRates));
     if (sim->phys.has_solid) PetscCall(Staged(sim, STAGE_SOLID, SolidAfterRebuild));
   }
-  if (sim->out.restart[0]) PetscCall(OutDirTidyRestart(sim)); /* the snapshots past the checkpoint */
-  PetscCall(IOSetUp(sim));
+  if (sim->out.restart[0]) PetscCall(OutDirTidyRestart(&sim->out)); /* the snapshots past the checkpoint */
+  PetscCall(IOSetUp(&sim->out));
   sim->ready = PETSC_TRUE;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -498,6 +497,15 @@ static PetscErrorCode Step(Sim sim)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+PetscErrorCode SimWriteSummary(Sim sim)
+{
+  const char *const status[] = {"completed", "stopped", "fault", "io_error"}; /* by GuardState */
+  Guard             g        = sim->guard;
+  PetscFunctionBeginUser;
+  PetscCall(IOSummary(&sim->out, status[g->state], g->state ? g->msg : NULL, sim->ready));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 /* A checkpoint unless the last one holds this step already. */
 static PetscErrorCode Checkpoint(Sim sim)
 {
@@ -530,8 +538,8 @@ PetscErrorCode SimRun(Sim sim)
   sim->t_start = sim->phys.t;
   last         = sim->wall_start;
   if (!sim->out.restart[0]) { /* a restart has the first probe row and snapshot already */
-    PetscCall(IOProbes(sim));
-    if (sim->out.snap_interval > 0) PetscCall(IOSnapshot(sim));
+    PetscCall(IOProbes(&sim->out));
+    if (sim->out.snap_interval > 0) PetscCall(IOSnapshot(&sim->out));
   }
   PetscCall(GuardCheckInitial(sim));
   PetscCall(GuardCheckIO(sim));
@@ -547,29 +555,29 @@ PetscErrorCode SimRun(Sim sim)
     PetscCall(GuardStepEnd(sim, &shown)); /* NaN/Inf, signals, wall time, progress: agreed */
     if (g->state == GUARD_FAULT) break;
     if (g->state == GUARD_STOP) PetscCall(GuardAnnounceStop(sim));
-    if (sim->phys.t >= sim->out.next_probe - eps) PetscCall(IOProbes(sim));
+    if (sim->phys.t >= sim->out.next_probe - eps) PetscCall(IOProbes(&sim->out));
     if (g->state == GUARD_STOP) { /* what a launcher's kill may not leave time for: probes and summary first */
       PetscCall(PetscTime(&t1));
       sim->wall_loop = t1 - sim->wall_start;
-      PetscCall(IOWriteProbes(sim));
+      PetscCall(IOWriteProbes(&sim->out));
       PetscCall(SimTotalMass(sim, &sim->mass));
-      PetscCall(IOSummary(sim));
+      PetscCall(SimWriteSummary(sim));
     }
-    PetscCall(OutDirBeat(sim));
+    PetscCall(OutDirBeat(&sim->out));
     if (sim->out.snap_interval > 0 && sim->phys.t >= sim->out.next_snap - eps) {
-      PetscCall(IOSnapshot(sim));
-      PetscCall(IOWriteProbes(sim));
+      PetscCall(IOSnapshot(&sim->out));
+      PetscCall(IOWriteProbes(&sim->out));
     }
     if (sim->out.ckpt_interval > 0 && sim->phys.t >= sim->out.next_ckpt - eps) {
       PetscCall(Checkpoint(sim));
-      PetscCall(IOWriteProbes(sim));
+      PetscCall(IOWriteProbes(&sim->out));
     }
     PetscCall(GuardCheckIO(sim)); /* output that could not be written ends the run */
     if (g->state == GUARD_STOP || g->state == GUARD_IO) break;
     if (shown) {
       last = t1;
       PetscCall(Progress(sim));
-      PetscCall(IOWriteProbes(sim)); /* probes.csv is at most a progress interval old */
+      PetscCall(IOWriteProbes(&sim->out)); /* probes.csv is at most a progress interval old */
       PetscCall(GuardCheckIO(sim));
     }
   }
@@ -580,9 +588,9 @@ PetscErrorCode SimRun(Sim sim)
   if (g->state == GUARD_STOP || (!g->state && sim->out.ckpt_interval > 0)) PetscCall(Checkpoint(sim));
   PetscCall(GuardFinish(sim));
   if (sim->exit_status == SIM_EXIT_FAULT && sim->phys.isph) PetscCall(PPEFaultHint(sim->phys.isph->ppe));
-  PetscCall(IOWriteProbes(sim));
+  PetscCall(IOWriteProbes(&sim->out));
   PetscCall(SimTotalMass(sim, &sim->mass));
-  PetscCall(IOSummary(sim));
+  PetscCall(SimWriteSummary(sim));
   if (sim->decomp->log_stats) PetscCall(DecompWriteStats(sim->decomp, sim->out.dir));
   PetscCall(PetscPrintf(sim->comm, "sphfsi: %" PetscInt_FMT " steps in %.2f s (%.3g particle-steps/s); output in %s\n", sim->phys.step - step0, (double)sim->wall_loop, (double)((sim->particle_steps - ps0) / PetscMax(sim->wall_loop, 1e-9)), sim->out.dir));
   PetscFunctionReturn(PETSC_SUCCESS);

@@ -65,5 +65,7 @@ PetscErrorCode SimSetFromOptions(Sim sim);
 PetscErrorCode SimSetUp(Sim sim);
 PetscErrorCode SimRun(Sim sim);
 PetscErrorCode SimDestroy(Sim *sim);
+/* summary.json with how the run ended, as the guard says (io.h: IOSummary; collective). */
+PetscErrorCode SimWriteSummary(Sim sim);
 /* Total mass of owned fluid and solid particles, plus the fluid that left (collective). */
 PetscErrorCode SimTotalMass(Sim sim, PetscReal *M);

@@ -86,7 +86,7 @@ PetscErrorCode GuardStepBegin(Sim sim)
   PetscCall(PetscTime(&g->step_start));
   if (!g->have_good || sim->phys.step % GUARD_KEEP_EVERY == 0) {
     PetscCall(PetscLogStagePush(sim->stage[STAGE_GUARD]));
-    PetscCall(StateCopy(sim, &g->good));
+    PetscCall(StateCopy(&sim->out, &g->good));
     g->have_good = PETSC_TRUE;
     PetscCall(PetscLogStagePop());
   }
@@ -104,7 +104,7 @@ PetscErrorCode GuardFault(Sim sim, PetscBool state_ok, const char *fmt, ...)
   va_end(ap);
   g->state = GUARD_FAULT;
   if (state_ok) {
-    PetscCall(StateCopy(sim, &g->good));
+    PetscCall(StateCopy(&sim->out, &g->good));
     g->have_good = PETSC_TRUE;
   }
   PetscFunctionReturn(PETSC_SUCCESS);
@@ -358,7 +358,7 @@ PetscErrorCode GuardFinish(Sim sim)
       }
     }
     PetscCall(IOSpacePushWrite(path));
-    PetscCall(CheckpointWrite(sim, &g->good, path));
+    PetscCall(CheckpointWrite(&sim->out, &g->good, path));
     PetscCall(IOSpacePopWrite());
     PetscCall(IOWriteXDMFOne(&sim->out, "last_good.xmf", "last_good.h5", g->good.r[0], g->good.i[1]));
     PetscCall(PetscPrintf(sim->comm, "sphfsi: the last good state, step %" PetscInt_FMT " (t = %g), is in %s: a checkpoint with the datasets of a snapshot, to look at (last_good.xmf in ParaView) or to restart from with -restart %s and a smaller -dt or -cfl.  No NaN was written to any output file (exit status %d)\n", g->good.i[0], (double)g->good.r[0], path, path, SIM_EXIT_FAULT));

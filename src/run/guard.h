@@ -7,6 +7,7 @@
  *    when (step, t), writes the last good state (a restartable checkpoint) and ends with
  *    SIM_EXIT_FAULT. */
 #pragma once
+#include "run/sim.h"
 #include "io/checkpoint.h"
 
 #define GUARD_KEEP_EVERY 10 /* steps between copies of the last good state (a copy of every field: a fraction of a step) */

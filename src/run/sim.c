@@ -408,7 +408,7 @@ PetscErrorCode SimSetUp(Sim sim)
   sim->out.next_ckpt  = sim->out.ckpt_interval;
   PetscCall(GuardCheckSetUp(sim, "before the neighbour lists were built"));
   if (sim->guard->state) PetscFunctionReturn(PETSC_SUCCESS);
-  if (sim->out.restart[0]) PetscCall(CheckpointRestart(sim)); /* the particles and state of the checkpoint */
+  if (sim->out.restart[0]) PetscCall(CheckpointRestart(&sim->out)); /* the particles and state of the checkpoint */
   else {
     PetscCall(DecompPartition(sim->decomp, sim->P)); /* from the scene's round-robin spread, so no rank ever holds them all */
     PetscCall(DecompMigrate(sim->decomp, sim->P));   /* wraps and checks every particle is inside */
@@ -511,7 +511,7 @@ static PetscErrorCode Checkpoint(Sim sim)
 {
   PetscFunctionBeginUser;
   if (sim->ckpt_step == sim->phys.step) PetscFunctionReturn(PETSC_SUCCESS);
-  PetscCall(CheckpointSave(sim));
+  PetscCall(CheckpointSave(&sim->out));
   PetscCall(GuardCheckIO(sim));
   if (sim->guard->state == GUARD_IO) PetscFunctionReturn(PETSC_SUCCESS);
   sim->ckpt_step = sim->phys.step;

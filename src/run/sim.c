@@ -66,25 +66,7 @@ PetscErrorCode SimCreate(MPI_Comm comm, Sim *sim)
   s->phys.decomp = s->decomp;
   s->phys.halo   = s->halo;
   s->phys.nb     = &s->nbhd;
-  { /* the output's handles (output.h) */
-    Output *out             = &s->out;
-    out->comm               = comm;
-    out->rank               = s->rank;
-    out->size               = s->size;
-    out->phys               = &s->phys;
-    out->grid               = &s->grid;
-    out->refdata            = &s->refdata;
-    out->stage              = s->stage[STAGE_OUTPUT];
-    out->run.mass0          = &s->mass0;
-    out->run.mass           = &s->mass;
-    out->run.particle_steps = &s->particle_steps;
-    out->run.wall_used      = &s->wall_used;
-    out->run.wall_start     = &s->wall_start;
-    out->run.wall_loop      = &s->wall_loop;
-    out->run.dt_first       = s->guard->dt_first;
-    out->run.next_id        = &s->next_id;
-    out->ckpt_t             = -1; /* no checkpoint yet */
-  }
+  PetscCall(SimWireOutput(s));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -205,44 +187,6 @@ static PetscErrorCode ScenePrescribe(void *ctx)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-/* The scene's probes and errors, for the output (output.h: the output does not know the scene). */
-static PetscErrorCode SceneProbe(void *ctx, PetscReal vals[])
-{
-  Sim sim = (Sim)ctx;
-  PetscFunctionBeginUser;
-  PetscCall(sim->scene->probe(sim, vals));
-  PetscFunctionReturn(PETSC_SUCCESS);
-}
-
-static PetscErrorCode SceneErrors(void *ctx, FILE *json)
-{
-  Sim sim = (Sim)ctx;
-  PetscFunctionBeginUser;
-  PetscCall(sim->scene->errors(sim, json));
-  PetscFunctionReturn(PETSC_SUCCESS);
-}
-
-/* After the scene's create: what the output needs of the scene, as data and callbacks, and the end
- * time the scene may have chosen. */
-static PetscErrorCode WireOutputToScene(Sim sim)
-{
-  Output *out = &sim->out;
-  PetscFunctionBeginUser;
-  PetscCheck(sim->scene->nprobes <= OUTPUT_MAX_PROBES, sim->comm, PETSC_ERR_PLIB, "Scene %s has %" PetscInt_FMT " probes, the output takes %d", sim->scene->name, sim->scene->nprobes, OUTPUT_MAX_PROBES);
-  out->t_end              = sim->t_end;
-  out->scene.name         = sim->scene->name;
-  out->scene.nprobes      = sim->scene->nprobes;
-  out->scene.probe_names  = sim->scene->probe_names;
-  out->scene.probe        = SceneProbe;
-  out->scene.errors       = sim->scene->errors ? SceneErrors : NULL;
-  out->scene.ctx          = sim;
-  out->scene.kept_series  = sim->keep_series; /* registered in the scene's create (SceneKeep*) */
-  out->scene.kept_reals   = sim->keep_reals;
-  out->scene.nkept_series = sim->nkeep_series;
-  out->scene.nkept_reals  = sim->nkeep_reals;
-  PetscFunctionReturn(PETSC_SUCCESS);
-}
-
 PetscErrorCode SimTotalMass(Sim sim, PetscReal *M)
 {
   PetscReal s = 0, *m = PField(sim->P, FIELD_M);
@@ -323,7 +267,7 @@ PetscErrorCode SimSetUp(Sim sim)
   }
   PetscCheck(sim->t_end > 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-t_end %g must be > 0", (double)sim->t_end);
   PetscCheck(sim->phys.has_fluid || sim->phys.has_solid, sim->comm, PETSC_ERR_PLIB, "Scene %s has neither fluid nor solid", sim->scene->name);
-  PetscCall(WireOutputToScene(sim));
+  PetscCall(SimWireOutputToScene(sim));
   PetscOptionsBegin(sim->comm, NULL, "Body force", "Sim");
   {
     PetscReal g[3] = {sim->phys.g[0], sim->phys.g[1], sim->phys.g[2]};
@@ -494,15 +438,6 @@ static PetscErrorCode Step(Sim sim)
     sim->phys.solid->nsub_last = nsub;
     sim->phys.solid->nsub_max  = PetscMax(sim->phys.solid->nsub_max, nsub);
   }
-  PetscFunctionReturn(PETSC_SUCCESS);
-}
-
-PetscErrorCode SimWriteSummary(Sim sim)
-{
-  const char *const status[] = {"completed", "stopped", "fault", "io_error"}; /* by GuardState */
-  Guard             g        = sim->guard;
-  PetscFunctionBeginUser;
-  PetscCall(IOSummary(&sim->out, status[g->state], g->state ? g->msg : NULL, sim->ready));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

@@ -67,5 +67,9 @@ PetscErrorCode SimRun(Sim sim);
 PetscErrorCode SimDestroy(Sim *sim);
 /* summary.json with how the run ended, as the guard says (io.h: IOSummary; collective). */
 PetscErrorCode SimWriteSummary(Sim sim);
+/* The driver's wiring of the output's context sim->out (sim_output.c): its handles, in SimCreate;
+ * the scene's name, probes, errors and kept state and the end time, after the scene's create. */
+PetscErrorCode SimWireOutput(Sim sim);
+PetscErrorCode SimWireOutputToScene(Sim sim);
 /* Total mass of owned fluid and solid particles, plus the fluid that left (collective). */
 PetscErrorCode SimTotalMass(Sim sim, PetscReal *M);

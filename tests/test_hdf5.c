@@ -38,7 +38,7 @@ int main(int argc, char **argv)
   PetscCall(SimCreate(PETSC_COMM_WORLD, &sim));
   PetscCall(SimSetFromOptions(sim));
   PetscCall(SimSetUp(sim));
-  PetscCall(IOWriteParticles(sim, path));
+  PetscCall(IOWriteParticles(&sim->out, path));
   PetscCall(PetscViewerHDF5Open(sim->comm, path, FILE_MODE_READ, &v));
   { /* the snapshot's fields (the field table, particles.h) */
     FieldId out[FIELD_COUNT];

@@ -14,7 +14,7 @@ static PetscErrorCode RunCase(MPI_Comm comm, const char *outdir, Sim *sim)
   PetscFunctionBeginUser;
   PetscCall(SimCreate(comm, sim));
   PetscCall(SimSetFromOptions(*sim));
-  PetscCall(PetscStrncpy((*sim)->outdir, outdir, sizeof((*sim)->outdir)));
+  PetscCall(PetscStrncpy((*sim)->out.dir, outdir, sizeof((*sim)->out.dir)));
   PetscCall(SimSetUp(*sim));
   PetscCall(SimRun(*sim));
   PetscFunctionReturn(PETSC_SUCCESS);

@@ -27,7 +27,7 @@ static PetscErrorCode Run(MPI_Comm comm, const char *outdir, const char *restart
   else PetscCall(PetscOptionsClearValue(NULL, "-restart"));
   PetscCall(SimCreate(comm, sim));
   PetscCall(SimSetFromOptions(*sim));
-  PetscCall(PetscStrncpy((*sim)->outdir, outdir, sizeof((*sim)->outdir)));
+  PetscCall(PetscStrncpy((*sim)->out.dir, outdir, sizeof((*sim)->out.dir)));
   PetscCall(SimSetUp(*sim));
   PetscCall(SimRun(*sim));
   PetscFunctionReturn(PETSC_SUCCESS);
@@ -59,12 +59,12 @@ static PetscErrorCode Collect(Sim *psim, Final *F)
   }
   n = (PetscMPIInt)(w * P->n);
   F->N = sim->nbhd.nparticles; F->w = w; F->step = sim->phys.step; F->t = sim->phys.t;
-  F->ncol = 1 + sim->scene->nprobes; F->nrow = sim->nprobe_rows;
+  F->ncol = 1 + sim->scene->nprobes; F->nrow = sim->out.nprobe_rows;
   if (!sim->rank) {
     PetscCall(PetscMalloc2(sim->size, &cnt, sim->size + 1, &disp));
     PetscCall(PetscMalloc1(w * F->N, &F->rec));
     PetscCall(PetscMalloc1(F->nrow * F->ncol, &F->rows));
-    PetscCall(PetscArraycpy(F->rows, sim->probe_rows, F->nrow * F->ncol));
+    PetscCall(PetscArraycpy(F->rows, sim->out.probe_rows, F->nrow * F->ncol));
   }
   PetscCallMPI(MPI_Gather(&n, 1, MPI_INT, cnt, 1, MPI_INT, 0, sim->comm));
   if (!sim->rank) { disp[0] = 0; for (PetscMPIInt r = 0; r < sim->size; r++) disp[r + 1] = disp[r] + cnt[r]; }

@@ -53,7 +53,7 @@ PetscReal SeriesAt(const Series *s, PetscReal t)
  *   ../shared/refdata            from the current directory (a checkout's root), the last resort
  * <exe dir> comes from /proc/self/exe (absolute, no symbolic links, so its textual parent is
  * PREFIX); a folder whose path would not fit is left out. */
-static PetscErrorCode RefDataDirs(Sim sim, char dirs[REFDATA_MAX_DIRS][PETSC_MAX_PATH_LEN], PetscInt *n, const char **why)
+static PetscErrorCode RefDataDirs(const RefData *rd, char dirs[REFDATA_MAX_DIRS][PETSC_MAX_PATH_LEN], PetscInt *n, const char **why)
 {
   const char *env = getenv("SPHFSI_REFDATA");
   char        exe[PETSC_MAX_PATH_LEN], *slash;
@@ -61,9 +61,9 @@ static PetscErrorCode RefDataDirs(Sim sim, char dirs[REFDATA_MAX_DIRS][PETSC_MAX
 
   PetscFunctionBeginUser;
   *n   = 0;
-  *why = sim->refdata_dir[0] ? "-refdata_dir" : env && env[0] ? "$SPHFSI_REFDATA" : NULL;
+  *why = rd->dir[0] ? "-refdata_dir" : env && env[0] ? "$SPHFSI_REFDATA" : NULL;
   if (*why) {
-    PetscCall(PetscStrncpy(dirs[(*n)++], sim->refdata_dir[0] ? sim->refdata_dir : env, PETSC_MAX_PATH_LEN));
+    PetscCall(PetscStrncpy(dirs[(*n)++], rd->dir[0] ? rd->dir : env, PETSC_MAX_PATH_LEN));
     PetscFunctionReturn(PETSC_SUCCESS);
   }
   len = readlink("/proc/self/exe", exe, sizeof(exe) - 1);
@@ -81,26 +81,26 @@ static PetscErrorCode RefDataDirs(Sim sim, char dirs[REFDATA_MAX_DIRS][PETSC_MAX
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-/* Add FILE to sim->refdata_missing unless it is there; *added says whether it was new (a scene may
+/* Add FILE to rd->missing unless it is there; *added says whether it was new (a scene may
  * read one file for several columns: one warning per file). */
-static PetscErrorCode NoteMissing(Sim sim, const char *file, PetscBool *added)
+static PetscErrorCode NoteMissing(RefData *rd, const char *file, PetscBool *added)
 {
   char   item[PETSC_MAX_PATH_LEN], *list;
-  size_t old = sim->refdata_missing ? strlen(sim->refdata_missing) : 0, len;
+  size_t old = rd->missing ? strlen(rd->missing) : 0, len;
 
   PetscFunctionBeginUser;
   PetscCall(PetscSNPrintf(item, sizeof(item), "\"%s\"", file));
-  *added = (PetscBool)!(old && strstr(sim->refdata_missing, item));
+  *added = (PetscBool)!(old && strstr(rd->missing, item));
   if (!*added) PetscFunctionReturn(PETSC_SUCCESS);
   len = old + strlen(item) + 3;
   PetscCall(PetscMalloc1(len, &list));
-  PetscCall(PetscSNPrintf(list, len, "%s%s%s", old ? sim->refdata_missing : "", old ? ", " : "", item));
-  PetscCall(PetscFree(sim->refdata_missing));
-  sim->refdata_missing = list;
+  PetscCall(PetscSNPrintf(list, len, "%s%s%s", old ? rd->missing : "", old ? ", " : "", item));
+  PetscCall(PetscFree(rd->missing));
+  rd->missing = list;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode RefDataOpen(Sim sim, const char *file, FILE **f)
+PetscErrorCode RefDataOpen(RefData *rd, const char *file, FILE **f)
 {
   char        dirs[REFDATA_MAX_DIRS][PETSC_MAX_PATH_LEN], path[PETSC_MAX_PATH_LEN];
   const char *why;
@@ -109,15 +109,15 @@ PetscErrorCode RefDataOpen(Sim sim, const char *file, FILE **f)
 
   PetscFunctionBeginUser;
   *f = NULL;
-  if (sim->rank) PetscFunctionReturn(PETSC_SUCCESS);
-  PetscCall(RefDataDirs(sim, dirs, &n, &why));
+  if (rd->rank) PetscFunctionReturn(PETSC_SUCCESS);
+  PetscCall(RefDataDirs(rd, dirs, &n, &why));
   for (PetscInt k = 0; k < n && !*f; k++)
     if (snprintf(path, sizeof(path), "%s/%s", dirs[k], file) < (int)sizeof(path)) *f = fopen(path, "r");
   if (*f) {
     PetscCall(PetscInfo(NULL, "Reference %s\n", path));
     PetscFunctionReturn(PETSC_SUCCESS);
   }
-  PetscCall(NoteMissing(sim, file, &added));
+  PetscCall(NoteMissing(rd, file, &added));
   if (!added) PetscFunctionReturn(PETSC_SUCCESS);
   /* one line on stdout, from rank 0 alone (the others have returned): a batch log shows it */
   PetscCall(PetscPrintf(PETSC_COMM_SELF, "sphfsi: warning: reference data %s not found in ", file));
@@ -127,7 +127,7 @@ PetscErrorCode RefDataOpen(Sim sim, const char *file, FILE **f)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode RefDataLoad(Sim sim, const char *file, const char *xcol, const char *ycol, Series *ref, PetscBool *found)
+PetscErrorCode RefDataLoad(RefData *rd, const char *file, const char *xcol, const char *ycol, Series *ref, PetscBool *found)
 {
   char  line[4096];
   FILE *f;
@@ -135,7 +135,7 @@ PetscErrorCode RefDataLoad(Sim sim, const char *file, const char *xcol, const ch
 
   PetscFunctionBeginUser;
   *found = PETSC_FALSE;
-  PetscCall(RefDataOpen(sim, file, &f));
+  PetscCall(RefDataOpen(rd, file, &f));
   if (!f) PetscFunctionReturn(PETSC_SUCCESS);
   while (fgets(line, sizeof(line), f)) {
     char *tok, *rest = line;
@@ -163,6 +163,13 @@ PetscErrorCode RefDataLoad(Sim sim, const char *file, const char *xcol, const ch
   }
   fclose(f);
   *found = (PetscBool)(ix >= 0 && iy >= 0 && ref->n > 0);
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode RefDataDestroy(RefData *rd)
+{
+  PetscFunctionBeginUser;
+  PetscCall(PetscFree(rd->missing));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

@@ -1,11 +1,8 @@
 #include "io/checkpoint.h"
 #include "base/options_used.h"
-#include "run/guard.h"
 #include "io/io.h"
 #include "io/io_space.h"
 #include "io/h5.h"
-#include "scenes/scene.h"
-#include "base/refdata.h"
 #include "fluid/isph.h"
 #include "solid/solid.h"
 #include <petscviewerhdf5.h>
@@ -19,46 +16,47 @@ static const char *const RealNames[STATE_NREAL] = {"time", "dt", "next_output", 
 static const char *const IntNames[STATE_NINT]   = {"step", "particles", "next_id", "repartitions", "solid_substeps_last", "solid_substeps_max", "solid_rebuilds", "ppe_solves", "ppe_its_max", "ppe_its_last", "isph_free_surface", "snapshots"};
 
 /* Pointers to the scalars; modules the scene lacks point to a dummy. */
-static void Slots(Sim sim, PetscReal *r[STATE_NREAL], PetscInt *i[STATE_NINT], PetscReal *rd, PetscInt *id)
+static void Slots(Output *out, PetscReal *r[STATE_NREAL], PetscInt *i[STATE_NINT], PetscReal *rd, PetscInt *id)
 {
-  PPE   ppe = sim->phys.isph ? sim->phys.isph->ppe : NULL;
-  Solid s   = sim->phys.solid;
-  r[0] = &sim->phys.t; r[1] = &sim->phys.dt; r[2] = &sim->next_out; r[3] = &sim->next_probe; r[4] = &sim->next_ckpt;
-  r[5] = &sim->mass0; r[6] = &sim->nbhd.mass_out; r[7] = &sim->particle_steps; r[8] = &sim->wall_used;
-  r[9] = &sim->guard->dt_first[0]; r[10] = &sim->guard->dt_first[1]; r[11] = ppe ? &ppe->its_sum : rd;
-  i[0] = &sim->phys.step; i[1] = &sim->nbhd.nparticles; i[2] = &sim->next_id; i[3] = &sim->decomp->nrepartition;
+  Physics *ph  = out->phys;
+  PPE      ppe = ph->isph ? ph->isph->ppe : NULL;
+  Solid    s   = ph->solid;
+  r[0] = &ph->t; r[1] = &ph->dt; r[2] = &out->next_snap; r[3] = &out->next_probe; r[4] = &out->next_ckpt;
+  r[5] = out->run.mass0; r[6] = &ph->nb->mass_out; r[7] = out->run.particle_steps; r[8] = out->run.wall_used;
+  r[9] = &out->run.dt_first[0]; r[10] = &out->run.dt_first[1]; r[11] = ppe ? &ppe->its_sum : rd;
+  i[0] = &ph->step; i[1] = &ph->nb->nparticles; i[2] = out->run.next_id; i[3] = &ph->decomp->nrepartition;
   i[4] = s ? &s->nsub_last : id; i[5] = s ? &s->nsub_max : id; i[6] = s ? &s->nrebuild : id;
   i[7] = ppe ? &ppe->nsolve : id; i[8] = ppe ? &ppe->its_max : id; i[9] = ppe ? &ppe->its_last : id;
-  i[10] = sim->phys.isph ? &sim->phys.isph->nfree : id; i[11] = &sim->snap;
+  i[10] = ph->isph ? &ph->isph->nfree : id; i[11] = &out->nsnap;
 }
 
-static PetscErrorCode StateScalars(Sim sim, SimState *s)
+static PetscErrorCode StateScalars(Output *out, SimState *s)
 {
   PetscReal     *r[STATE_NREAL], rd = 0;
   PetscInt      *i[STATE_NINT], id = 0;
   PetscLogDouble now;
   PetscFunctionBeginUser;
   PetscCall(PetscTime(&now));
-  Slots(sim, r, i, &rd, &id);
+  Slots(out, r, i, &rd, &id);
   for (PetscInt k = 0; k < STATE_NREAL; k++) s->r[k] = *r[k];
-  if (sim->wall_start > 0) s->r[8] += now - sim->wall_start; /* wall_used: with this run's loop so far */
+  if (*out->run.wall_start > 0) s->r[8] += now - *out->run.wall_start; /* wall_used: with this run's loop so far */
   for (PetscInt k = 0; k < STATE_NINT; k++) s->i[k] = *i[k];
-  s->nrows = sim->nprobe_rows;
-  s->nsnap = sim->snap;
-  for (PetscInt k = 0; k < sim->nkeep_series; k++) s->series_n[k] = sim->keep_series[k]->n;
-  for (PetscInt k = 0; k < sim->nkeep_reals; k++) s->kept[k] = *sim->keep_reals[k];
-  s->ncell = GridNumCells(&sim->grid);
+  s->nrows = out->nprobe_rows;
+  s->nsnap = out->nsnap;
+  for (PetscInt k = 0; k < out->scene.nkept_series; k++) s->series_n[k] = out->scene.kept_series[k]->n;
+  for (PetscInt k = 0; k < out->scene.nkept_reals; k++) s->kept[k] = *out->scene.kept_reals[k];
+  s->ncell = GridNumCells(out->grid);
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode StateView(Sim sim, SimState *s)
+PetscErrorCode StateView(Output *out, SimState *s)
 {
-  Particles P = sim->P;
+  Particles P = out->phys->P;
   PetscFunctionBeginUser;
   PetscCall(PetscMemzero(s, sizeof(*s)));
-  s->n = P->n; s->id = P->id; s->kind = P->kind; s->owner = sim->decomp->owner;
+  s->n = P->n; s->id = P->id; s->kind = P->kind; s->owner = out->phys->decomp->owner;
   for (PetscInt f = 0; f < FIELD_COUNT; f++) s->f[f] = ParticlesCheckpointField(P, (FieldId)f) ? P->f[f].a : NULL;
-  PetscCall(StateScalars(sim, s));
+  PetscCall(StateScalars(out, s));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -74,10 +72,10 @@ PetscErrorCode StateDestroy(SimState *s)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode StateCopy(Sim sim, SimState *s)
+PetscErrorCode StateCopy(Output *out, SimState *s)
 {
-  Particles P = sim->P;
-  PetscInt  nc = GridNumCells(&sim->grid);
+  Particles P = out->phys->P;
+  PetscInt  nc = GridNumCells(out->grid);
   PetscFunctionBeginUser;
   if (!s->copy) PetscCall(PetscMemzero(s, sizeof(*s)));
   if (s->cap < P->n || !s->id) { /* grow with room: the particle count drifts between ranks */
@@ -97,8 +95,8 @@ PetscErrorCode StateCopy(Sim sim, SimState *s)
   PetscCall(PetscArraycpy(s->kind, P->kind, P->n));
   for (PetscInt f = 0; f < FIELD_COUNT; f++)
     if (ParticlesCheckpointField(P, (FieldId)f)) PetscCall(PetscArraycpy(s->f[f], P->f[f].a, P->n * P->f[f].width));
-  PetscCall(PetscArraycpy(s->owner, sim->decomp->owner, nc));
-  PetscCall(StateScalars(sim, s));
+  PetscCall(PetscArraycpy(s->owner, out->phys->decomp->owner, nc));
+  PetscCall(StateScalars(out, s));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -115,27 +113,27 @@ static PetscErrorCode FieldList(Particles P, char *buf, size_t len)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode CheckpointWrite(Sim sim, const SimState *s, const char *path)
+PetscErrorCode CheckpointWrite(Output *out, const SimState *s, const char *path)
 {
-  Particles   P = sim->P;
-  MPI_Comm    comm = sim->comm;
+  Particles   P = out->phys->P;
+  MPI_Comm    comm = out->comm;
   PetscViewer v;
   char        tmp[PETSC_MAX_PATH_LEN], fields[1024], name[64];
-  PetscInt    version = CHECKPOINT_VERSION, ranks = sim->size, ncol = 1 + sim->scene->nprobes, *owner = NULL;
-  const char *fluid = sim->phys.has_fluid ? FluidSchemes[sim->phys.fluid] : "none";
+  PetscInt    version = CHECKPOINT_VERSION, ranks = out->size, ncol = 1 + out->scene.nprobes, *owner = NULL;
+  const char *fluid = out->phys->has_fluid ? FluidSchemes[out->phys->fluid] : "none";
 
   PetscFunctionBeginUser;
-  PetscCall(PetscLogStagePush(sim->stage[STAGE_OUTPUT]));
+  PetscCall(PetscLogStagePush(out->stage));
   PetscCall(PetscSNPrintf(tmp, sizeof(tmp), "%s.part", path));
   PetscCall(FieldList(P, fields, sizeof(fields)));
   PetscCall(PetscViewerHDF5Open(comm, tmp, FILE_MODE_WRITE, &v));
   PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "format", PETSC_STRING, CHECKPOINT_FORMAT));
   PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "version", PETSC_INT, &version));
-  PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "case", PETSC_STRING, sim->scene->name));
+  PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "case", PETSC_STRING, out->scene.name));
   PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "fluid", PETSC_STRING, fluid));
   PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "fields", PETSC_STRING, fields));
   PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "ranks", PETSC_INT, &ranks));
-  PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "dx", PETSC_REAL, &sim->phys.dx));
+  PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "dx", PETSC_REAL, &out->phys->dx));
   PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "cells", PETSC_INT, &s->ncell));
   PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "probe_columns", PETSC_INT, &ncol));
   PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "probe_rows", PETSC_INT, &s->nrows));
@@ -145,11 +143,11 @@ PetscErrorCode CheckpointWrite(Sim sim, const SimState *s, const char *path)
     PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "options", PETSC_STRING, all));
     PetscCall(PetscFree(all));
   }
-  PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "kept_series", PETSC_INT, &sim->nkeep_series));
-  PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "kept_values", PETSC_INT, &sim->nkeep_reals));
+  PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "kept_series", PETSC_INT, &out->scene.nkept_series));
+  PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "kept_values", PETSC_INT, &out->scene.nkept_reals));
   for (PetscInt k = 0; k < STATE_NREAL; k++) PetscCall(PetscViewerHDF5WriteAttribute(v, "/", RealNames[k], PETSC_REAL, &s->r[k]));
   for (PetscInt k = 0; k < STATE_NINT; k++) PetscCall(PetscViewerHDF5WriteAttribute(v, "/", IntNames[k], PETSC_INT, &s->i[k]));
-  for (PetscInt k = 0; k < sim->nkeep_reals; k++) {
+  for (PetscInt k = 0; k < out->scene.nkept_reals; k++) {
     PetscCall(PetscSNPrintf(name, sizeof(name), "kept_value_%d", (int)k));
     PetscCall(PetscViewerHDF5WriteAttribute(v, "/", name, PETSC_REAL, &s->kept[k]));
   }
@@ -160,58 +158,58 @@ PetscErrorCode CheckpointWrite(Sim sim, const SimState *s, const char *path)
   for (PetscInt f = 0; f < FIELD_COUNT; f++)
     if (ParticlesCheckpointField(P, (FieldId)f)) PetscCall(DatasetWriteReals(v, comm, P->f[f].name, s->n, P->f[f].width, s->f[f]));
   /* rank 0's: partition, probe rows, snapshot times and sizes, kept histories (empty ones are left out) */
-  if (!sim->rank) {
+  if (!out->rank) {
     PetscCall(PetscMalloc1(s->ncell, &owner));
     for (PetscInt c = 0; c < s->ncell; c++) owner[c] = s->owner[c];
   }
-  PetscCall(DatasetWriteInts(v, comm, "partition", sim->rank ? 0 : s->ncell, owner));
+  PetscCall(DatasetWriteInts(v, comm, "partition", out->rank ? 0 : s->ncell, owner));
   PetscCall(PetscFree(owner));
-  if (s->nrows) PetscCall(DatasetWriteReals(v, comm, "probe_table", sim->rank ? 0 : s->nrows * ncol, 1, sim->probe_rows));
-  if (s->nsnap) PetscCall(DatasetWriteReals(v, comm, "snapshot_table", sim->rank ? 0 : 2 * s->nsnap, 1, sim->snaps));
-  for (PetscInt k = 0; k < sim->nkeep_series; k++) {
-    const Series *se = sim->keep_series[k];
+  if (s->nrows) PetscCall(DatasetWriteReals(v, comm, "probe_table", out->rank ? 0 : s->nrows * ncol, 1, out->probe_rows));
+  if (s->nsnap) PetscCall(DatasetWriteReals(v, comm, "snapshot_table", out->rank ? 0 : 2 * s->nsnap, 1, out->snaps));
+  for (PetscInt k = 0; k < out->scene.nkept_series; k++) {
+    const Series *se = out->scene.kept_series[k];
     PetscCall(PetscSNPrintf(name, sizeof(name), "kept_series_%d_n", (int)k));
     PetscCall(PetscViewerHDF5WriteAttribute(v, "/", name, PETSC_INT, &s->series_n[k]));
     if (!s->series_n[k]) continue;
     PetscCall(PetscSNPrintf(name, sizeof(name), "kept_series_%d_t", (int)k));
-    PetscCall(DatasetWriteReals(v, comm, name, sim->rank ? 0 : s->series_n[k], 1, se->t));
+    PetscCall(DatasetWriteReals(v, comm, name, out->rank ? 0 : s->series_n[k], 1, se->t));
     PetscCall(PetscSNPrintf(name, sizeof(name), "kept_series_%d_y", (int)k));
-    PetscCall(DatasetWriteReals(v, comm, name, sim->rank ? 0 : s->series_n[k], 1, se->y));
+    PetscCall(DatasetWriteReals(v, comm, name, out->rank ? 0 : s->series_n[k], 1, se->y));
   }
   PetscCall(PetscViewerDestroy(&v));
-  PetscCall(IORenameOnRoot(sim, tmp, path));
+  PetscCall(IORenameOnRoot(out, tmp, path));
   PetscCall(PetscLogStagePop());
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode CheckpointSave(Sim sim)
+PetscErrorCode CheckpointSave(Output *out)
 {
   SimState s;
   char     path[PETSC_MAX_PATH_LEN];
   PetscReal bytes;
   PetscBool ok;
   PetscFunctionBeginUser;
-  PetscCall(IOSpaceCheckpoint(sim, &bytes));
-  PetscCall(IOSpaceReserve(sim, "checkpoint.h5", bytes, &ok));
+  PetscCall(IOSpaceCheckpoint(out, &bytes));
+  PetscCall(IOSpaceReserve(out, "checkpoint.h5", bytes, &ok));
   if (!ok) PetscFunctionReturn(PETSC_SUCCESS); /* the previous checkpoint stays */
-  PetscCall(PetscSNPrintf(path, sizeof(path), "%s/checkpoint.h5", sim->outdir));
-  PetscCall(StateView(sim, &s));
+  PetscCall(PetscSNPrintf(path, sizeof(path), "%s/checkpoint.h5", out->dir));
+  PetscCall(StateView(out, &s));
   PetscCall(IOSpacePushWrite(path));
-  PetscCall(CheckpointWrite(sim, &s, path));
+  PetscCall(CheckpointWrite(out, &s, path));
   PetscCall(IOSpacePopWrite());
-  if (sim->io_fault.set) PetscFunctionReturn(PETSC_SUCCESS); /* not renamed into place */
-  sim->nckpt++;
-  if (sim->ckpt_interval > 0)
-    while (sim->next_ckpt <= sim->phys.t + 1e-12 * sim->t_end) sim->next_ckpt += sim->ckpt_interval;
+  if (out->fault.set) PetscFunctionReturn(PETSC_SUCCESS); /* not renamed into place */
+  out->nckpt++;
+  if (out->ckpt_interval > 0)
+    while (out->next_ckpt <= out->phys->t + 1e-12 * out->t_end) out->next_ckpt += out->ckpt_interval;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
 /* n reals that rank 0 wrote (a history or a table), read on rank 0 and broadcast. */
-static PetscErrorCode ReadRootReals(Sim sim, PetscViewer v, const char *name, PetscInt n, PetscReal *out)
+static PetscErrorCode ReadRootReals(Output *out, PetscViewer v, const char *name, PetscInt n, PetscReal *vals)
 {
   PetscFunctionBeginUser;
-  PetscCall(DatasetReadReals(v, sim->comm, name, sim->rank ? 0 : n, 1, out));
-  PetscCallMPI(MPI_Bcast(out, (PetscMPIInt)n, MPIU_REAL, 0, sim->comm));
+  PetscCall(DatasetReadReals(v, out->comm, name, out->rank ? 0 : n, 1, vals));
+  PetscCallMPI(MPI_Bcast(vals, (PetscMPIInt)n, MPIU_REAL, 0, out->comm));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -230,34 +228,34 @@ static PetscErrorCode ReadString(PetscViewer v, const char *name, char *buf, siz
 }
 
 /* The header: is this a checkpoint of this run's scene, scheme, fields and resolution? */
-static PetscErrorCode CheckHeader(Sim sim, PetscViewer v, PetscInt *ranks, PetscInt *ncell)
+static PetscErrorCode CheckHeader(Output *out, PetscViewer v, PetscInt *ranks, PetscInt *ncell)
 {
-  const char *path = sim->restart;
+  const char *path = out->restart;
   char        buf[1024], fields[1024];
   PetscReal   dx;
   PetscInt    k, want;
 
   PetscFunctionBeginUser;
   PetscCall(ReadString(v, "format", buf, sizeof(buf)));
-  PetscCheck(!strcmp(buf, CHECKPOINT_FORMAT), sim->comm, PETSC_ERR_FILE_UNEXPECTED, "-restart %s is not an sphfsi checkpoint (snapshots particles_*.h5 cannot be restarted from; use checkpoint.h5 or last_good.h5 of a run)", path);
+  PetscCheck(!strcmp(buf, CHECKPOINT_FORMAT), out->comm, PETSC_ERR_FILE_UNEXPECTED, "-restart %s is not an sphfsi checkpoint (snapshots particles_*.h5 cannot be restarted from; use checkpoint.h5 or last_good.h5 of a run)", path);
   PetscCall(PetscViewerHDF5ReadAttribute(v, "/", "version", PETSC_INT, NULL, &k));
-  PetscCheck(k == CHECKPOINT_VERSION, sim->comm, PETSC_ERR_FILE_UNEXPECTED, "-restart %s has checkpoint format version %d; this program reads version %d", path, (int)k, CHECKPOINT_VERSION);
+  PetscCheck(k == CHECKPOINT_VERSION, out->comm, PETSC_ERR_FILE_UNEXPECTED, "-restart %s has checkpoint format version %d; this program reads version %d", path, (int)k, CHECKPOINT_VERSION);
   PetscCall(ReadString(v, "case", buf, sizeof(buf)));
-  PetscCheck(!strcmp(buf, sim->scene->name), sim->comm, PETSC_ERR_USER_INPUT, "-restart %s is a checkpoint of scene %s, not of -case %s: restart with -case %s (its options file)", path, buf, sim->scene->name, buf);
+  PetscCheck(!strcmp(buf, out->scene.name), out->comm, PETSC_ERR_USER_INPUT, "-restart %s is a checkpoint of scene %s, not of -case %s: restart with -case %s (its options file)", path, buf, out->scene.name, buf);
   PetscCall(ReadString(v, "fluid", buf, sizeof(buf)));
-  PetscCheck(!strcmp(buf, sim->phys.has_fluid ? FluidSchemes[sim->phys.fluid] : "none"), sim->comm, PETSC_ERR_USER_INPUT, "-restart %s was written with -fluid %s, this run has -fluid %s: restart with -fluid %s", path, buf, FluidSchemes[sim->phys.fluid], buf);
+  PetscCheck(!strcmp(buf, out->phys->has_fluid ? FluidSchemes[out->phys->fluid] : "none"), out->comm, PETSC_ERR_USER_INPUT, "-restart %s was written with -fluid %s, this run has -fluid %s: restart with -fluid %s", path, buf, FluidSchemes[out->phys->fluid], buf);
   PetscCall(PetscViewerHDF5ReadAttribute(v, "/", "dx", PETSC_REAL, NULL, &dx));
-  PetscCheck(PetscAbsReal(dx - sim->phys.dx) <= 1e-12 * dx, sim->comm, PETSC_ERR_USER_INPUT, "-restart %s was written with -dx %g, this run has -dx %g: a restart keeps the resolution (drop -dx or give %g)", path, (double)dx, (double)sim->phys.dx, (double)dx);
+  PetscCheck(PetscAbsReal(dx - out->phys->dx) <= 1e-12 * dx, out->comm, PETSC_ERR_USER_INPUT, "-restart %s was written with -dx %g, this run has -dx %g: a restart keeps the resolution (drop -dx or give %g)", path, (double)dx, (double)out->phys->dx, (double)dx);
   PetscCall(ReadString(v, "fields", buf, sizeof(buf)));
-  PetscCall(FieldList(sim->P, fields, sizeof(fields)));
-  PetscCheck(!strcmp(buf, fields), sim->comm, PETSC_ERR_USER_INPUT, "-restart %s holds the particle fields {%s}, this run allocates {%s}: restart with the options the checkpoint was written with (e.g. -fluid_xsph, -isph_shift, -wcsph_shift, -solid_gradient, -fsi_*)", path, buf, fields);
+  PetscCall(FieldList(out->phys->P, fields, sizeof(fields)));
+  PetscCheck(!strcmp(buf, fields), out->comm, PETSC_ERR_USER_INPUT, "-restart %s holds the particle fields {%s}, this run allocates {%s}: restart with the options the checkpoint was written with (e.g. -fluid_xsph, -isph_shift, -wcsph_shift, -solid_gradient, -fsi_*)", path, buf, fields);
   PetscCall(PetscViewerHDF5ReadAttribute(v, "/", "cells", PETSC_INT, NULL, ncell));
-  PetscCheck(*ncell == GridNumCells(&sim->grid), sim->comm, PETSC_ERR_USER_INPUT, "-restart %s has a grid of %d cells, this run %d: the scene's geometry options differ from the checkpointed run's", path, (int)*ncell, (int)GridNumCells(&sim->grid));
+  PetscCheck(*ncell == GridNumCells(out->grid), out->comm, PETSC_ERR_USER_INPUT, "-restart %s has a grid of %d cells, this run %d: the scene's geometry options differ from the checkpointed run's", path, (int)*ncell, (int)GridNumCells(out->grid));
   PetscCall(PetscViewerHDF5ReadAttribute(v, "/", "probe_columns", PETSC_INT, NULL, &k));
-  PetscCheck(k == 1 + sim->scene->nprobes, sim->comm, PETSC_ERR_FILE_UNEXPECTED, "-restart %s has %d probe columns, scene %s %d", path, (int)k, sim->scene->name, (int)(1 + sim->scene->nprobes));
+  PetscCheck(k == 1 + out->scene.nprobes, out->comm, PETSC_ERR_FILE_UNEXPECTED, "-restart %s has %d probe columns, scene %s %d", path, (int)k, out->scene.name, (int)(1 + out->scene.nprobes));
   PetscCall(PetscViewerHDF5ReadAttribute(v, "/", "kept_series", PETSC_INT, NULL, &k));
   PetscCall(PetscViewerHDF5ReadAttribute(v, "/", "kept_values", PETSC_INT, NULL, &want));
-  PetscCheck(k == sim->nkeep_series && want == sim->nkeep_reals, sim->comm, PETSC_ERR_FILE_UNEXPECTED, "-restart %s keeps %d histories and %d values of the scene, this program %d and %d: written by another version", path, (int)k, (int)want, (int)sim->nkeep_series, (int)sim->nkeep_reals);
+  PetscCheck(k == out->scene.nkept_series && want == out->scene.nkept_reals, out->comm, PETSC_ERR_FILE_UNEXPECTED, "-restart %s keeps %d histories and %d values of the scene, this program %d and %d: written by another version", path, (int)k, (int)want, (int)out->scene.nkept_series, (int)out->scene.nkept_reals);
   PetscCall(PetscViewerHDF5ReadAttribute(v, "/", "ranks", PETSC_INT, NULL, ranks));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -294,7 +292,7 @@ static const char *ValueIn(char *all, const char *name, char *buf, size_t len)
 /* Physics options that differ from the checkpointed run's: a warning (the run goes on, e.g. with a
  * changed -wcsph_alpha, but it is then no continuation of the same run).  A checkpoint of an earlier
  * version may hold options by their old names: compared by their new ones. */
-static PetscErrorCode CompareOptions(Sim sim, PetscViewer v)
+static PetscErrorCode CompareOptions(Output *out, PetscViewer v)
 {
   char     *then = NULL, *now = NULL, diff[2048] = "", a[256], b[256];
   PetscBool has;
@@ -327,38 +325,38 @@ static PetscErrorCode CompareOptions(Sim sim, PetscViewer v)
       PetscCall(PetscSNPrintf(diff + strlen(diff), sizeof(diff) - strlen(diff), " %s %s -> %s;", name, va ? (*va ? va : "(set)") : "(unset)", vb ? (*vb ? vb : "(set)") : "(unset)"));
     }
   }
-  if (diff[0]) PetscCall(PetscPrintf(sim->comm, "sphfsi: warning: options differ from the checkpointed run's:%s the run goes on with this run's values\n", diff));
+  if (diff[0]) PetscCall(PetscPrintf(out->comm, "sphfsi: warning: options differ from the checkpointed run's:%s the run goes on with this run's values\n", diff));
   PetscCall(PetscFree(then));
   PetscCall(PetscFree(now));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
 /* Scalars, probe rows, snapshot times and the scene's kept histories and values. */
-static PetscErrorCode ReadRunState(Sim sim, PetscViewer v)
+static PetscErrorCode ReadRunState(Output *out, PetscViewer v)
 {
   PetscReal *r[STATE_NREAL], rd = 0;
-  PetscInt  *i[STATE_NINT], id = 0, ncol = 1 + sim->scene->nprobes;
+  PetscInt  *i[STATE_NINT], id = 0, ncol = 1 + out->scene.nprobes;
   char       name[64];
 
   PetscFunctionBeginUser;
-  Slots(sim, r, i, &rd, &id);
+  Slots(out, r, i, &rd, &id);
   for (PetscInt k = 0; k < STATE_NREAL; k++) PetscCall(PetscViewerHDF5ReadAttribute(v, "/", RealNames[k], PETSC_REAL, NULL, r[k]));
   for (PetscInt k = 0; k < STATE_NINT; k++) PetscCall(PetscViewerHDF5ReadAttribute(v, "/", IntNames[k], PETSC_INT, NULL, i[k]));
-  for (PetscInt k = 0; k < sim->nkeep_reals; k++) {
+  for (PetscInt k = 0; k < out->scene.nkept_reals; k++) {
     PetscCall(PetscSNPrintf(name, sizeof(name), "kept_value_%d", (int)k));
-    PetscCall(PetscViewerHDF5ReadAttribute(v, "/", name, PETSC_REAL, NULL, sim->keep_reals[k]));
+    PetscCall(PetscViewerHDF5ReadAttribute(v, "/", name, PETSC_REAL, NULL, out->scene.kept_reals[k]));
   }
-  PetscCall(PetscViewerHDF5ReadAttribute(v, "/", "probe_rows", PETSC_INT, NULL, &sim->nprobe_rows));
-  PetscCall(PetscFree(sim->probe_rows));
-  sim->cap_probe_rows = sim->nprobe_rows + 64;
-  PetscCall(PetscMalloc1(sim->cap_probe_rows * ncol, &sim->probe_rows));
-  if (sim->nprobe_rows) PetscCall(DatasetReadReals(v, sim->comm, "probe_table", sim->rank ? 0 : sim->nprobe_rows * ncol, 1, sim->probe_rows));
-  PetscCall(PetscFree(sim->snaps));
-  sim->snap_cap = sim->snap + 16;
-  PetscCall(PetscMalloc1(2 * sim->snap_cap, &sim->snaps));
-  if (sim->snap) PetscCall(ReadRootReals(sim, v, "snapshot_table", 2 * sim->snap, sim->snaps));
-  for (PetscInt k = 0; k < sim->nkeep_series; k++) {
-    Series    *se = sim->keep_series[k];
+  PetscCall(PetscViewerHDF5ReadAttribute(v, "/", "probe_rows", PETSC_INT, NULL, &out->nprobe_rows));
+  PetscCall(PetscFree(out->probe_rows));
+  out->cap_probe_rows = out->nprobe_rows + 64;
+  PetscCall(PetscMalloc1(out->cap_probe_rows * ncol, &out->probe_rows));
+  if (out->nprobe_rows) PetscCall(DatasetReadReals(v, out->comm, "probe_table", out->rank ? 0 : out->nprobe_rows * ncol, 1, out->probe_rows));
+  PetscCall(PetscFree(out->snaps));
+  out->snap_cap = out->nsnap + 16;
+  PetscCall(PetscMalloc1(2 * out->snap_cap, &out->snaps));
+  if (out->nsnap) PetscCall(ReadRootReals(out, v, "snapshot_table", 2 * out->nsnap, out->snaps));
+  for (PetscInt k = 0; k < out->scene.nkept_series; k++) {
+    Series    *se = out->scene.kept_series[k];
     PetscInt   n;
     PetscReal *buf;
     PetscCall(PetscSNPrintf(name, sizeof(name), "kept_series_%d_n", (int)k));
@@ -367,9 +365,9 @@ static PetscErrorCode ReadRunState(Sim sim, PetscViewer v)
     if (!n) continue;
     PetscCall(PetscMalloc1(2 * n, &buf));
     PetscCall(PetscSNPrintf(name, sizeof(name), "kept_series_%d_t", (int)k));
-    PetscCall(ReadRootReals(sim, v, name, n, buf));
+    PetscCall(ReadRootReals(out, v, name, n, buf));
     PetscCall(PetscSNPrintf(name, sizeof(name), "kept_series_%d_y", (int)k));
-    PetscCall(ReadRootReals(sim, v, name, n, buf + n));
+    PetscCall(ReadRootReals(out, v, name, n, buf + n));
     for (PetscInt j = 0; j < n; j++) PetscCall(SeriesAppend(se, buf[j], buf[n + j]));
     PetscCall(PetscFree(buf));
   }
@@ -378,22 +376,22 @@ static PetscErrorCode ReadRunState(Sim sim, PetscViewer v)
 
 /* Owned particles: with the checkpoint's number of ranks each rank takes its own block back (the
  * same particles in the same order); otherwise an even split, sorted out by the migration. */
-static PetscErrorCode ReadParticles(Sim sim, PetscViewer v, PetscInt ranks)
+static PetscErrorCode ReadParticles(Output *out, PetscViewer v, PetscInt ranks)
 {
-  Particles P = sim->P;
-  PetscInt  n = PETSC_DECIDE, N = sim->nbhd.nparticles, nsum;
+  Particles P = out->phys->P;
+  PetscInt  n = PETSC_DECIDE, N = out->phys->nb->nparticles, nsum;
   PetscFunctionBeginUser;
-  if (ranks == sim->size) PetscCall(DatasetReadInts(v, sim->comm, "rank_counts", 1, &n));
-  else PetscCall(PetscSplitOwnership(sim->comm, &n, &N));
-  PetscCall(MPIU_Allreduce(&n, &nsum, 1, MPIU_INT, MPI_SUM, sim->comm));
-  PetscCheck(nsum == sim->nbhd.nparticles, sim->comm, PETSC_ERR_FILE_UNEXPECTED, "-restart %s: the ranks' blocks hold %d particles, the header says %d", sim->restart, (int)nsum, (int)sim->nbhd.nparticles);
+  if (ranks == out->size) PetscCall(DatasetReadInts(v, out->comm, "rank_counts", 1, &n));
+  else PetscCall(PetscSplitOwnership(out->comm, &n, &N));
+  PetscCall(MPIU_Allreduce(&n, &nsum, 1, MPIU_INT, MPI_SUM, out->comm));
+  PetscCheck(nsum == out->phys->nb->nparticles, out->comm, PETSC_ERR_FILE_UNEXPECTED, "-restart %s: the ranks' blocks hold %d particles, the header says %d", out->restart, (int)nsum, (int)out->phys->nb->nparticles);
   P->n = P->ng = 0;
   PetscCall(ParticlesReserve(P, n));
   P->n = n;
-  PetscCall(DatasetReadInts(v, sim->comm, "id", n, P->id));
-  PetscCall(DatasetReadInts(v, sim->comm, "kind", n, P->kind));
+  PetscCall(DatasetReadInts(v, out->comm, "id", n, P->id));
+  PetscCall(DatasetReadInts(v, out->comm, "kind", n, P->kind));
   for (PetscInt f = 0; f < FIELD_COUNT; f++) {
-    if (ParticlesCheckpointField(P, (FieldId)f)) PetscCall(DatasetReadReals(v, sim->comm, P->f[f].name, n, P->f[f].width, P->f[f].a));
+    if (ParticlesCheckpointField(P, (FieldId)f)) PetscCall(DatasetReadReals(v, out->comm, P->f[f].name, n, P->f[f].width, P->f[f].a));
     else if (P->f[f].on) PetscCall(PetscArrayzero(P->f[f].a, n * P->f[f].width)); /* not carried: the step computes it (particles.h) */
   }
   PetscFunctionReturn(PETSC_SUCCESS);
@@ -408,16 +406,18 @@ static void SwapPositions(Particles P, FieldId f)
   P->f[f].a       = t;
 }
 
-PetscErrorCode CheckpointRestart(Sim sim)
+PetscErrorCode CheckpointRestart(Output *out)
 {
+  Physics    *ph = out->phys;
+  Particles   P  = ph->P;
   PetscViewer v;
   PetscInt    ranks, ncell, nf = 0;
   FieldId     all[FIELD_COUNT];
   int         err = 0;
 
   PetscFunctionBeginUser;
-  if (!sim->rank) { /* readable, and an HDF5 file (its signature), before HDF5 tries */
-    FILE         *f = fopen(sim->restart, "rb");
+  if (!out->rank) { /* readable, and an HDF5 file (its signature), before HDF5 tries */
+    FILE         *f = fopen(out->restart, "rb");
     unsigned char sig[8] = {0};
     if (!f) err = errno;
     else {
@@ -425,41 +425,41 @@ PetscErrorCode CheckpointRestart(Sim sim)
       fclose(f);
     }
   }
-  PetscCallMPI(MPI_Bcast(&err, 1, MPI_INT, 0, sim->comm));
-  PetscCheck(err >= 0, sim->comm, PETSC_ERR_FILE_UNEXPECTED, "-restart %s is not an HDF5 file: give a checkpoint (OUTDIR/checkpoint.h5 or OUTDIR/last_good.h5)", sim->restart);
-  PetscCheck(!err, sim->comm, PETSC_ERR_FILE_OPEN, "Cannot open the restart file -restart %s (%s)", sim->restart, strerror(err));
-  PetscCall(PetscViewerHDF5Open(sim->comm, sim->restart, FILE_MODE_READ, &v));
-  PetscCall(CheckHeader(sim, v, &ranks, &ncell));
-  PetscCall(CompareOptions(sim, v));
-  PetscCall(ReadRunState(sim, v));
-  PetscCheck(sim->phys.t < sim->t_end * (1 - 1e-12), sim->comm, PETSC_ERR_USER_INPUT, "-restart %s is at t = %g, not before -t_end %g: give a later -t_end to continue the run", sim->restart, (double)sim->phys.t, (double)sim->t_end);
-  PetscCall(ReadParticles(sim, v, ranks));
+  PetscCallMPI(MPI_Bcast(&err, 1, MPI_INT, 0, out->comm));
+  PetscCheck(err >= 0, out->comm, PETSC_ERR_FILE_UNEXPECTED, "-restart %s is not an HDF5 file: give a checkpoint (OUTDIR/checkpoint.h5 or OUTDIR/last_good.h5)", out->restart);
+  PetscCheck(!err, out->comm, PETSC_ERR_FILE_OPEN, "Cannot open the restart file -restart %s (%s)", out->restart, strerror(err));
+  PetscCall(PetscViewerHDF5Open(out->comm, out->restart, FILE_MODE_READ, &v));
+  PetscCall(CheckHeader(out, v, &ranks, &ncell));
+  PetscCall(CompareOptions(out, v));
+  PetscCall(ReadRunState(out, v));
+  PetscCheck(ph->t < out->t_end * (1 - 1e-12), out->comm, PETSC_ERR_USER_INPUT, "-restart %s is at t = %g, not before -t_end %g: give a later -t_end to continue the run", out->restart, (double)ph->t, (double)out->t_end);
+  PetscCall(ReadParticles(out, v, ranks));
   /* the run's last rebuild, at the positions it had then */
-  SwapPositions(sim->P, FIELD_XREB);
-  if (ranks == sim->size) {
+  SwapPositions(P, FIELD_XREB);
+  if (ranks == out->size) {
     PetscInt *owner;
     PetscCall(PetscMalloc1(ncell, &owner));
-    PetscCall(DatasetReadInts(v, sim->comm, "partition", sim->rank ? 0 : ncell, owner));
-    for (PetscInt c = 0; c < ncell && !sim->rank; c++) sim->decomp->owner[c] = (PetscMPIInt)owner[c];
+    PetscCall(DatasetReadInts(v, out->comm, "partition", out->rank ? 0 : ncell, owner));
+    for (PetscInt c = 0; c < ncell && !out->rank; c++) ph->decomp->owner[c] = (PetscMPIInt)owner[c];
     PetscCall(PetscFree(owner));
-    PetscCallMPI(MPI_Bcast(sim->decomp->owner, (PetscMPIInt)ncell, MPI_INT, 0, sim->comm));
-  } else PetscCall(DecompPartition(sim->decomp, sim->P));
+    PetscCallMPI(MPI_Bcast(ph->decomp->owner, (PetscMPIInt)ncell, MPI_INT, 0, out->comm));
+  } else PetscCall(DecompPartition(ph->decomp, P));
   PetscCall(PetscViewerDestroy(&v));
-  PetscCall(NeighbourhoodRebuildKeepPartition(&sim->nbhd, sim->phys.step));
-  if (sim->phys.solid && !sim->P->f[FIELD_XLIST].on) PetscCall(SolidPrepare(&sim->phys)); /* as after every rebuild: the solids' list, xref */
-  SwapPositions(sim->P, FIELD_XREB);
+  PetscCall(NeighbourhoodRebuildKeepPartition(ph->nb, ph->step));
+  if (ph->solid && !P->f[FIELD_XLIST].on) PetscCall(SolidPrepare(ph)); /* as after every rebuild: the solids' list, xref */
+  SwapPositions(P, FIELD_XREB);
   /* ghosts take every field's current value */
   for (PetscInt f = 0; f < FIELD_COUNT; f++)
-    if (sim->P->f[f].on && f != FIELD_XREB) all[nf++] = (FieldId)f;
-  PetscCall(HaloRefresh(sim->halo, sim->P, nf, all));
-  if (sim->P->f[FIELD_XLIST].on) { /* WCSPH's skin with solids: the main list's pairs and the solids' list where the run made them */
-    SwapPositions(sim->P, FIELD_XLIST);
-    PetscCall(CellsRefreshPairs(sim->cells, sim->P));
-    PetscCall(SolidPrepare(&sim->phys));
-    SwapPositions(sim->P, FIELD_XLIST);
-  } else if (sim->nbhd.skin > 0) PetscCall(CellsRefreshPairs(sim->cells, sim->P)); /* the main list's pairs now (-wcsph_skin) */
-  if (sim->phys.solid) PetscCall(CellsUpdatePairs(sim->phys.solid->nl, sim->P)); /* solid pairs: their current kernel values */
-  sim->ckpt_t = sim->phys.t; /* the state the last checkpoint holds (summary.json) */
-  PetscCall(PetscPrintf(sim->comm, "sphfsi: restarted from %s (written on %d rank(s)) at step %" PetscInt_FMT ", t = %g\n", sim->restart, (int)ranks, sim->phys.step, (double)sim->phys.t));
+    if (P->f[f].on && f != FIELD_XREB) all[nf++] = (FieldId)f;
+  PetscCall(HaloRefresh(ph->halo, P, nf, all));
+  if (P->f[FIELD_XLIST].on) { /* WCSPH's skin with solids: the main list's pairs and the solids' list where the run made them */
+    SwapPositions(P, FIELD_XLIST);
+    PetscCall(CellsRefreshPairs(ph->cells, P));
+    PetscCall(SolidPrepare(ph));
+    SwapPositions(P, FIELD_XLIST);
+  } else if (ph->nb->skin > 0) PetscCall(CellsRefreshPairs(ph->cells, P)); /* the main list's pairs now (-wcsph_skin) */
+  if (ph->solid) PetscCall(CellsUpdatePairs(ph->solid->nl, P)); /* solid pairs: their current kernel values */
+  out->ckpt_t = ph->t; /* the state the last checkpoint holds (summary.json) */
+  PetscCall(PetscPrintf(out->comm, "sphfsi: restarted from %s (written on %d rank(s)) at step %" PetscInt_FMT ", t = %g\n", out->restart, (int)ranks, ph->step, (double)ph->t));
   PetscFunctionReturn(PETSC_SUCCESS);
 }

@@ -12,9 +12,14 @@
  * and WCSPH's Verlet skin keeps a list over steps), then computes the pairs where the run last did
  * (FIELD_XLIST, with solids and a skin), so neighbour lists, their order and every sum are the same.  On another number of ranks the
  * partition is made anew; neighbour sums do not depend on it (cells.h), so WCSPH and solids still
- * agree bit for bit, ISPH to the solver tolerance. */
+ * agree bit for bit, ISPH to the solver tolerance.
+ *
+ * Each takes the output's context (output.h): the live state is the physics' (out->phys), the
+ * output's own (tables, next output times), the driver's counters it points to (out->run: mass,
+ * particle steps, wall time, the guard's first steps, the next id) and the scene's kept state
+ * (out->scene). */
 #pragma once
-#include "run/sim.h"
+#include "io/output.h"
 
 enum { STATE_NREAL = 12, STATE_NINT = 12 };
 
@@ -30,20 +35,20 @@ typedef struct {
   PetscReal    r[STATE_NREAL];     /* scalars, named in checkpoint.c */
   PetscInt     i[STATE_NINT];
   PetscInt     nrows, nsnap;       /* probe rows and snapshots so far */
-  PetscInt     series_n[SIM_MAX_KEEP];
-  PetscReal    kept[SIM_MAX_KEEP]; /* the scene's kept values */
+  PetscInt     series_n[OUTPUT_MAX_KEPT];
+  PetscReal    kept[OUTPUT_MAX_KEPT]; /* the scene's kept values */
 } SimState;
 
 /* The live state (no copy). */
-PetscErrorCode StateView(Sim sim, SimState *s);
+PetscErrorCode StateView(Output *out, SimState *s);
 /* A copy of the live state, reusing the buffers of *s. */
-PetscErrorCode StateCopy(Sim sim, SimState *s);
+PetscErrorCode StateCopy(Output *out, SimState *s);
 PetscErrorCode StateDestroy(SimState *s);
 
 /* Write a state to path (collective; path.part first, renamed when complete). */
-PetscErrorCode CheckpointWrite(Sim sim, const SimState *s, const char *path);
+PetscErrorCode CheckpointWrite(Output *out, const SimState *s, const char *path);
 /* The run's regular checkpoint: OUTDIR/checkpoint.h5 from the live state. */
-PetscErrorCode CheckpointSave(Sim sim);
+PetscErrorCode CheckpointSave(Output *out);
 /* Before the options are read (SimSetFromOptions): with -restart FILE, check that FILE is a whole
  * checkpoint (one line naming what is wrong: missing, not HDF5, truncated, unreadable datasets) and
  * add every option it was written with that the command line does not give (restart_file.c). */
@@ -51,4 +56,4 @@ PetscErrorCode CheckpointInheritOptions(MPI_Comm comm);
 /* In SimSetUp, after the scene populated and the grid was set up: replace the particles and the
  * run's state by those of -restart FILE and rebuild as the run had.  Errors name what does not
  * match (scene, scheme, fields, dx, options). */
-PetscErrorCode CheckpointRestart(Sim sim);
+PetscErrorCode CheckpointRestart(Output *out);

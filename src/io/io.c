@@ -1,9 +1,7 @@
 #include "base/version.h"
 #include "io/io.h"
-#include "scenes/scene.h"
 #include "fluid/isph.h"
 #include "solid/solid.h"
-#include "run/guard.h"
 #include "io/io_space.h"
 #include "io/h5.h"
 #include <unistd.h>
@@ -14,74 +12,75 @@
 
 /* A failure on rank 0 alone (files it writes) becomes an I/O fault of every rank (io_space.h), not a
  * hang: the run ends with one line and SIM_EXIT_IO. */
-static PetscErrorCode RootCheck(Sim sim, int err, const char *what)
+static PetscErrorCode RootCheck(Output *out, int err, const char *what)
 {
   PetscFunctionBeginUser;
-  PetscCallMPI(MPI_Bcast(&err, 1, MPI_INT, 0, sim->comm));
-  if (err) PetscCall(IOFault(sim, "%s writing %s/%s", strerror(err), sim->outdir, what));
+  PetscCallMPI(MPI_Bcast(&err, 1, MPI_INT, 0, out->comm));
+  if (err) PetscCall(IOFault(out, "%s writing %s/%s", strerror(err), out->dir, what));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode IORenameOnRoot(Sim sim, const char *tmp, const char *path)
+PetscErrorCode IORenameOnRoot(Output *out, const char *tmp, const char *path)
 {
   PetscFunctionBeginUser;
-  PetscCall(RootCheck(sim, sim->rank || !rename(tmp, path) ? 0 : errno, path));
+  PetscCall(RootCheck(out, out->rank || !rename(tmp, path) ? 0 : errno, path));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
 /* probes.csv from every row so far, under a temporary name renamed when complete: the file is
  * always whole, and after a restart it holds the rows up to the checkpoint and on from there. */
-PetscErrorCode IOWriteProbes(Sim sim)
+PetscErrorCode IOWriteProbes(Output *out)
 {
   char     path[PETSC_MAX_PATH_LEN], tmp[PETSC_MAX_PATH_LEN];
   FILE    *f;
   int      err = 0;
-  PetscInt ncol = 1 + sim->scene->nprobes;
+  PetscInt ncol = 1 + out->scene.nprobes;
   PetscFunctionBeginUser;
-  if (sim->rank) PetscFunctionReturn(RootCheck(sim, 0, "probes.csv"));
-  PetscCall(PetscSNPrintf(path, sizeof(path), "%s/probes.csv", sim->outdir));
+  if (out->rank) PetscFunctionReturn(RootCheck(out, 0, "probes.csv"));
+  PetscCall(PetscSNPrintf(path, sizeof(path), "%s/probes.csv", out->dir));
   PetscCall(PetscSNPrintf(tmp, sizeof(tmp), "%s.part", path));
-  if (!(f = fopen(tmp, "w"))) PetscFunctionReturn(RootCheck(sim, errno, "probes.csv"));
+  if (!(f = fopen(tmp, "w"))) PetscFunctionReturn(RootCheck(out, errno, "probes.csv"));
   fprintf(f, "t");
-  for (PetscInt k = 0; k < sim->scene->nprobes; k++) fprintf(f, ",%s", sim->scene->probe_names[k]);
+  for (PetscInt k = 0; k < out->scene.nprobes; k++) fprintf(f, ",%s", out->scene.probe_names[k]);
   fprintf(f, "\n");
-  for (PetscInt r = 0; r < sim->nprobe_rows; r++) {
-    const PetscReal *row = sim->probe_rows + r * ncol;
+  for (PetscInt r = 0; r < out->nprobe_rows; r++) {
+    const PetscReal *row = out->probe_rows + r * ncol;
     for (PetscInt k = 0; k < ncol; k++) fprintf(f, k ? ",%.9g" : "%.9g", (double)row[k]);
     fprintf(f, "\n");
   }
   if (ferror(f)) err = EIO;
   if (fclose(f) && !err) err = errno;
   if (!err && rename(tmp, path)) err = errno;
-  PetscCall(RootCheck(sim, err, "probes.csv"));
+  PetscCall(RootCheck(out, err, "probes.csv"));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode IOSetUp(Sim sim)
+PetscErrorCode IOSetUp(Output *out)
 {
   PetscFunctionBeginUser;
-  PetscCall(IOWriteProbes(sim)); /* the header, or the restarted run's rows */
+  PetscCall(IOWriteProbes(out)); /* the header, or the restarted run's rows */
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode IOFinalize(Sim sim)
+PetscErrorCode IOFinalize(Output *out)
 {
   PetscFunctionBeginUser;
-  PetscCall(PetscFree(sim->probe_rows));
-  sim->nprobe_rows = sim->cap_probe_rows = 0;
+  PetscCall(PetscFree(out->probe_rows));
+  PetscCall(PetscFree(out->snaps));
+  out->nprobe_rows = out->cap_probe_rows = out->snap_cap = 0;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
 /* The attributes that make a snapshot the input of -case file (src/scenes/particles_file.c): the
  * spacing dx and the computational box, domain = x0,y0[,z0],x1,y1[,z1]. */
-static PetscErrorCode WriteDomain(PetscViewer v, Sim sim)
+static PetscErrorCode WriteDomain(PetscViewer v, Output *out)
 {
   hid_t     file, space, attr;
-  hsize_t   n = 2 * sim->phys.dim;
+  hsize_t   n = 2 * out->phys->dim;
   PetscReal dom[6];
   PetscFunctionBeginUser;
-  PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "dx", PETSC_REAL, &sim->phys.dx));
-  for (PetscInt d = 0; d < sim->phys.dim; d++) { dom[d] = sim->dom_lo[d]; dom[sim->phys.dim + d] = sim->dom_hi[d]; }
+  PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "dx", PETSC_REAL, &out->phys->dx));
+  for (PetscInt d = 0; d < out->phys->dim; d++) { dom[d] = out->grid->lo[d]; dom[out->phys->dim + d] = out->grid->hi[d]; }
   PetscCall(PetscViewerHDF5GetFileId(v, &file));
   PetscCheck((space = H5Screate_simple(1, &n, NULL)) >= 0, PETSC_COMM_SELF, PETSC_ERR_LIB, "HDF5 could not make the domain attribute's space");
   PetscCheck((attr = H5Acreate2(file, "domain", H5T_NATIVE_DOUBLE, space, H5P_DEFAULT, H5P_DEFAULT)) >= 0, PETSC_COMM_SELF, PETSC_ERR_LIB, "HDF5 could not create the domain attribute");
@@ -91,34 +90,34 @@ static PetscErrorCode WriteDomain(PetscViewer v, Sim sim)
 
 /* Collective: one file, every owned particle's id, kind and the snapshot's fields (the field table,
  * particles.h); written under a temporary name and renamed when complete. */
-PetscErrorCode IOWriteParticles(Sim sim, const char *path)
+PetscErrorCode IOWriteParticles(Output *out, const char *path)
 {
   PetscViewer v;
   char        tmp[PETSC_MAX_PATH_LEN];
-  Particles   P = sim->P;
-  FieldId     out[FIELD_COUNT];
-  PetscInt    nout = ParticlesSnapshotFields(P, out);
+  Particles   P = out->phys->P;
+  FieldId     fields[FIELD_COUNT];
+  PetscInt    nfields = ParticlesSnapshotFields(P, fields);
 
   PetscFunctionBeginUser;
   PetscCall(PetscSNPrintf(tmp, sizeof(tmp), "%s.part", path));
-  PetscCall(PetscViewerHDF5Open(sim->comm, tmp, FILE_MODE_WRITE, &v));
-  PetscCall(DatasetWriteInts(v, sim->comm, "id", P->n, P->id));
-  PetscCall(DatasetWriteInts(v, sim->comm, "kind", P->n, P->kind));
-  if (sim->nbhd.nparticles != sim->next_id) { /* ids no longer 0..N-1 (outflow): the points' indices for the XDMF's topology */
+  PetscCall(PetscViewerHDF5Open(out->comm, tmp, FILE_MODE_WRITE, &v));
+  PetscCall(DatasetWriteInts(v, out->comm, "id", P->n, P->id));
+  PetscCall(DatasetWriteInts(v, out->comm, "kind", P->n, P->kind));
+  if (out->phys->nb->nparticles != *out->run.next_id) { /* ids no longer 0..N-1 (outflow): the points' indices for the XDMF's topology */
     PetscInt *vertex, first = 0, n = P->n;
-    PetscCallMPI(MPI_Exscan(&n, &first, 1, MPIU_INT, MPI_SUM, sim->comm));
-    if (!sim->rank) first = 0;
+    PetscCallMPI(MPI_Exscan(&n, &first, 1, MPIU_INT, MPI_SUM, out->comm));
+    if (!out->rank) first = 0;
     PetscCall(PetscMalloc1(n, &vertex));
     for (PetscInt i = 0; i < n; i++) vertex[i] = first + i;
-    PetscCall(DatasetWriteInts(v, sim->comm, "vertex", n, vertex));
+    PetscCall(DatasetWriteInts(v, out->comm, "vertex", n, vertex));
     PetscCall(PetscFree(vertex));
   }
-  for (PetscInt k = 0; k < nout; k++) PetscCall(DatasetWriteReals(v, sim->comm, P->f[out[k]].name, P->n, P->f[out[k]].width, P->f[out[k]].a));
-  PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "time", PETSC_REAL, &sim->phys.t));
-  PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "step", PETSC_INT, &sim->phys.step));
-  PetscCall(WriteDomain(v, sim));
+  for (PetscInt k = 0; k < nfields; k++) PetscCall(DatasetWriteReals(v, out->comm, P->f[fields[k]].name, P->n, P->f[fields[k]].width, P->f[fields[k]].a));
+  PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "time", PETSC_REAL, &out->phys->t));
+  PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "step", PETSC_INT, &out->phys->step));
+  PetscCall(WriteDomain(v, out));
   PetscCall(PetscViewerDestroy(&v));
-  PetscCall(IORenameOnRoot(sim, tmp, path));
+  PetscCall(IORenameOnRoot(out, tmp, path));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -128,10 +127,10 @@ PetscErrorCode IOWriteParticles(Sim sim, const char *path)
  * particle has left (N == next_id) the file's own `id` lists every point once, in some order; once
  * the outflow has removed some, a snapshot carries the indices 0..N-1 as `vertex` (IOWriteParticles),
  * and a single file (last_good.h5, a checkpoint) has them here as text (~6 bytes a particle, once). */
-static void WriteVertices(Sim sim, FILE *f, PetscInt N, const char *h5, PetscBool snapshot)
+static void WriteVertices(Output *out, FILE *f, PetscInt N, const char *h5, PetscBool snapshot)
 {
   fprintf(f, "    <Topology TopologyType=\"Polyvertex\" NumberOfElements=\"%d\" NodesPerElement=\"1\">\n", (int)N);
-  if (N == sim->next_id || snapshot) fprintf(f, "     <DataItem Dimensions=\"%d\" NumberType=\"Int\" Precision=\"%d\" Format=\"HDF\">%s:/%s</DataItem>\n", (int)N, (int)sizeof(PetscInt), h5, N == sim->next_id ? "id" : "vertex");
+  if (N == *out->run.next_id || snapshot) fprintf(f, "     <DataItem Dimensions=\"%d\" NumberType=\"Int\" Precision=\"%d\" Format=\"HDF\">%s:/%s</DataItem>\n", (int)N, (int)sizeof(PetscInt), h5, N == *out->run.next_id ? "id" : "vertex");
   else {
     fprintf(f, "     <DataItem Dimensions=\"%d\" NumberType=\"Int\" Format=\"XML\">", (int)N);
     for (PetscInt i = 0; i < N; i++) fprintf(f, i % 20 ? " %d" : "\n      %d", (int)i);
@@ -157,20 +156,20 @@ static void WriteAttribute(FILE *f, Particles P, FieldId fid, PetscInt N, const 
 
 /* OUTDIR/xmf: a temporal collection over n HDF5 files in OUTDIR (rewritten each time): the
  * snapshots particles_NNNNN.h5 (one = NULL), or the one file `one`; tN: (t, particles) per file. */
-static PetscErrorCode WriteXDMF(Sim sim, const char *xmf, PetscInt n, const char *one, const PetscReal *tN)
+static PetscErrorCode WriteXDMF(Output *out, const char *xmf, PetscInt n, const char *one, const PetscReal *tN)
 {
   char           path[PETSC_MAX_PATH_LEN], tmp[PETSC_MAX_PATH_LEN];
   FILE          *f;
-  const PetscInt D = sim->phys.dim;
-  FieldId        out[FIELD_COUNT];
-  const PetscInt nout = ParticlesSnapshotFields(sim->P, out);
+  const PetscInt D = out->phys->dim;
+  FieldId        fields[FIELD_COUNT];
+  const PetscInt nfields = ParticlesSnapshotFields(out->phys->P, fields);
 
   PetscFunctionBeginUser;
   int err = 0;
-  if (sim->rank) PetscFunctionReturn(RootCheck(sim, 0, xmf));
-  PetscCall(PetscSNPrintf(path, sizeof(path), "%s/%s", sim->outdir, xmf));
+  if (out->rank) PetscFunctionReturn(RootCheck(out, 0, xmf));
+  PetscCall(PetscSNPrintf(path, sizeof(path), "%s/%s", out->dir, xmf));
   PetscCall(PetscSNPrintf(tmp, sizeof(tmp), "%s.part", path));
-  if (!(f = fopen(tmp, "w"))) PetscFunctionReturn(RootCheck(sim, errno, xmf));
+  if (!(f = fopen(tmp, "w"))) PetscFunctionReturn(RootCheck(out, errno, xmf));
   fprintf(f, "<?xml version=\"1.0\" ?>\n<Xdmf Version=\"2.0\">\n <Domain>\n  <Grid Name=\"particles\" GridType=\"Collection\" CollectionType=\"Temporal\">\n");
   for (PetscInt s = 0; s < n; s++) {
     char           h5[PETSC_MAX_PATH_LEN];
@@ -179,99 +178,100 @@ static PetscErrorCode WriteXDMF(Sim sim, const char *xmf, PetscInt n, const char
     if (one) PetscCall(PetscStrncpy(h5, one, sizeof(h5)));
     else PetscCall(PetscSNPrintf(h5, sizeof(h5), "particles_%05" PetscInt_FMT ".h5", s));
     fprintf(f, "   <Grid Name=\"step%05d\" GridType=\"Uniform\">\n    <Time Value=\"%.9g\"/>\n", (int)s, (double)tN[2 * s]);
-    WriteVertices(sim, f, N, h5, (PetscBool)!one);
+    WriteVertices(out, f, N, h5, (PetscBool)!one);
     fprintf(f, "    <Geometry GeometryType=\"%s\">\n     <DataItem Dimensions=\"%d %d\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s:/x</DataItem>\n    </Geometry>\n", D == 3 ? "XYZ" : "XY", (int)N, (int)D, h5);
     fprintf(f, "    <Attribute Name=\"id\" Center=\"Node\"><DataItem Dimensions=\"%d\" NumberType=\"Int\" Precision=\"%d\" Format=\"HDF\">%s:/id</DataItem></Attribute>\n", (int)N, (int)sizeof(PetscInt), h5);
     fprintf(f, "    <Attribute Name=\"kind\" Center=\"Node\"><DataItem Dimensions=\"%d\" NumberType=\"Int\" Precision=\"%d\" Format=\"HDF\">%s:/kind</DataItem></Attribute>\n", (int)N, (int)sizeof(PetscInt), h5);
-    for (PetscInt k = 0; k < nout; k++) WriteAttribute(f, sim->P, out[k], N, h5);
+    for (PetscInt k = 0; k < nfields; k++) WriteAttribute(f, out->phys->P, fields[k], N, h5);
     fprintf(f, "   </Grid>\n");
   }
   fprintf(f, "  </Grid>\n </Domain>\n</Xdmf>\n");
   fclose(f);
   if (rename(tmp, path)) err = errno;
-  PetscCall(RootCheck(sim, err, xmf));
+  PetscCall(RootCheck(out, err, xmf));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode IOWriteXDMF(Sim sim)
+PetscErrorCode IOWriteXDMF(Output *out)
 {
   PetscFunctionBeginUser;
-  PetscCall(WriteXDMF(sim, "particles.xmf", sim->snap, NULL, sim->snaps));
+  PetscCall(WriteXDMF(out, "particles.xmf", out->nsnap, NULL, out->snaps));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode IOWriteXDMFOne(Sim sim, const char *xmf, const char *h5, PetscReal t, PetscInt N)
+PetscErrorCode IOWriteXDMFOne(Output *out, const char *xmf, const char *h5, PetscReal t, PetscInt N)
 {
   const PetscReal tN[2] = {t, (PetscReal)N};
   PetscFunctionBeginUser;
-  PetscCall(WriteXDMF(sim, xmf, 1, h5, tN));
+  PetscCall(WriteXDMF(out, xmf, 1, h5, tN));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode IOSnapshot(Sim sim)
+PetscErrorCode IOSnapshot(Output *out)
 {
   char path[PETSC_MAX_PATH_LEN];
   PetscReal bytes;
   PetscBool ok;
   PetscFunctionBeginUser;
-  PetscCall(PetscSNPrintf(path, sizeof(path), "particles_%05" PetscInt_FMT ".h5", sim->snap));
-  PetscCall(IOSpaceSnapshot(sim, &bytes));
-  PetscCall(IOSpaceReserve(sim, path, bytes, &ok));
+  PetscCall(PetscSNPrintf(path, sizeof(path), "particles_%05" PetscInt_FMT ".h5", out->nsnap));
+  PetscCall(IOSpaceSnapshot(out, &bytes));
+  PetscCall(IOSpaceReserve(out, path, bytes, &ok));
   if (!ok) PetscFunctionReturn(PETSC_SUCCESS);
-  PetscCall(PetscLogStagePush(sim->stage[STAGE_OUTPUT]));
-  if (!sim->phys.isph) { /* WCSPH: the pressure of the stored density, by the equation of state (Eq. 20) */
-    const PetscReal *rho = PField(sim->P, FIELD_RHO);
-    PetscReal       *p   = PField(sim->P, FIELD_P);
-    for (PetscInt a = 0; a < sim->P->n + sim->P->ng; a++)
-      if (KindIsFluid(sim->P->kind[a])) p[a] = EOSPressure(&sim->phys.fl, rho[a]);
+  PetscCall(PetscLogStagePush(out->stage));
+  if (!out->phys->isph) { /* WCSPH: the pressure of the stored density, by the equation of state (Eq. 20) */
+    Particles        P   = out->phys->P;
+    const PetscReal *rho = PField(P, FIELD_RHO);
+    PetscReal       *p   = PField(P, FIELD_P);
+    for (PetscInt a = 0; a < P->n + P->ng; a++)
+      if (KindIsFluid(P->kind[a])) p[a] = EOSPressure(&out->phys->fl, rho[a]);
   }
-  PetscCall(PetscSNPrintf(path, sizeof(path), "%s/particles_%05" PetscInt_FMT ".h5", sim->outdir, sim->snap));
+  PetscCall(PetscSNPrintf(path, sizeof(path), "%s/particles_%05" PetscInt_FMT ".h5", out->dir, out->nsnap));
   PetscCall(IOSpacePushWrite(path));
-  PetscCall(IOWriteParticles(sim, path));
+  PetscCall(IOWriteParticles(out, path));
   PetscCall(IOSpacePopWrite());
-  if (sim->snap >= sim->snap_cap) {
+  if (out->nsnap >= out->snap_cap) {
     PetscReal *t;
-    sim->snap_cap = 2 * sim->snap_cap + 16;
-    PetscCall(PetscMalloc1(2 * sim->snap_cap, &t));
-    if (sim->snap) PetscCall(PetscArraycpy(t, sim->snaps, 2 * sim->snap));
-    PetscCall(PetscFree(sim->snaps));
-    sim->snaps = t;
+    out->snap_cap = 2 * out->snap_cap + 16;
+    PetscCall(PetscMalloc1(2 * out->snap_cap, &t));
+    if (out->nsnap) PetscCall(PetscArraycpy(t, out->snaps, 2 * out->nsnap));
+    PetscCall(PetscFree(out->snaps));
+    out->snaps = t;
   }
-  sim->snaps[2 * sim->snap]     = sim->phys.t;
-  sim->snaps[2 * sim->snap + 1] = (PetscReal)sim->nbhd.nparticles;
-  sim->snap++;
-  PetscCall(WriteXDMF(sim, "particles.xmf", sim->snap, NULL, sim->snaps));
-  while (sim->next_out <= sim->phys.t + 1e-12 * sim->t_end) sim->next_out += sim->out_interval;
+  out->snaps[2 * out->nsnap]     = out->phys->t;
+  out->snaps[2 * out->nsnap + 1] = (PetscReal)out->phys->nb->nparticles;
+  out->nsnap++;
+  PetscCall(WriteXDMF(out, "particles.xmf", out->nsnap, NULL, out->snaps));
+  while (out->next_snap <= out->phys->t + 1e-12 * out->t_end) out->next_snap += out->snap_interval;
   PetscCall(PetscLogStagePop());
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode IOProbes(Sim sim)
+PetscErrorCode IOProbes(Output *out)
 {
-  PetscReal vals[SCENE_MAX_PROBES];
-  PetscInt  ncol = 1 + sim->scene->nprobes;
+  PetscReal vals[OUTPUT_MAX_PROBES];
+  PetscInt  ncol = 1 + out->scene.nprobes;
   PetscFunctionBeginUser;
-  PetscCall(PetscLogStagePush(sim->stage[STAGE_OUTPUT]));
-  PetscCall(sim->scene->probe(sim, vals));
-  for (PetscInt k = 0; k < sim->scene->nprobes; k++) /* the state is finite (guard.h); a probe may still not be */
-    if (PetscIsInfOrNanReal(vals[k])) PetscCall(PetscPrintf(sim->comm, "sphfsi: warning: probe %s is %g at t = %g (written so to probes.csv)\n", sim->scene->probe_names[k], (double)vals[k], (double)sim->phys.t));
-  if (!sim->rank) {
+  PetscCall(PetscLogStagePush(out->stage));
+  PetscCall(out->scene.probe(out->scene.ctx, vals));
+  for (PetscInt k = 0; k < out->scene.nprobes; k++) /* the state is finite (guard.h); a probe may still not be */
+    if (PetscIsInfOrNanReal(vals[k])) PetscCall(PetscPrintf(out->comm, "sphfsi: warning: probe %s is %g at t = %g (written so to probes.csv)\n", out->scene.probe_names[k], (double)vals[k], (double)out->phys->t));
+  if (!out->rank) {
     PetscReal *row;
-    if (sim->nprobe_rows == sim->cap_probe_rows) {
+    if (out->nprobe_rows == out->cap_probe_rows) {
       PetscReal *rows;
-      sim->cap_probe_rows = 2 * sim->cap_probe_rows + 256;
-      PetscCall(PetscMalloc1(sim->cap_probe_rows * ncol, &rows));
-      if (sim->nprobe_rows) PetscCall(PetscArraycpy(rows, sim->probe_rows, sim->nprobe_rows * ncol));
-      PetscCall(PetscFree(sim->probe_rows));
-      sim->probe_rows = rows;
+      out->cap_probe_rows = 2 * out->cap_probe_rows + 256;
+      PetscCall(PetscMalloc1(out->cap_probe_rows * ncol, &rows));
+      if (out->nprobe_rows) PetscCall(PetscArraycpy(rows, out->probe_rows, out->nprobe_rows * ncol));
+      PetscCall(PetscFree(out->probe_rows));
+      out->probe_rows = rows;
     }
-    row    = sim->probe_rows + sim->nprobe_rows * ncol;
-    row[0] = sim->phys.t;
-    PetscCall(PetscArraycpy(row + 1, vals, sim->scene->nprobes));
+    row    = out->probe_rows + out->nprobe_rows * ncol;
+    row[0] = out->phys->t;
+    PetscCall(PetscArraycpy(row + 1, vals, out->scene.nprobes));
   }
-  sim->nprobe_rows++;
-  if (sim->probe_interval > 0)
-    while (sim->next_probe <= sim->phys.t + 1e-12 * sim->t_end) sim->next_probe += sim->probe_interval;
+  out->nprobe_rows++;
+  if (out->probe_interval > 0)
+    while (out->next_probe <= out->phys->t + 1e-12 * out->t_end) out->next_probe += out->probe_interval;
   PetscCall(PetscLogStagePop());
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -320,82 +320,84 @@ static double PeakResidentBytes(void)
 }
 
 /* Which physics modules this run built (a scene allocates only what it needs). */
-static void JsonModules(FILE *f, Sim sim)
+static void JsonModules(FILE *f, const Physics *ph)
 {
   fprintf(f, "  \"modules\": [");
-  if (sim->phys.has_fluid) fprintf(f, "\"%s\"", FluidSchemes[sim->phys.fluid]);
-  if (sim->phys.isph) fprintf(f, ", \"pressure_matrix\"");
-  if (sim->phys.solid) fprintf(f, "%s\"solid\"", sim->phys.has_fluid ? ", " : "");
-  if (sim->phys.solid && sim->phys.isph && sim->phys.solid->implicit) fprintf(f, ", \"implicit_interface\"");
-  fprintf(f, "],\n  \"pressure_matrix\": %s,\n", sim->phys.isph ? "true" : "false");
+  if (ph->has_fluid) fprintf(f, "\"%s\"", FluidSchemes[ph->fluid]);
+  if (ph->isph) fprintf(f, ", \"pressure_matrix\"");
+  if (ph->solid) fprintf(f, "%s\"solid\"", ph->has_fluid ? ", " : "");
+  if (ph->solid && ph->isph && ph->solid->implicit) fprintf(f, ", \"implicit_interface\"");
+  fprintf(f, "],\n  \"pressure_matrix\": %s,\n", ph->isph ? "true" : "false");
 }
 
-PetscErrorCode IOSummary(Sim sim)
+PetscErrorCode IOSummary(Output *out, const char *status, const char *message, PetscBool with_errors)
 {
-  char   path[PETSC_MAX_PATH_LEN], tmp[PETSC_MAX_PATH_LEN];
-  FILE  *f = NULL;
-  int    err = 0;
-  double rss = PeakResidentBytes(), rss_sum = 0;
+  char            path[PETSC_MAX_PATH_LEN], tmp[PETSC_MAX_PATH_LEN];
+  FILE           *f = NULL;
+  int             err = 0;
+  double          rss = PeakResidentBytes(), rss_sum = 0;
+  const Physics  *ph   = out->phys;
+  const PetscReal wall = *out->run.wall_used + *out->run.wall_loop; /* this run's loop and those before a restart */
   PetscFunctionBeginUser;
-  PetscCallMPI(MPI_Reduce(&rss, &rss_sum, 1, MPI_DOUBLE, MPI_SUM, 0, sim->comm));
-  if (!sim->rank) {
-    PetscCall(PetscSNPrintf(path, sizeof(path), "%s/summary.json", sim->outdir));
+  PetscCallMPI(MPI_Reduce(&rss, &rss_sum, 1, MPI_DOUBLE, MPI_SUM, 0, out->comm));
+  if (!out->rank) {
+    PetscCall(PetscSNPrintf(path, sizeof(path), "%s/summary.json", out->dir));
     PetscCall(PetscSNPrintf(tmp, sizeof(tmp), "%s.part", path));
     if (!(f = fopen(tmp, "w"))) err = errno;
   }
-  PetscCall(RootCheck(sim, err, "summary.json"));
-  if (!sim->rank) {
+  PetscCall(RootCheck(out, err, "summary.json"));
+  if (!out->rank) {
     fprintf(f, "{\n  \"version\": \"%s\",\n  \"commit\": \"%s\",\n", SphfsiVersion(), SphfsiCommit());
-    fprintf(f, "  \"case\": \"%s\",\n  \"dim\": %d,\n  \"fluid\": \"%s\",\n  \"ranks\": %d,\n", sim->scene->name, (int)sim->phys.dim, sim->phys.has_fluid ? FluidSchemes[sim->phys.fluid] : "none", sim->size);
-    JsonString(f, "status", sim->io_fault.set ? "io_error" : (const char *[]){"completed", "stopped", "fault", "io_error"}[sim->guard->state]);
-    if (sim->io_fault.set) JsonString(f, "message", sim->io_fault.msg);
-    else if (sim->guard->state) JsonString(f, "message", sim->guard->msg);
-    if (sim->restart[0]) JsonString(f, "restarted_from", sim->restart);
-    fprintf(f, "  \"checkpoints\": %d,\n", (int)sim->nckpt);
-    if (sim->ckpt_t >= 0) JsonReal(f, "checkpoint_t", sim->ckpt_t); /* what checkpoint.h5 holds now */
+    fprintf(f, "  \"case\": \"%s\",\n  \"dim\": %d,\n  \"fluid\": \"%s\",\n  \"ranks\": %d,\n", out->scene.name, (int)ph->dim, ph->has_fluid ? FluidSchemes[ph->fluid] : "none", out->size);
+    JsonString(f, "status", out->fault.set ? "io_error" : status);
+    if (out->fault.set) JsonString(f, "message", out->fault.msg);
+    else if (message) JsonString(f, "message", message);
+    if (out->restart[0]) JsonString(f, "restarted_from", out->restart);
+    fprintf(f, "  \"checkpoints\": %d,\n", (int)out->nckpt);
+    if (out->ckpt_t >= 0) JsonReal(f, "checkpoint_t", out->ckpt_t); /* what checkpoint.h5 holds now */
     else fprintf(f, "  \"checkpoint_t\": null,\n");
-    fprintf(f, "  \"particles\": %d,\n  \"steps\": %d,\n", (int)sim->nbhd.nparticles, (int)sim->phys.step);
-    JsonReal(f, "t_end", sim->phys.t);
-    JsonReal(f, "dx", sim->phys.dx);
-    JsonReal(f, "wall_s", sim->wall_used + sim->wall_loop);
-    JsonReal(f, "particle_steps_per_s", sim->particle_steps / PetscMax(sim->wall_used + sim->wall_loop, 1e-9));
-    if (sim->phys.isph && sim->phys.isph->ppe->nsolve) fprintf(f, "  \"ksp_its_mean\": %.4g,\n  \"ksp_its_max\": %d,\n", (double)(sim->phys.isph->ppe->its_sum / sim->phys.isph->ppe->nsolve), (int)sim->phys.isph->ppe->its_max);
+    fprintf(f, "  \"particles\": %d,\n  \"steps\": %d,\n", (int)ph->nb->nparticles, (int)ph->step);
+    JsonReal(f, "t_end", ph->t);
+    JsonReal(f, "dx", ph->dx);
+    JsonReal(f, "wall_s", wall);
+    JsonReal(f, "particle_steps_per_s", *out->run.particle_steps / PetscMax(wall, 1e-9));
+    if (ph->isph && ph->isph->ppe->nsolve) fprintf(f, "  \"ksp_its_mean\": %.4g,\n  \"ksp_its_max\": %d,\n", (double)(ph->isph->ppe->its_sum / ph->isph->ppe->nsolve), (int)ph->isph->ppe->its_max);
     else fprintf(f, "  \"ksp_its_mean\": null,\n  \"ksp_its_max\": null,\n");
-    JsonReal(f, "mass_rel_drift", sim->mass0 > 0 ? (sim->mass - sim->mass0) / sim->mass0 : 0);
-    if (sim->phys.solid) fprintf(f, "  \"c0_solid\": %.6g,\n  \"solid_substeps_max\": %d,\n  \"solid_formulation\": \"%s\",\n", (double)sim->phys.sl.c0, (int)sim->phys.solid->nsub_max, SolidFormulations[sim->phys.solid->formulation]);
-    if (sim->nbhd.skin > 0) fprintf(f, "  \"neighbour_skin_dx\": %.6g,\n  \"neighbour_rebuilds\": %d,\n", (double)(sim->nbhd.skin / sim->phys.dx), (int)sim->nbhd.nrebuild); /* this run's (-wcsph_skin) */
-    if (sim->phys.has_fluid) fprintf(f, "  \"c0\": %.6g,\n", (double)sim->phys.fl.c0);
+    JsonReal(f, "mass_rel_drift", *out->run.mass0 > 0 ? (*out->run.mass - *out->run.mass0) / *out->run.mass0 : 0);
+    if (ph->solid) fprintf(f, "  \"c0_solid\": %.6g,\n  \"solid_substeps_max\": %d,\n  \"solid_formulation\": \"%s\",\n", (double)ph->sl.c0, (int)ph->solid->nsub_max, SolidFormulations[ph->solid->formulation]);
+    if (ph->nb->skin > 0) fprintf(f, "  \"neighbour_skin_dx\": %.6g,\n  \"neighbour_rebuilds\": %d,\n", (double)(ph->nb->skin / ph->dx), (int)ph->nb->nrebuild); /* this run's (-wcsph_skin) */
+    if (ph->has_fluid) fprintf(f, "  \"c0\": %.6g,\n", (double)ph->fl.c0);
     else fprintf(f, "  \"c0\": null,\n");
-    JsonModules(f, sim);
-    fprintf(f, "  \"bytes_per_particle\": %d,\n  \"repartitions\": %d,\n", (int)ParticlesBytesPerParticle(sim->P), (int)sim->decomp->nrepartition);
-    fprintf(f, "  \"ranks_empty_max\": %d,\n  \"ranks_without_fluid_max\": %d,\n", (int)sim->decomp->empty_max, (int)sim->decomp->nofluid_max); /* at the imbalance checks of this run */
+    JsonModules(f, ph);
+    fprintf(f, "  \"bytes_per_particle\": %d,\n  \"repartitions\": %d,\n", (int)ParticlesBytesPerParticle(ph->P), (int)ph->decomp->nrepartition);
+    fprintf(f, "  \"ranks_empty_max\": %d,\n  \"ranks_without_fluid_max\": %d,\n", (int)ph->decomp->empty_max, (int)ph->decomp->nofluid_max); /* at the imbalance checks of this run */
     JsonReal(f, "peak_resident_bytes", rss_sum); /* all ranks, MPI/PETSc/hypre included */
-    JsonReal(f, "peak_resident_bytes_per_particle", sim->nbhd.nparticles > 0 ? rss_sum / sim->nbhd.nparticles : 0);
+    JsonReal(f, "peak_resident_bytes_per_particle", ph->nb->nparticles > 0 ? rss_sum / ph->nb->nparticles : 0);
     fprintf(f, "  \"fields\": [");
     for (PetscInt k = 0, first = 1; k < FIELD_COUNT; k++)
-      if (sim->P->f[k].on) { fprintf(f, "%s\"%s\"", first ? "" : ", ", sim->P->f[k].name); first = 0; }
+      if (ph->P->f[k].on) { fprintf(f, "%s\"%s\"", first ? "" : ", ", ph->P->f[k].name); first = 0; }
     fprintf(f, "],\n  \"errors\": {");
   }
-  if (sim->scene->errors && sim->ready) { /* collective; rank 0 writes through a memory stream, made valid JSON */
+  if (out->scene.errors && with_errors) { /* collective; rank 0 writes through a memory stream, made valid JSON */
     char  *buf = NULL;
     size_t len = 0;
     FILE  *mem = NULL;
-    if (!sim->rank) {
+    if (!out->rank) {
       mem = open_memstream(&buf, &len);
       if (!mem) err = errno;
     }
-    PetscCall(sim->scene->errors(sim, mem));
+    PetscCall(out->scene.errors(out->scene.ctx, mem));
     if (mem) {
       fclose(mem);
       JsonPutsFinite(f, buf);
       free(buf);
     }
   }
-  if (!sim->rank) { /* the reference files the errors above lacked (filled by the scene's errors) */
-    fprintf(f, "},\n  \"reference_missing\": [%s]\n}\n", sim->refdata_missing ? sim->refdata_missing : "");
+  if (!out->rank) { /* the reference files the errors above lacked (filled by the scene's errors) */
+    fprintf(f, "},\n  \"reference_missing\": [%s]\n}\n", out->refdata->missing ? out->refdata->missing : "");
     fclose(f);
     if (rename(tmp, path)) err = errno;
   }
-  PetscCall(RootCheck(sim, err, "summary.json"));
+  PetscCall(RootCheck(out, err, "summary.json"));
   PetscFunctionReturn(PETSC_SUCCESS);
 }

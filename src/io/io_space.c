@@ -1,6 +1,4 @@
 #include "io/io_space.h"
-#include "scenes/scene.h"
-#include "base/refdata.h"
 #include <errno.h>
 #include <sys/statvfs.h>
 #include <unistd.h>
@@ -8,30 +6,30 @@
 #define IO_SPACE_MARGIN 1.1     /* HDF5's headers and chunk rounding over the raw data */
 #define IO_SPACE_SLACK  65536.0 /* bytes: attributes, the XDMF, probes.csv and summary.json beside it */
 
-PetscErrorCode IOFault(Sim sim, const char *fmt, ...)
+PetscErrorCode IOFault(Output *out, const char *fmt, ...)
 {
   va_list ap;
   size_t  len;
   PetscFunctionBeginUser;
-  if (sim->io_fault.set) PetscFunctionReturn(PETSC_SUCCESS);
+  if (out->fault.set) PetscFunctionReturn(PETSC_SUCCESS);
   va_start(ap, fmt);
-  PetscCall(PetscVSNPrintf(sim->io_fault.msg, sizeof(sim->io_fault.msg), fmt, &len, ap));
+  PetscCall(PetscVSNPrintf(out->fault.msg, sizeof(out->fault.msg), fmt, &len, ap));
   va_end(ap);
-  sim->io_fault.set = PETSC_TRUE;
+  out->fault.set = PETSC_TRUE;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode IOSpaceReserve(Sim sim, const char *file, PetscReal bytes, PetscBool *ok)
+PetscErrorCode IOSpaceReserve(Output *out, const char *file, PetscReal bytes, PetscBool *ok)
 {
   double free_bytes = -1, need = IO_SPACE_MARGIN * (double)bytes + IO_SPACE_SLACK;
   PetscFunctionBeginUser;
-  if (!sim->rank) {
+  if (!out->rank) {
     struct statvfs fs;
-    if (!statvfs(sim->outdir, &fs)) free_bytes = (double)fs.f_bavail * (double)fs.f_frsize; /* what this user may fill */
+    if (!statvfs(out->dir, &fs)) free_bytes = (double)fs.f_bavail * (double)fs.f_frsize; /* what this user may fill */
   }
-  PetscCallMPI(MPI_Bcast(&free_bytes, 1, MPI_DOUBLE, 0, sim->comm));
+  PetscCallMPI(MPI_Bcast(&free_bytes, 1, MPI_DOUBLE, 0, out->comm));
   *ok = (PetscBool)(free_bytes < 0 || free_bytes >= need); /* unknown: try, and let a failed write say it */
-  if (!*ok) PetscCall(IOFault(sim, "no space left on device writing %s/%s (it needs about %.3g MB, %.3g MB are free): free space or give another -output_dir, then continue from the last checkpoint", sim->outdir, file, need / 1e6, free_bytes / 1e6));
+  if (!*ok) PetscCall(IOFault(out, "no space left on device writing %s/%s (it needs about %.3g MB, %.3g MB are free): free space or give another -output_dir, then continue from the last checkpoint", out->dir, file, need / 1e6, free_bytes / 1e6));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -49,18 +47,18 @@ static PetscReal FieldBytes(Particles P, PetscBool snapshot)
   return b;
 }
 
-PetscErrorCode IOSpaceSnapshot(Sim sim, PetscReal *bytes)
+PetscErrorCode IOSpaceSnapshot(Output *out, PetscReal *bytes)
 {
   PetscFunctionBeginUser;
-  *bytes = (PetscReal)sim->nbhd.nparticles * FieldBytes(sim->P, PETSC_TRUE);
+  *bytes = (PetscReal)out->phys->nb->nparticles * FieldBytes(out->phys->P, PETSC_TRUE);
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode IOSpaceCheckpoint(Sim sim, PetscReal *bytes)
+PetscErrorCode IOSpaceCheckpoint(Output *out, PetscReal *bytes)
 {
   PetscFunctionBeginUser;
-  *bytes = (PetscReal)sim->nbhd.nparticles * FieldBytes(sim->P, PETSC_FALSE) + (PetscReal)sim->nprobe_rows * (1 + sim->scene->nprobes) * sizeof(PetscReal) + (PetscReal)GridNumCells(&sim->grid) * sizeof(PetscInt) + 2.0 * sim->snap * sizeof(PetscReal);
-  for (PetscInt k = 0; k < sim->nkeep_series; k++) *bytes += 2.0 * sim->keep_series[k]->n * sizeof(PetscReal);
+  *bytes = (PetscReal)out->phys->nb->nparticles * FieldBytes(out->phys->P, PETSC_FALSE) + (PetscReal)out->nprobe_rows * (1 + out->scene.nprobes) * sizeof(PetscReal) + (PetscReal)GridNumCells(out->grid) * sizeof(PetscInt) + 2.0 * out->nsnap * sizeof(PetscReal);
+  for (PetscInt k = 0; k < out->scene.nkept_series; k++) *bytes += 2.0 * out->scene.kept_series[k]->n * sizeof(PetscReal);
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

@@ -9,17 +9,17 @@
  *    collective calls: the rank that sees it prints the one line, removes the half-written file and
  *    ends the job (MPI_Abort with SIM_EXIT_IO). */
 #pragma once
-#include "run/sim.h"
+#include "io/output.h"
 
 /* Output that cannot be written (collective; every rank passes the same message): recorded in
- * sim->io_fault, the first one kept.  The driver hands it to the guard (GuardCheckIO): the run ends
+ * out->fault, the first one kept.  The driver hands it to the guard (GuardCheckIO): the run ends
  * with SIM_EXIT_IO and writes nothing more but summary.json, if that fits. */
-PetscErrorCode IOFault(Sim sim, const char *fmt, ...) PETSC_ATTRIBUTE_FORMAT(2, 3);
+PetscErrorCode IOFault(Output *out, const char *fmt, ...) PETSC_ATTRIBUTE_FORMAT(2, 3);
 /* Whether `bytes` fit in the output directory (collective); if not, an I/O fault naming `file`. */
-PetscErrorCode IOSpaceReserve(Sim sim, const char *file, PetscReal bytes, PetscBool *ok);
+PetscErrorCode IOSpaceReserve(Output *out, const char *file, PetscReal bytes, PetscBool *ok);
 /* Bytes of a snapshot and of a checkpoint of the current state (collective). */
-PetscErrorCode IOSpaceSnapshot(Sim sim, PetscReal *bytes);
-PetscErrorCode IOSpaceCheckpoint(Sim sim, PetscReal *bytes);
+PetscErrorCode IOSpaceSnapshot(Output *out, PetscReal *bytes);
+PetscErrorCode IOSpaceCheckpoint(Output *out, PetscReal *bytes);
 /* Around a collective write of `file` (written as file.part, then renamed): any error inside is an
  * I/O fault that ends the job from the rank that sees it (push before, pop after). */
 PetscErrorCode IOSpacePushWrite(const char *file);

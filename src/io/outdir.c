@@ -14,10 +14,10 @@ typedef struct {
   char msg[PETSC_MAX_PATH_LEN + 512];
 } Verdict;
 
-static PetscErrorCode Share(Sim sim, Verdict *v)
+static PetscErrorCode Share(Output *out, Verdict *v)
 {
   PetscFunctionBeginUser;
-  PetscCallMPI(MPI_Bcast(v, (PetscMPIInt)sizeof(*v), MPI_BYTE, 0, sim->comm));
+  PetscCallMPI(MPI_Bcast(v, (PetscMPIInt)sizeof(*v), MPI_BYTE, 0, out->comm));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -25,14 +25,14 @@ static PetscErrorCode Share(Sim sim, Verdict *v)
  * too (on a cluster the output must be on a file system that every node shares).  The probe file
  * has a name of this run (no node can have it cached as absent), and a rank that does not see it
  * looks again for a few seconds (network file systems cache directory entries). */
-static PetscErrorCode MakeDir(Sim sim, const char *dir)
+static PetscErrorCode MakeDir(Output *out, const char *dir)
 {
   int  msg[2] = {0, (int)getpid()}, blind = 0; /* error, name of the probe */
   char probe[PETSC_MAX_PATH_LEN];
   PetscFunctionBeginUser;
-  PetscCallMPI(MPI_Bcast(&msg[1], 1, MPI_INT, 0, sim->comm));
+  PetscCallMPI(MPI_Bcast(&msg[1], 1, MPI_INT, 0, out->comm));
   PetscCall(PetscSNPrintf(probe, sizeof(probe), "%s/.sphfsi_probe_%d", dir, msg[1]));
-  if (!sim->rank) {
+  if (!out->rank) {
     char path[PETSC_MAX_PATH_LEN];
     PetscCall(PetscStrncpy(path, dir, sizeof(path)));
     for (char *p = path + 1; *p; p++)
@@ -44,17 +44,17 @@ static PetscErrorCode MakeDir(Sim sim, const char *dir)
       else fclose(f);
     }
   }
-  PetscCallMPI(MPI_Bcast(msg, 1, MPI_INT, 0, sim->comm));
-  PetscCheck(!msg[0], sim->comm, PETSC_ERR_FILE_OPEN, "Cannot create or write the output directory %s (%s): choose another -output_dir", dir, strerror(msg[0]));
-  for (int k = 0; sim->rank && k < 20 && access(probe, R_OK); k++) PetscCall(PetscSleep(0.25));
-  if (sim->rank && access(probe, R_OK)) blind = sim->rank;
-  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &blind, 1, MPI_INT, MPI_MAX, sim->comm));
-  if (!sim->rank) remove(probe);
-  PetscCheck(!blind, sim->comm, PETSC_ERR_FILE_OPEN, "Rank %d cannot see the output directory %s that rank 0 created: on a cluster, -output_dir must be on a file system that every node shares (give an absolute path there)", blind, dir);
+  PetscCallMPI(MPI_Bcast(msg, 1, MPI_INT, 0, out->comm));
+  PetscCheck(!msg[0], out->comm, PETSC_ERR_FILE_OPEN, "Cannot create or write the output directory %s (%s): choose another -output_dir", dir, strerror(msg[0]));
+  for (int k = 0; out->rank && k < 20 && access(probe, R_OK); k++) PetscCall(PetscSleep(0.25));
+  if (out->rank && access(probe, R_OK)) blind = out->rank;
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &blind, 1, MPI_INT, MPI_MAX, out->comm));
+  if (!out->rank) remove(probe);
+  PetscCheck(!blind, out->comm, PETSC_ERR_FILE_OPEN, "Rank %d cannot see the output directory %s that rank 0 created: on a cluster, -output_dir must be on a file system that every node shares (give an absolute path there)", blind, dir);
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-static void LockPath(Sim sim, char *path, size_t len) { (void)PetscSNPrintf(path, len, "%s/%s", sim->outdir, OUTDIR_LOCK); }
+static void LockPath(Output *out, char *path, size_t len) { (void)PetscSNPrintf(path, len, "%s/%s", out->dir, OUTDIR_LOCK); }
 
 /* Whether process pid of this host has ended: gone, or a zombie (killed, not yet reaped: a launcher
  * that exits before it reaps its ranks leaves them so for a moment). */
@@ -72,11 +72,11 @@ static PetscBool Ended(int pid)
 
 /* Rank 0: create the lock, or say whose it is.  0: taken; EEXIST: held by a live run (v->msg says
  * whose); another errno: the lock could not be written. */
-static int TakeLock(Sim sim, Verdict *v)
+static int TakeLock(Output *out, Verdict *v)
 {
   char   path[PETSC_MAX_PATH_LEN], host[256] = "", line[512];
   time_t now = time(NULL);
-  LockPath(sim, path, sizeof(path));
+  LockPath(out, path, sizeof(path));
   (void)gethostname(host, sizeof(host) - 1);
   for (int attempt = 0; attempt < 3; attempt++) {
     int fd = open(path, O_WRONLY | O_CREAT | O_EXCL, 0644);
@@ -109,7 +109,7 @@ static int TakeLock(Sim sim, Verdict *v)
       } else if (strcmp(their, host) && age > OUTDIR_STALE_S) {
         (void)PetscSNPrintf(v->msg, sizeof(v->msg), "sphfsi: note: %s of process %d on %s was last refreshed %.0f s ago (more than %.0f s): taken over as stale\n", path, pid, their[0] ? their : "an unknown host", age, OUTDIR_STALE_S);
       } else {
-        (void)PetscSNPrintf(v->msg, sizeof(v->msg), "The output directory %s is in use by another run (process %d on %s, lock refreshed %.0f s ago): give another -output_dir, or wait until that run ends (a run that died on another host leaves a lock that is taken over %.0f s after its last refresh; remove %s to take it at once)", sim->outdir, pid, their[0] ? their : "an unknown host", age, OUTDIR_STALE_S, path);
+        (void)PetscSNPrintf(v->msg, sizeof(v->msg), "The output directory %s is in use by another run (process %d on %s, lock refreshed %.0f s ago): give another -output_dir, or wait until that run ends (a run that died on another host leaves a lock that is taken over %.0f s after its last refresh; remove %s to take it at once)", out->dir, pid, their[0] ? their : "an unknown host", age, OUTDIR_STALE_S, path);
         return EEXIST;
       }
       printf("%s", v->msg);
@@ -138,9 +138,9 @@ static PetscBool RunFile(const char *name, PetscBool *snapshot, PetscBool *part)
 }
 
 /* Rank 0: the run files in the directory (counted, listed in v->msg), removed when `remove`. */
-static int EarlierRun(Sim sim, PetscBool remove, PetscInt *nfiles, char *list, size_t len)
+static int EarlierRun(Output *out, PetscBool remove, PetscInt *nfiles, char *list, size_t len)
 {
-  DIR           *d = opendir(sim->outdir);
+  DIR           *d = opendir(out->dir);
   struct dirent *e;
   PetscInt       nsnap = 0;
   int            err = 0;
@@ -154,7 +154,7 @@ static int EarlierRun(Sim sim, PetscBool remove, PetscInt *nfiles, char *list, s
     (*nfiles)++;
     if (snapshot && !part) nsnap++;
     else if (!part && strlen(list) + strlen(e->d_name) + 4 < len) (void)PetscSNPrintf(list + strlen(list), len - strlen(list), "%s%s", list[0] ? ", " : "", e->d_name);
-    (void)PetscSNPrintf(path, sizeof(path), "%s/%s", sim->outdir, e->d_name);
+    (void)PetscSNPrintf(path, sizeof(path), "%s/%s", out->dir, e->d_name);
     if (remove && unlink(path) && !err) err = errno;
   }
   closedir(d);
@@ -169,70 +169,70 @@ static PetscBool SameDir(const char *a, const char *b)
   return (PetscBool)(!stat(a, &sa) && !stat(b, &sb) && sa.st_dev == sb.st_dev && sa.st_ino == sb.st_ino);
 }
 
-PetscErrorCode OutDirOpen(Sim sim)
+PetscErrorCode OutDirOpen(Output *out)
 {
   Verdict v;
   PetscFunctionBeginUser;
-  PetscCall(MakeDir(sim, sim->outdir));
+  PetscCall(MakeDir(out, out->dir));
   PetscCall(PetscMemzero(&v, sizeof(v)));
-  if (!sim->rank) {
-    v.code = TakeLock(sim, &v);
-    if (!v.code) sim->lock_held = PETSC_TRUE;
+  if (!out->rank) {
+    v.code = TakeLock(out, &v);
+    if (!v.code) out->lock_held = PETSC_TRUE;
     if (v.code == -1) v.code = 0; /* a lock of this very process: not ours to release */
-    if (v.code && v.code != EEXIST) (void)PetscSNPrintf(v.msg, sizeof(v.msg), "Cannot write the lock %s/%s (%s): choose another -output_dir", sim->outdir, OUTDIR_LOCK, strerror(v.code));
+    if (v.code && v.code != EEXIST) (void)PetscSNPrintf(v.msg, sizeof(v.msg), "Cannot write the lock %s/%s (%s): choose another -output_dir", out->dir, OUTDIR_LOCK, strerror(v.code));
   }
-  PetscCall(Share(sim, &v));
-  PetscCheck(!v.code, sim->comm, PETSC_ERR_USER_INPUT, "%s", v.msg);
-  PetscCall(PetscTime(&sim->lock_beat));
+  PetscCall(Share(out, &v));
+  PetscCheck(!v.code, out->comm, PETSC_ERR_USER_INPUT, "%s", v.msg);
+  PetscCall(PetscTime(&out->lock_beat));
   /* a restart goes on in its checkpoint's directory; anything else starts afresh */
-  if (!sim->rank) {
+  if (!out->rank) {
     char      dir[PETSC_MAX_PATH_LEN], list[512];
     PetscInt  n;
     PetscBool cont = PETSC_FALSE;
-    if (sim->restart[0]) {
+    if (out->restart[0]) {
       char *slash;
-      PetscCall(PetscStrncpy(dir, sim->restart, sizeof(dir)));
+      PetscCall(PetscStrncpy(dir, out->restart, sizeof(dir)));
       slash = strrchr(dir, '/');
       if (slash) *slash = 0;
       else PetscCall(PetscStrncpy(dir, ".", sizeof(dir)));
-      cont = SameDir(dir, sim->outdir);
+      cont = SameDir(dir, out->dir);
     }
     if (!cont) {
-      v.code = EarlierRun(sim, sim->overwrite, &n, list, sizeof(list));
-      if (v.code) (void)PetscSNPrintf(v.msg, sizeof(v.msg), "Cannot remove the earlier run's files in %s (%s)", sim->outdir, strerror(v.code));
-      else if (n && sim->overwrite) printf("sphfsi: note: -overwrite: removed the earlier run's files in %s (%s)\n", sim->outdir, list);
+      v.code = EarlierRun(out, out->overwrite, &n, list, sizeof(list));
+      if (v.code) (void)PetscSNPrintf(v.msg, sizeof(v.msg), "Cannot remove the earlier run's files in %s (%s)", out->dir, strerror(v.code));
+      else if (n && out->overwrite) printf("sphfsi: note: -overwrite: removed the earlier run's files in %s (%s)\n", out->dir, list);
       else if (n) {
         v.code = EEXIST;
-        (void)PetscSNPrintf(v.msg, sizeof(v.msg), "The output directory %s holds an earlier run's output (%s): give another -output_dir, -overwrite to replace it, or -restart %s/checkpoint.h5 to continue that run", sim->outdir, list, sim->outdir);
+        (void)PetscSNPrintf(v.msg, sizeof(v.msg), "The output directory %s holds an earlier run's output (%s): give another -output_dir, -overwrite to replace it, or -restart %s/checkpoint.h5 to continue that run", out->dir, list, out->dir);
       }
     }
   }
-  PetscCall(Share(sim, &v));
-  if (v.code) PetscCall(OutDirClose(sim));
-  PetscCheck(!v.code, sim->comm, PETSC_ERR_USER_INPUT, "%s", v.msg);
+  PetscCall(Share(out, &v));
+  if (v.code) PetscCall(OutDirClose(out));
+  PetscCheck(!v.code, out->comm, PETSC_ERR_USER_INPUT, "%s", v.msg);
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode OutDirBeat(Sim sim)
+PetscErrorCode OutDirBeat(Output *out)
 {
   PetscLogDouble now;
   char           path[PETSC_MAX_PATH_LEN];
   PetscFunctionBeginUser;
-  if (!sim->lock_held) PetscFunctionReturn(PETSC_SUCCESS);
+  if (!out->lock_held) PetscFunctionReturn(PETSC_SUCCESS);
   PetscCall(PetscTime(&now));
-  if (now - sim->lock_beat < OUTDIR_BEAT_S) PetscFunctionReturn(PETSC_SUCCESS);
-  sim->lock_beat = now;
-  LockPath(sim, path, sizeof(path));
+  if (now - out->lock_beat < OUTDIR_BEAT_S) PetscFunctionReturn(PETSC_SUCCESS);
+  out->lock_beat = now;
+  LockPath(out, path, sizeof(path));
   (void)utimensat(AT_FDCWD, path, NULL, 0); /* a lock that cannot be touched only looks older */
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode OutDirTidyRestart(Sim sim)
+PetscErrorCode OutDirTidyRestart(Output *out)
 {
   PetscInt removed = 0, missing = 0;
   PetscFunctionBeginUser;
-  if (!sim->rank) {
-    DIR           *d = opendir(sim->outdir);
+  if (!out->rank) {
+    DIR           *d = opendir(out->dir);
     struct dirent *e;
     while (d && (e = readdir(d))) {
       PetscBool snapshot, part;
@@ -240,33 +240,33 @@ PetscErrorCode OutDirTidyRestart(Sim sim)
       char      path[PETSC_MAX_PATH_LEN];
       if (!RunFile(e->d_name, &snapshot, &part)) continue;
       if (snapshot) (void)sscanf(e->d_name, "particles_%d", &idx);
-      if (!part && !(snapshot && idx >= sim->snap)) continue;
-      (void)PetscSNPrintf(path, sizeof(path), "%s/%s", sim->outdir, e->d_name);
+      if (!part && !(snapshot && idx >= out->nsnap)) continue;
+      (void)PetscSNPrintf(path, sizeof(path), "%s/%s", out->dir, e->d_name);
       if (!unlink(path) && !part) removed++;
     }
     if (d) closedir(d);
     /* the snapshots before the checkpoint that this directory lacks (a restart elsewhere) are left
      * out of particles.xmf: a negative particle count marks them */
-    for (PetscInt s = 0; s < sim->snap; s++) {
+    for (PetscInt s = 0; s < out->nsnap; s++) {
       char path[PETSC_MAX_PATH_LEN];
-      (void)PetscSNPrintf(path, sizeof(path), "%s/particles_%05d.h5", sim->outdir, (int)s);
-      if (access(path, R_OK)) { sim->snaps[2 * s + 1] = -1; missing++; }
+      (void)PetscSNPrintf(path, sizeof(path), "%s/particles_%05d.h5", out->dir, (int)s);
+      if (access(path, R_OK)) { out->snaps[2 * s + 1] = -1; missing++; }
     }
     if (removed) printf("sphfsi: note: removed %d snapshot(s) written after the checkpoint by the interrupted run: this run writes them again\n", (int)removed);
   }
-  PetscCallMPI(MPI_Bcast(&missing, 1, MPIU_INT, 0, sim->comm));
-  if (sim->snap) PetscCall(IOWriteXDMF(sim));
-  if (missing) PetscCall(PetscPrintf(sim->comm, "sphfsi: note: %d of the checkpointed run's %d snapshot(s) are not in %s: particles.xmf lists those that are\n", (int)missing, (int)sim->snap, sim->outdir));
+  PetscCallMPI(MPI_Bcast(&missing, 1, MPIU_INT, 0, out->comm));
+  if (out->nsnap) PetscCall(IOWriteXDMF(out));
+  if (missing) PetscCall(PetscPrintf(out->comm, "sphfsi: note: %d of the checkpointed run's %d snapshot(s) are not in %s: particles.xmf lists those that are\n", (int)missing, (int)out->nsnap, out->dir));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode OutDirClose(Sim sim)
+PetscErrorCode OutDirClose(Output *out)
 {
   char path[PETSC_MAX_PATH_LEN];
   PetscFunctionBeginUser;
-  if (!sim || !sim->lock_held) PetscFunctionReturn(PETSC_SUCCESS);
-  LockPath(sim, path, sizeof(path));
+  if (!out || !out->lock_held) PetscFunctionReturn(PETSC_SUCCESS);
+  LockPath(out, path, sizeof(path));
   (void)unlink(path);
-  sim->lock_held = PETSC_FALSE;
+  out->lock_held = PETSC_FALSE;
   PetscFunctionReturn(PETSC_SUCCESS);
 }

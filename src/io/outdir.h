@@ -11,17 +11,17 @@
  *    run wrote after its checkpoint are removed (the restart writes them again), and so are files
  *    left half-written (*.part) by a run that was killed. */
 #pragma once
-#include "run/sim.h"
+#include "io/output.h"
 
 #define OUTDIR_LOCK    "sphfsi.lock"
 #define OUTDIR_BEAT_S  60.0  /* s between refreshes of the lock */
 #define OUTDIR_STALE_S 600.0 /* s without a refresh after which another host's lock is stale */
 
 /* mkdir -p on rank 0, checked on every rank; the lock; an earlier run's files (collective). */
-PetscErrorCode OutDirOpen(Sim sim);
+PetscErrorCode OutDirOpen(Output *out);
 /* Rank 0 refreshes the lock when OUTDIR_BEAT_S have passed (not collective). */
-PetscErrorCode OutDirBeat(Sim sim);
-/* After a restart has read its state: remove the snapshots numbered from sim->snap on (collective). */
-PetscErrorCode OutDirTidyRestart(Sim sim);
+PetscErrorCode OutDirBeat(Output *out);
+/* After a restart has read its state: remove the snapshots numbered from out->nsnap on (collective). */
+PetscErrorCode OutDirTidyRestart(Output *out);
 /* Release the lock if this run holds it (not collective; safe to call twice). */
-PetscErrorCode OutDirClose(Sim sim);
+PetscErrorCode OutDirClose(Output *out);

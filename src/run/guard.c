@@ -86,7 +86,7 @@ PetscErrorCode GuardStepBegin(Sim sim)
   PetscCall(PetscTime(&g->step_start));
   if (!g->have_good || sim->phys.step % GUARD_KEEP_EVERY == 0) {
     PetscCall(PetscLogStagePush(sim->stage[STAGE_GUARD]));
-    PetscCall(StateCopy(sim, &g->good));
+    PetscCall(StateCopy(&sim->out, &g->good));
     g->have_good = PETSC_TRUE;
     PetscCall(PetscLogStagePop());
   }
@@ -104,7 +104,7 @@ PetscErrorCode GuardFault(Sim sim, PetscBool state_ok, const char *fmt, ...)
   va_end(ap);
   g->state = GUARD_FAULT;
   if (state_ok) {
-    PetscCall(StateCopy(sim, &g->good));
+    PetscCall(StateCopy(&sim->out, &g->good));
     g->have_good = PETSC_TRUE;
   }
   PetscFunctionReturn(PETSC_SUCCESS);
@@ -301,8 +301,8 @@ PetscErrorCode GuardCheckIO(Sim sim)
 {
   Guard g = sim->guard;
   PetscFunctionBeginUser;
-  if (!sim->io_fault.set || g->state == GUARD_IO) PetscFunctionReturn(PETSC_SUCCESS);
-  PetscCall(PetscStrncpy(g->msg, sim->io_fault.msg, sizeof(g->msg)));
+  if (!sim->out.fault.set || g->state == GUARD_IO) PetscFunctionReturn(PETSC_SUCCESS);
+  PetscCall(PetscStrncpy(g->msg, sim->out.fault.msg, sizeof(g->msg)));
   g->state = GUARD_IO;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -337,7 +337,7 @@ PetscErrorCode GuardFinish(Sim sim)
     PetscCall(PetscFPrintf(sim->comm, PETSC_STDERR, "sphfsi: error: %s (exit status %d)\n", g->msg, SIM_EXIT_IO));
     sim->exit_status = SIM_EXIT_IO;
   } else if (g->state == GUARD_STOP) { /* SimRun announced the stop and wrote the checkpoint */
-    PetscCall(PetscPrintf(sim->comm, "sphfsi: checkpoint written to %s/checkpoint.h5: continue with -restart %s/checkpoint.h5 (its options are taken from it; options given override them) (exit status %d)\n", sim->outdir, sim->outdir, SIM_EXIT_STOPPED));
+    PetscCall(PetscPrintf(sim->comm, "sphfsi: checkpoint written to %s/checkpoint.h5: continue with -restart %s/checkpoint.h5 (its options are taken from it; options given override them) (exit status %d)\n", sim->out.dir, sim->out.dir, SIM_EXIT_STOPPED));
     sim->exit_status = SIM_EXIT_STOPPED;
   } else if (g->state == GUARD_FAULT) {
     PetscCall(PetscPrintf(sim->comm, "sphfsi: FAULT: %s\n", g->msg));
@@ -346,21 +346,21 @@ PetscErrorCode GuardFinish(Sim sim)
       PetscCall(PetscPrintf(sim->comm, "sphfsi: the run has no good state to write (exit status %d)\n", SIM_EXIT_FAULT));
       PetscFunctionReturn(PETSC_SUCCESS);
     }
-    PetscCall(PetscSNPrintf(path, sizeof(path), "%s/last_good.h5", sim->outdir));
+    PetscCall(PetscSNPrintf(path, sizeof(path), "%s/last_good.h5", sim->out.dir));
     {
       PetscReal bytes;
       PetscBool ok;
-      PetscCall(IOSpaceCheckpoint(sim, &bytes));
-      PetscCall(IOSpaceReserve(sim, "last_good.h5", bytes, &ok));
+      PetscCall(IOSpaceCheckpoint(&sim->out, &bytes));
+      PetscCall(IOSpaceReserve(&sim->out, "last_good.h5", bytes, &ok));
       if (!ok) {
         PetscCall(PetscFPrintf(sim->comm, PETSC_STDERR, "sphfsi: error: %s (exit status %d)\n", g->msg, SIM_EXIT_FAULT));
         PetscFunctionReturn(PETSC_SUCCESS);
       }
     }
     PetscCall(IOSpacePushWrite(path));
-    PetscCall(CheckpointWrite(sim, &g->good, path));
+    PetscCall(CheckpointWrite(&sim->out, &g->good, path));
     PetscCall(IOSpacePopWrite());
-    PetscCall(IOWriteXDMFOne(sim, "last_good.xmf", "last_good.h5", g->good.r[0], g->good.i[1]));
+    PetscCall(IOWriteXDMFOne(&sim->out, "last_good.xmf", "last_good.h5", g->good.r[0], g->good.i[1]));
     PetscCall(PetscPrintf(sim->comm, "sphfsi: the last good state, step %" PetscInt_FMT " (t = %g), is in %s: a checkpoint with the datasets of a snapshot, to look at (last_good.xmf in ParaView) or to restart from with -restart %s and a smaller -dt or -cfl.  No NaN was written to any output file (exit status %d)\n", g->good.i[0], (double)g->good.r[0], path, path, SIM_EXIT_FAULT));
     sim->exit_status = SIM_EXIT_FAULT;
   }

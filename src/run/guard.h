@@ -7,6 +7,7 @@
  *    when (step, t), writes the last good state (a restartable checkpoint) and ends with
  *    SIM_EXIT_FAULT. */
 #pragma once
+#include "run/sim.h"
 #include "io/checkpoint.h"
 
 #define GUARD_KEEP_EVERY 10 /* steps between copies of the last good state (a copy of every field: a fraction of a step) */
@@ -44,7 +45,7 @@ PetscErrorCode GuardStepEnd(Sim sim, PetscBool *progress);
 /* Record a fault (collective; every rank passes the same message).  state_ok: the current state is
  * still good (nothing changed yet), so it becomes the last good state. */
 PetscErrorCode GuardFault(Sim sim, PetscBool state_ok, const char *fmt, ...) PETSC_ATTRIBUTE_FORMAT(3, 4);
-/* An I/O fault the output recorded (sim->io_fault, io_space.h) becomes the guard's state GUARD_IO:
+/* An I/O fault the output recorded (sim->out.fault, io_space.h) becomes the guard's state GUARD_IO:
  * the run ends with SIM_EXIT_IO (the driver asks after each output; GuardFinish asks too). */
 PetscErrorCode GuardCheckIO(Sim sim);
 /* During set-up, between its phases: a stop request (a signal on any rank) ends the set-up with

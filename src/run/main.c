@@ -8,7 +8,6 @@ static const char help[] = "sphfsi: Smoothed Particle Hydrodynamics for fluid-st
 #include "base/options_used.h"
 #include "io/outdir.h"
 #include "scenes/scene.h"
-#include "io/io.h"
 #include <stdio.h>
 #include <string.h>
 #include <stdlib.h>
@@ -169,7 +168,7 @@ static PetscErrorCode StoppedInSetUp(Sim sim)
 {
   PetscFunctionBeginUser;
   PetscCall(PetscPrintf(sim->comm, "sphfsi: stopped: %s; nothing was computed, so no checkpoint was written: start the run again (exit status %d)\n", sim->guard->msg, SIM_EXIT_STOPPED));
-  PetscCall(IOSummary(sim));
+  PetscCall(SimWriteSummary(sim));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -215,11 +214,11 @@ int main(int argc, char **argv)
     if (sim->phys.dim == 3) PetscCall(PetscSNPrintf(chosen + strlen(chosen), sizeof(chosen) - strlen(chosen), ",%.17g", (double)sim->phys.g[2]));
     PetscCall(PetscSNPrintf(chosen + strlen(chosen), sizeof(chosen) - strlen(chosen), "\n# -dx %.17g (from the scene's options)\n", (double)sim->phys.dx));
     if (sim->phys.has_fluid) PetscCall(PetscSNPrintf(chosen + strlen(chosen), sizeof(chosen) - strlen(chosen), "-fluid_c0 %.17g\n", (double)sim->phys.fl.c0));
-    PetscCall(OptionsUsedWrite(PETSC_COMM_WORLD, sim->outdir, header, chosen));
+    PetscCall(OptionsUsedWrite(PETSC_COMM_WORLD, sim->out.dir, header, chosen));
   }
   if (ierr && bad_input.quiet) { /* every rank has it: one line from rank 0, then a clean exit */
     PetscCall(PetscFPrintf(PETSC_COMM_WORLD, PETSC_STDERR, "sphfsi: error: %s\n", bad_input.message));
-    PetscCall(OutDirClose(sim)); /* the output directory's lock, if the run got that far */
+    PetscCall(OutDirClose(sim ? &sim->out : NULL)); /* the output directory's lock, if the run got that far */
     PetscCall(PetscOptionsClear(NULL)); /* no "options left" list at PetscFinalize */
     PetscCall(PetscFinalize());
     return SIM_EXIT_BAD_INPUT;

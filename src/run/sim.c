@@ -24,11 +24,11 @@ PetscErrorCode SimCreate(MPI_Comm comm, Sim *sim)
   s->comm = comm;
   PetscCallMPI(MPI_Comm_rank(comm, &s->rank));
   PetscCallMPI(MPI_Comm_size(comm, &s->size));
+  s->refdata.rank   = s->rank;
   s->t_end          = -1;
   s->max_steps      = PETSC_MAX_INT;
   s->progress_every = 5;
   s->ckpt_step      = -1;
-  s->ckpt_t         = -1;
   { /* the physics' defaults, before the scene's (physics.h) */
     Physics *ph       = &s->phys;
     ph->dim           = 2;
@@ -66,6 +66,7 @@ PetscErrorCode SimCreate(MPI_Comm comm, Sim *sim)
   s->phys.decomp = s->decomp;
   s->phys.halo   = s->halo;
   s->phys.nb     = &s->nbhd;
+  PetscCall(SimWireOutput(s));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -75,16 +76,15 @@ PetscErrorCode SimDestroy(Sim *sim)
   PetscFunctionBeginUser;
   if (!s) PetscFunctionReturn(PETSC_SUCCESS);
   if (s->scene && s->scene->destroy) PetscCall(s->scene->destroy(s));
-  PetscCall(OutDirClose(s));
-  PetscCall(IOFinalize(s));
+  PetscCall(OutDirClose(&s->out));
+  PetscCall(IOFinalize(&s->out));
   PetscCall(ISPHDestroy(&s->phys.isph));
   PetscCall(SolidDestroy(&s->phys.solid));
   PetscCall(CellsDestroy(&s->cells));
   PetscCall(HaloDestroy(&s->halo));
   PetscCall(DecompDestroy(&s->decomp));
   PetscCall(ParticlesDestroy(&s->P));
-  PetscCall(PetscFree(s->snaps));
-  PetscCall(PetscFree(s->refdata_missing));
+  PetscCall(RefDataDestroy(&s->refdata));
   PetscCall(GuardDestroy(&s->guard));
   PetscCall(SizeGuardDestroy(&s->size_guard));
   PetscCall(PetscFree(*sim));
@@ -119,14 +119,14 @@ PetscErrorCode SimSetFromOptions(Sim sim)
   PetscCall(OptReal("-dt", "Fixed time step (s); 0 = adaptive", "", sim->dt_fixed, &sim->dt_fixed, NULL));
   PetscCall(OptReal("-cfl", "Courant number of the adaptive time step", "", sim->phys.cfl, &sim->phys.cfl, NULL));
   PetscCall(OptInt("-max_steps", "Stop after this many steps", "", sim->max_steps, &sim->max_steps, NULL));
-  PetscCall(PetscOptionsString("-output_dir", "Output directory (default out/CASE; with -restart, the checkpoint's directory)", "", sim->outdir, sim->outdir, sizeof(sim->outdir), NULL));
-  PetscCall(OptBool("-overwrite", "A new run into a directory that holds an earlier run's output removes that output (snapshots, probes, summary, checkpoints); without it the run refuses to start", "", sim->overwrite, &sim->overwrite, NULL));
-  PetscCall(OptReal("-output_interval", "Snapshot interval in physical time (s); 0 = none", "", sim->out_interval, &sim->out_interval, NULL));
-  PetscCall(OptReal("-probe_interval", "probes.csv row interval in physical time (s); 0 = every step", "", sim->probe_interval, &sim->probe_interval, NULL));
+  PetscCall(PetscOptionsString("-output_dir", "Output directory (default out/CASE; with -restart, the checkpoint's directory)", "", sim->out.dir, sim->out.dir, sizeof(sim->out.dir), NULL));
+  PetscCall(OptBool("-overwrite", "A new run into a directory that holds an earlier run's output removes that output (snapshots, probes, summary, checkpoints); without it the run refuses to start", "", sim->out.overwrite, &sim->out.overwrite, NULL));
+  PetscCall(OptReal("-output_interval", "Snapshot interval in physical time (s); 0 = none", "", sim->out.snap_interval, &sim->out.snap_interval, NULL));
+  PetscCall(OptReal("-probe_interval", "probes.csv row interval in physical time (s); 0 = every step", "", sim->out.probe_interval, &sim->out.probe_interval, NULL));
   PetscCall(OptInt("-progress_every", "Seconds of wall time between progress lines; 0 = none", "", sim->progress_every, &sim->progress_every, NULL));
-  PetscCall(OptReal("-checkpoint_interval", "Checkpoint interval in physical time (s), OUTDIR/checkpoint.h5, also at the end; 0 = none (a stop by signal or -max_wall_time writes one anyway)", "", sim->ckpt_interval, &sim->ckpt_interval, NULL));
-  PetscCall(PetscOptionsString("-restart", "Continue the run of this checkpoint (OUTDIR/checkpoint.h5 or last_good.h5): the scene and every option come from the checkpoint, options given now override them, output goes on in the checkpoint's directory", "", sim->restart, sim->restart, sizeof(sim->restart), NULL));
-  PetscCall(PetscOptionsString("-refdata_dir", "Reference data for the errors in summary.json (default $SPHFSI_REFDATA, else per file the first of PREFIX/share/sphfsi/refdata, EXEDIR/refdata, the build's SRCDIR/../shared/refdata, ../shared/refdata from the current directory)", "", sim->refdata_dir, sim->refdata_dir, sizeof(sim->refdata_dir), NULL));
+  PetscCall(OptReal("-checkpoint_interval", "Checkpoint interval in physical time (s), OUTDIR/checkpoint.h5, also at the end; 0 = none (a stop by signal or -max_wall_time writes one anyway)", "", sim->out.ckpt_interval, &sim->out.ckpt_interval, NULL));
+  PetscCall(PetscOptionsString("-restart", "Continue the run of this checkpoint (OUTDIR/checkpoint.h5 or last_good.h5): the scene and every option come from the checkpoint, options given now override them, output goes on in the checkpoint's directory", "", sim->out.restart, sim->out.restart, sizeof(sim->out.restart), NULL));
+  PetscCall(PetscOptionsString("-refdata_dir", "Reference data for the errors in summary.json (default $SPHFSI_REFDATA, else per file the first of PREFIX/share/sphfsi/refdata, EXEDIR/refdata, the build's SRCDIR/../shared/refdata, ../shared/refdata from the current directory)", "", sim->refdata.dir, sim->refdata.dir, sizeof(sim->refdata.dir), NULL));
   PetscOptionsEnd();
   sim->phys.fluid = (FluidScheme)fluid;
   PetscCheck(hfac >= 1 && hfac <= 3, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-h_factor %g must be in [1, 3] (h / dx; 1.3 for the cubic spline, 1.5-2.5 for the Wendland kernels)", (double)hfac);
@@ -138,19 +138,19 @@ PetscErrorCode SimSetFromOptions(Sim sim)
   PetscCheck(!t_set || sim->t_end > 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-t_end %g must be > 0", (double)sim->t_end);
   PetscCheck(sim->dt_fixed >= 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dt %g must be > 0 (or 0 for an adaptive step)", (double)sim->dt_fixed);
   PetscCheck(sim->phys.cfl > 0 && sim->phys.cfl <= 1, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-cfl %g must be in (0, 1]", (double)sim->phys.cfl);
-  PetscCheck(sim->out_interval >= 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-output_interval %g must be >= 0", (double)sim->out_interval);
-  PetscCheck(sim->probe_interval >= 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-probe_interval %g must be >= 0", (double)sim->probe_interval);
+  PetscCheck(sim->out.snap_interval >= 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-output_interval %g must be >= 0", (double)sim->out.snap_interval);
+  PetscCheck(sim->out.probe_interval >= 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-probe_interval %g must be >= 0", (double)sim->out.probe_interval);
   PetscCheck(sim->max_steps >= 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-max_steps must be >= 0");
   PetscCheck(sim->progress_every >= 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-progress_every %" PetscInt_FMT " must be >= 0 (seconds of wall time between progress lines; 0 = none)", sim->progress_every);
-  PetscCheck(sim->ckpt_interval >= 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-checkpoint_interval %g must be >= 0 (s of physical time; 0 = none)", (double)sim->ckpt_interval);
+  PetscCheck(sim->out.ckpt_interval >= 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-checkpoint_interval %g must be >= 0 (s of physical time; 0 = none)", (double)sim->out.ckpt_interval);
   PetscCall(GuardSetFromOptions(sim));
-  if (!sim->outdir[0] && sim->restart[0]) { /* the directory the checkpoint belongs to */
+  if (!sim->out.dir[0] && sim->out.restart[0]) { /* the directory the checkpoint belongs to */
     char *slash;
-    PetscCall(PetscStrncpy(sim->outdir, sim->restart, sizeof(sim->outdir)));
-    if ((slash = strrchr(sim->outdir, '/'))) *slash = 0;
-    else PetscCall(PetscStrncpy(sim->outdir, ".", sizeof(sim->outdir)));
+    PetscCall(PetscStrncpy(sim->out.dir, sim->out.restart, sizeof(sim->out.dir)));
+    if ((slash = strrchr(sim->out.dir, '/'))) *slash = 0;
+    else PetscCall(PetscStrncpy(sim->out.dir, ".", sizeof(sim->out.dir)));
   }
-  if (!sim->outdir[0]) PetscCall(PetscSNPrintf(sim->outdir, sizeof(sim->outdir), "out/%s", sim->scene->name));
+  if (!sim->out.dir[0]) PetscCall(PetscSNPrintf(sim->out.dir, sizeof(sim->out.dir), "out/%s", sim->scene->name));
   PetscCall(DecompSetFromOptions(sim->decomp));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -267,6 +267,7 @@ PetscErrorCode SimSetUp(Sim sim)
   }
   PetscCheck(sim->t_end > 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-t_end %g must be > 0", (double)sim->t_end);
   PetscCheck(sim->phys.has_fluid || sim->phys.has_solid, sim->comm, PETSC_ERR_PLIB, "Scene %s has neither fluid nor solid", sim->scene->name);
+  PetscCall(SimWireOutputToScene(sim));
   PetscOptionsBegin(sim->comm, NULL, "Body force", "Sim");
   {
     PetscReal g[3] = {sim->phys.g[0], sim->phys.g[1], sim->phys.g[2]};
@@ -297,7 +298,7 @@ PetscErrorCode SimSetUp(Sim sim)
   PetscCall(ParticlesSetUp(sim->P));
   if (sim->help) PetscFunctionReturn(PETSC_SUCCESS); /* listed: no particles, no output */
   PetscCall(SizeGuardCheck(sim)); /* before the particles: a run too large for the memory stops here */
-  PetscCall(OutDirOpen(sim));
+  PetscCall(OutDirOpen(&sim->out));
   PetscCall(GuardCheckSetUp(sim, "before the particles were made"));
   if (sim->guard->state) PetscFunctionReturn(PETSC_SUCCESS);
   PetscCall(sim->scene->populate(sim));
@@ -347,11 +348,11 @@ PetscErrorCode SimSetUp(Sim sim)
     PetscCall(NeighbourListOptions(sim, &store));
     sim->cells->drop_w = (PetscBool)!store;
   }
-  sim->next_probe = sim->next_out = 0;
-  sim->next_ckpt  = sim->ckpt_interval;
+  sim->out.next_probe = sim->out.next_snap = 0;
+  sim->out.next_ckpt  = sim->out.ckpt_interval;
   PetscCall(GuardCheckSetUp(sim, "before the neighbour lists were built"));
   if (sim->guard->state) PetscFunctionReturn(PETSC_SUCCESS);
-  if (sim->restart[0]) PetscCall(CheckpointRestart(sim)); /* the particles and state of the checkpoint */
+  if (sim->out.restart[0]) PetscCall(CheckpointRestart(&sim->out)); /* the particles and state of the checkpoint */
   else {
     PetscCall(DecompPartition(sim->decomp, sim->P)); /* from the scene's round-robin spread, so no rank ever holds them all */
     PetscCall(DecompMigrate(sim->decomp, sim->P));   /* wraps and checks every particle is inside */
@@ -361,8 +362,8 @@ PetscErrorCode SimSetUp(Sim sim)
     else if (sim->phys.has_fluid) PetscCall(Staged(sim, STAGE_PHYSICS, WCSPHRates));
     if (sim->phys.has_solid) PetscCall(Staged(sim, STAGE_SOLID, SolidAfterRebuild));
   }
-  if (sim->restart[0]) PetscCall(OutDirTidyRestart(sim)); /* the snapshots past the checkpoint */
-  PetscCall(IOSetUp(sim));
+  if (sim->out.restart[0]) PetscCall(OutDirTidyRestart(&sim->out)); /* the snapshots past the checkpoint */
+  PetscCall(IOSetUp(&sim->out));
   sim->ready = PETSC_TRUE;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -445,11 +446,11 @@ static PetscErrorCode Checkpoint(Sim sim)
 {
   PetscFunctionBeginUser;
   if (sim->ckpt_step == sim->phys.step) PetscFunctionReturn(PETSC_SUCCESS);
-  PetscCall(CheckpointSave(sim));
+  PetscCall(CheckpointSave(&sim->out));
   PetscCall(GuardCheckIO(sim));
   if (sim->guard->state == GUARD_IO) PetscFunctionReturn(PETSC_SUCCESS);
   sim->ckpt_step = sim->phys.step;
-  sim->ckpt_t    = sim->phys.t;
+  sim->out.ckpt_t = sim->phys.t;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -471,9 +472,9 @@ PetscErrorCode SimRun(Sim sim)
   PetscCall(PetscTime(&sim->wall_start));
   sim->t_start = sim->phys.t;
   last         = sim->wall_start;
-  if (!sim->restart[0]) { /* a restart has the first probe row and snapshot already */
-    PetscCall(IOProbes(sim));
-    if (sim->out_interval > 0) PetscCall(IOSnapshot(sim));
+  if (!sim->out.restart[0]) { /* a restart has the first probe row and snapshot already */
+    PetscCall(IOProbes(&sim->out));
+    if (sim->out.snap_interval > 0) PetscCall(IOSnapshot(&sim->out));
   }
   PetscCall(GuardCheckInitial(sim));
   PetscCall(GuardCheckIO(sim));
@@ -489,29 +490,29 @@ PetscErrorCode SimRun(Sim sim)
     PetscCall(GuardStepEnd(sim, &shown)); /* NaN/Inf, signals, wall time, progress: agreed */
     if (g->state == GUARD_FAULT) break;
     if (g->state == GUARD_STOP) PetscCall(GuardAnnounceStop(sim));
-    if (sim->phys.t >= sim->next_probe - eps) PetscCall(IOProbes(sim));
+    if (sim->phys.t >= sim->out.next_probe - eps) PetscCall(IOProbes(&sim->out));
     if (g->state == GUARD_STOP) { /* what a launcher's kill may not leave time for: probes and summary first */
       PetscCall(PetscTime(&t1));
       sim->wall_loop = t1 - sim->wall_start;
-      PetscCall(IOWriteProbes(sim));
+      PetscCall(IOWriteProbes(&sim->out));
       PetscCall(SimTotalMass(sim, &sim->mass));
-      PetscCall(IOSummary(sim));
+      PetscCall(SimWriteSummary(sim));
     }
-    PetscCall(OutDirBeat(sim));
-    if (sim->out_interval > 0 && sim->phys.t >= sim->next_out - eps) {
-      PetscCall(IOSnapshot(sim));
-      PetscCall(IOWriteProbes(sim));
+    PetscCall(OutDirBeat(&sim->out));
+    if (sim->out.snap_interval > 0 && sim->phys.t >= sim->out.next_snap - eps) {
+      PetscCall(IOSnapshot(&sim->out));
+      PetscCall(IOWriteProbes(&sim->out));
     }
-    if (sim->ckpt_interval > 0 && sim->phys.t >= sim->next_ckpt - eps) {
+    if (sim->out.ckpt_interval > 0 && sim->phys.t >= sim->out.next_ckpt - eps) {
       PetscCall(Checkpoint(sim));
-      PetscCall(IOWriteProbes(sim));
+      PetscCall(IOWriteProbes(&sim->out));
     }
     PetscCall(GuardCheckIO(sim)); /* output that could not be written ends the run */
     if (g->state == GUARD_STOP || g->state == GUARD_IO) break;
     if (shown) {
       last = t1;
       PetscCall(Progress(sim));
-      PetscCall(IOWriteProbes(sim)); /* probes.csv is at most a progress interval old */
+      PetscCall(IOWriteProbes(&sim->out)); /* probes.csv is at most a progress interval old */
       PetscCall(GuardCheckIO(sim));
     }
   }
@@ -519,13 +520,13 @@ PetscErrorCode SimRun(Sim sim)
   sim->wall_loop = t1 - sim->wall_start;
   if (sim->progress_every) PetscCall(Progress(sim));
   if (g->state == GUARD_STOP && getenv("SPHFSI_TEST_STOP_DELAY")) PetscCall(PetscSleep(atof(getenv("SPHFSI_TEST_STOP_DELAY")))); /* tests: a stop as slow as a large checkpoint's (tests/check_stop.sh) */
-  if (g->state == GUARD_STOP || (!g->state && sim->ckpt_interval > 0)) PetscCall(Checkpoint(sim));
+  if (g->state == GUARD_STOP || (!g->state && sim->out.ckpt_interval > 0)) PetscCall(Checkpoint(sim));
   PetscCall(GuardFinish(sim));
   if (sim->exit_status == SIM_EXIT_FAULT && sim->phys.isph) PetscCall(PPEFaultHint(sim->phys.isph->ppe));
-  PetscCall(IOWriteProbes(sim));
+  PetscCall(IOWriteProbes(&sim->out));
   PetscCall(SimTotalMass(sim, &sim->mass));
-  PetscCall(IOSummary(sim));
-  if (sim->decomp->log_stats) PetscCall(DecompWriteStats(sim->decomp, sim->outdir));
-  PetscCall(PetscPrintf(sim->comm, "sphfsi: %" PetscInt_FMT " steps in %.2f s (%.3g particle-steps/s); output in %s\n", sim->phys.step - step0, (double)sim->wall_loop, (double)((sim->particle_steps - ps0) / PetscMax(sim->wall_loop, 1e-9)), sim->outdir));
+  PetscCall(SimWriteSummary(sim));
+  if (sim->decomp->log_stats) PetscCall(DecompWriteStats(sim->decomp, sim->out.dir));
+  PetscCall(PetscPrintf(sim->comm, "sphfsi: %" PetscInt_FMT " steps in %.2f s (%.3g particle-steps/s); output in %s\n", sim->phys.step - step0, (double)sim->wall_loop, (double)((sim->particle_steps - ps0) / PetscMax(sim->wall_loop, 1e-9)), sim->out.dir));
   PetscFunctionReturn(PETSC_SUCCESS);
 }

@@ -3,15 +3,16 @@
 #pragma once
 #include "particles/grid.h"
 #include "physics/physics.h"
+#include "base/refdata.h"
+#include "io/output.h"
 
 typedef enum { STAGE_NEIGHBOUR, STAGE_HALO, STAGE_PHYSICS, STAGE_PPE_ASSEMBLY, STAGE_PPE_SOLVE, STAGE_SOLID, STAGE_OUTPUT, STAGE_GUARD, STAGE_COUNT } SimStage;
 
 typedef struct _p_Sim *Sim;
 typedef struct _SceneOps SceneOps;
 typedef struct _p_Guard *Guard;     /* guard.h */
-typedef struct _n_Series Series;    /* refdata.h */
 typedef struct _n_SizeGuard *SizeGuard; /* size_guard.h */
-#define SIM_MAX_KEEP 16             /* scene histories and scalars a checkpoint carries (SceneKeep*) */
+#define SIM_MAX_KEEP OUTPUT_MAX_KEPT /* scene histories and scalars a checkpoint carries (SceneKeep*; output.h) */
 
 struct _p_Sim {
   MPI_Comm    comm;
@@ -36,16 +37,10 @@ struct _p_Sim {
   PetscReal t_end, dt_fixed;
   PetscInt  max_steps;
   /* output */
-  char      outdir[PETSC_MAX_PATH_LEN];
-  PetscBool overwrite;      /* -overwrite: a new run may replace an earlier run's output (outdir.h) */
-  PetscBool lock_held;      /* rank 0 holds OUTDIR/sphfsi.lock */
-  PetscLogDouble lock_beat; /* when the lock was last refreshed */
+  Output    out;            /* the output's state: directory, intervals, snapshots, probe rows, checkpoints (output.h) */
   PetscBool help;           /* -help: list the options and stop before the particles are made */
   PetscBool ready;          /* SimSetUp completed (a stop during set-up leaves it false) */
-  PetscReal out_interval, next_out, probe_interval, next_probe;
-  PetscInt  snap, progress_every;
-  PetscReal *snaps;     /* (t, particles) of each snapshot: the outflow removes particles */
-  PetscInt   snap_cap;
+  PetscInt  progress_every;
   /* statistics */
   PetscLogDouble wall_start, wall_loop;
   PetscReal      t_start; /* simulated time when this run's loop began (after a restart, not 0) */
@@ -54,19 +49,11 @@ struct _p_Sim {
   PetscInt       next_id; /* global ids handed out by the scene */
   PetscReal      wall_used; /* time-loop wall time of the runs before a restart */
   /* checkpoint, restart, early stops and faults (checkpoint.h, guard.h) */
-  char      restart[PETSC_MAX_PATH_LEN]; /* -restart FILE; empty: a fresh start */
-  char      refdata_dir[PETSC_MAX_PATH_LEN];
-  char     *refdata_missing;             /* rank 0: reference files not found, "a.csv", "b.csv" (refdata.h) */
-  PetscReal ckpt_interval, next_ckpt;    /* physical time between checkpoints; 0 = none */
-  PetscInt  nckpt, ckpt_step;            /* checkpoints written by this run, step of the last complete one */
-  PetscReal ckpt_t;                      /* time of the last complete checkpoint (-1: none) */
+  RefData   refdata;                     /* where the scenes' reference files are, and those missing (refdata.h) */
+  PetscInt  ckpt_step;                   /* step of the last complete checkpoint */
   Guard     guard;
-  struct { PetscBool set; char msg[2 * PETSC_MAX_PATH_LEN]; } io_fault; /* output that could not be written (io_space.h: IOFault) */
   SizeGuard size_guard;                  /* the memory estimate against the node's (size_guard.h) */
   PetscInt  exit_status;                 /* 0, or SIM_EXIT_STOPPED / SIM_EXIT_FAULT (guard.h) */
-  /* every probe row so far (t and the scene's columns; rank 0), rewritten to probes.csv */
-  PetscReal *probe_rows;
-  PetscInt   nprobe_rows, cap_probe_rows;
   /* scene state that changes during a run (probe histories, running extremes): SceneKeep* */
   Series    *keep_series[SIM_MAX_KEEP];
   PetscReal *keep_reals[SIM_MAX_KEEP];
@@ -78,5 +65,11 @@ PetscErrorCode SimSetFromOptions(Sim sim);
 PetscErrorCode SimSetUp(Sim sim);
 PetscErrorCode SimRun(Sim sim);
 PetscErrorCode SimDestroy(Sim *sim);
+/* summary.json with how the run ended, as the guard says (io.h: IOSummary; collective). */
+PetscErrorCode SimWriteSummary(Sim sim);
+/* The driver's wiring of the output's context sim->out (sim_output.c): its handles, in SimCreate;
+ * the scene's name, probes, errors and kept state and the end time, after the scene's create. */
+PetscErrorCode SimWireOutput(Sim sim);
+PetscErrorCode SimWireOutputToScene(Sim sim);
 /* Total mass of owned fluid and solid particles, plus the fluid that left (collective). */
 PetscErrorCode SimTotalMass(Sim sim, PetscReal *M);

@@ -89,14 +89,14 @@ static PetscErrorCode Errors(Sim sim, FILE *f)
   PetscReal rms, max, g = -sim->phys.g[1], Tend = sim->phys.t * PetscSqrtReal(2 * g / c->a);
   PetscInt  n;
   PetscFunctionBeginUser;
-  PetscCall(RefDataLoad(sim, "martin_moyce1952_surge_n2eq2_a2.25in__pysph.csv", "T", "Z", &ref, &found));
+  PetscCall(RefDataLoad(&sim->refdata, "martin_moyce1952_surge_n2eq2_a2.25in__pysph.csv", "T", "Z", &ref, &found));
   if (found && f) {
     SeriesKeepBelow(&ref, c->L / c->a);
     PetscCall(SeriesCompare(&c->front, &ref, 1.0 / PetscSqrtReal(2 * g / c->a), c->a, 0, Tend, PETSC_TRUE, &rms, &max, &n));
     fprintf(f, "\"front_rel_err_rms\": %.6g, \"front_rel_err_max\": %.6g, \"front_points\": %d, \"front_T_max\": %.4g, ", (double)rms, (double)max, (int)n, (double)Tend);
   }
   PetscCall(SeriesDestroy(&ref));
-  PetscCall(RefDataLoad(sim, "martin_moyce1952_height_n2eq2_a2.25in_table6__ocellaris.csv", "tau", "H_over_H0", &ref, &found));
+  PetscCall(RefDataLoad(&sim->refdata, "martin_moyce1952_height_n2eq2_a2.25in_table6__ocellaris.csv", "tau", "H_over_H0", &ref, &found));
   if (found && f) {
     PetscCall(SeriesCompare(&c->height, &ref, 1.0 / PetscSqrtReal(g / c->a), c->H, 0, sim->phys.t * PetscSqrtReal(g / c->a), PETSC_TRUE, &rms, &max, &n));
     fprintf(f, "\"height_rel_err_rms\": %.6g, \"height_rel_err_max\": %.6g, \"height_points\": %d, ", (double)rms, (double)max, (int)n);

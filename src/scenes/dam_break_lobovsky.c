@@ -102,7 +102,7 @@ static PetscErrorCode Errors(Sim sim, FILE *f)
     PetscBool found;
     PetscReal rms, max;
     PetscInt  n;
-    PetscCall(RefDataLoad(sim, "lobovsky2014_H0.3_water_levels.csv", "t_star", GaugeCols[k], &ref, &found));
+    PetscCall(RefDataLoad(&sim->refdata, "lobovsky2014_H0.3_water_levels.csv", "t_star", GaugeCols[k], &ref, &found));
     if (found && f) {
       PetscCall(SeriesCompare(&c->level[k], &ref, ts, c->H, 0, PetscMin(tend, 8.0), PETSC_FALSE, &rms, &max, &n));
       fprintf(f, "\"H%d_err_rms\": %.6g, \"H%d_err_max\": %.6g, ", (int)k + 1, (double)rms, (int)k + 1, (double)max);
@@ -116,7 +116,7 @@ static PetscErrorCode Errors(Sim sim, FILE *f)
     PetscBool found;
     PetscReal rms, max, pe, te, ps, tsim;
     PetscInt  n;
-    PetscCall(RefDataLoad(sim, "lobovsky2014_H0.3_pressure_peak_event5.csv", "t_star", SensorCols[k], &ref, &found));
+    PetscCall(RefDataLoad(&sim->refdata, "lobovsky2014_H0.3_pressure_peak_event5.csv", "t_star", SensorCols[k], &ref, &found));
     if (found && f && tend > 2.0) {
       /* the impact: the first peak within t sqrt(g/H) in [2, 3.5] in both (sensor 4, higher up,
        * peaks later with the run-up: over the whole window) */

@@ -154,7 +154,7 @@ static PetscErrorCode Compare(Sim sim, FILE *f, const Series *s, const char *fil
   PetscReal rms, max;
   PetscInt  n;
   PetscFunctionBeginUser;
-  PetscCall(RefDataLoad(sim, file, "t_s", col, &ref, &found));
+  PetscCall(RefDataLoad(&sim->refdata, file, "t_s", col, &ref, &found));
   if (found && f) {
     PetscCall(SeriesCompare(s, &ref, 1.0, 1.0, 0, sim->phys.t, PETSC_FALSE, &rms, &max, &n));
     fprintf(f, "\"%s_err_rms\": %.6g, \"%s_err_max\": %.6g, \"%s_points\": %d, ", key, (double)rms, key, (double)max, key, (int)n);

@@ -470,7 +470,7 @@ PetscErrorCode ShapesFlowErrors(Sim sim, Shapes *S, FILE *f)
     if (S->drag.t[k] >= 0.9 * sim->phys.t) { mean += S->drag.y[k]; w += 1; }
   mean = w > 0 ? mean / w : vals[1];
   if (nobs == 1 && S->s[iw].g.type == GEOM_SPHERE) { /* one cylinder (sphere) a cell */
-    PetscCall(RefDataLoad(sim, D == 3 ? "zick_homsy1982_simple_cubic_sphere_array_drag.csv" : "sangani_acrivos1982_square_cylinder_array_drag.csv", "phi", D == 3 ? "K" : "drag", &tab, &found));
+    PetscCall(RefDataLoad(&sim->refdata, D == 3 ? "zick_homsy1982_simple_cubic_sphere_array_drag.csv" : "sangani_acrivos1982_square_cylinder_array_drag.csv", "phi", D == 3 ? "K" : "drag", &tab, &found));
     if (D == 3) fac = 6 * PETSC_PI * S->s[iw].g.r; /* K = drag / (6 pi a) */
     if (found) { ref = TableAt(&tab, phi); refl = TableAt(&tab, phil); }
   }

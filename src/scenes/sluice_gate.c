@@ -192,7 +192,7 @@ static PetscErrorCode LoadCc(Sim sim, PetscReal *Cc, PetscBool *found)
   PetscReal   buf[2] = {0, 0};
   FILE       *f;
   PetscFunctionBeginUser;
-  PetscCall(RefDataOpen(sim, file, &f)); /* a missing file is reported there */
+  PetscCall(RefDataOpen(&sim->refdata, file, &f)); /* a missing file is reported there */
   if (f) {
     while (fgets(line, sizeof(line), f)) {
       size_t n = strlen(key);

@@ -121,7 +121,7 @@ static PetscErrorCode Errors(Sim sim, FILE *f)
     PetscBool found;
     PetscReal rms, max;
     PetscInt  n;
-    PetscCall(RefDataLoad(sim, file, "time_s", HCols[k], &ref, &found));
+    PetscCall(RefDataLoad(&sim->refdata, file, "time_s", HCols[k], &ref, &found));
     if (found && f) {
       PetscCall(SeriesCompare(&c->level[k], &ref, 1.0, 1.0, 0, sim->phys.t, PETSC_FALSE, &rms, &max, &n)); /* in m */
       fprintf(f, "\"H%d_err_rms\": %.6g, \"H%d_err_max\": %.6g, ", (int)k + 1, (double)(rms / c->H), (int)k + 1, (double)(max / c->H));
@@ -133,7 +133,7 @@ static PetscErrorCode Errors(Sim sim, FILE *f)
     PetscBool found;
     PetscReal rms, max, pe, te, ps, ts, fe, tfe, fs, tfs;
     PetscInt  n;
-    PetscCall(RefDataLoad(sim, file, "time_s", PCols[k], &ref, &found));
+    PetscCall(RefDataLoad(&sim->refdata, file, "time_s", PCols[k], &ref, &found));
     if (found && f) {
       SeriesPeak(&ref, 0, sim->phys.t, &pe, &te);
       SeriesPeak(&c->pres[k], 0, sim->phys.t, &ps, &ts);

@@ -1,5 +1,27 @@
 #include "fluid/boundary.h"
 #include "base/dim.h"
+#include "particles/pair_loop.h"
+
+/* What a wall gathers over its fluid neighbours: sum W, sum p W, sum rho r W, sum v W. */
+typedef struct {
+  Particles        P;
+  const PetscReal *x, *v, *p, *rho;
+  PetscReal        sw, sp, sg[3], sv[3];
+} WallSum;
+
+/* Adami et al. 2012's sums, one fluid neighbour's share */
+SPH_INLINE void WallPair(void *ctx, PetscInt a, SPHPair pr, const PetscInt D)
+{
+  WallSum  *s = (WallSum *)ctx;
+  PetscInt  b = pr.b;
+  PetscReal d[3], w = pr.W;
+  if (!KindIsFluid(s->P->kind[b])) return;
+  VSub(s->x + D * a, s->x + D * b, d, D);
+  s->sw += w;
+  s->sp += s->p[b] * w;
+  for (PetscInt i = 0; i < D; i++) s->sg[i] += s->rho[b] * d[i] * w;
+  for (PetscInt i = 0; i < D; i++) s->sv[i] += s->v[D * b + i] * w;
+}
 
 /* Wall state from the fluid neighbours of each owned wall/dummy or solid particle: the no-slip
  * mirror velocity always, the Adami pressure and EOS density when `pressure` is set (WCSPH; with
@@ -10,7 +32,6 @@
 SPH_INLINE PetscErrorCode WallStateD(Physics *ph, PetscBool pressure, const PetscInt D)
 {
   Particles        P = ph->P;
-  Cells            C = ph->cells;
   const PetscReal *x = PField(P, FIELD_X), *v = PField(P, FIELD_V), *g = ph->g;
   PetscReal       *p = PField(P, FIELD_P), *rho = PField(P, FIELD_RHO), *vw = PField(P, FIELD_VWALL), *fv = PField(P, FIELD_FVIEW);
   const PetscReal *m = PField(P, FIELD_M);
@@ -18,24 +39,15 @@ SPH_INLINE PetscErrorCode WallStateD(Physics *ph, PetscBool pressure, const Pets
 
   PetscFunctionBeginUser;
   for (PetscInt a = 0; a < P->n; a++) {
-    PetscReal sw = 0, sp = 0, sg[3] = {0, 0, 0}, sv[3] = {0, 0, 0}, pg;
+    PetscReal pg, sw;
     PetscBool solid = KindIsSolid(P->kind[a]);
-    const PetscReal *wa;
+    WallSum   s = {.P = P, .x = x, .v = v, .p = p, .rho = rho};
     if (!(KindIsWall(P->kind[a]) || (solid && fv))) continue;
-    wa = CellsPairW(C, P, a);
-    for (PetscInt k = C->nstart[a]; k < C->nstart[a + 1]; k++) {
-      PetscInt  b = C->nbr[k];
-      PetscReal d[3], w = wa[k - C->nstart[a]];
-      if (!KindIsFluid(P->kind[b])) continue;
-      VSub(x + D * a, x + D * b, d, D);
-      sw += w;
-      sp += p[b] * w;
-      for (PetscInt i = 0; i < D; i++) sg[i] += rho[b] * d[i] * w;
-      for (PetscInt i = 0; i < D; i++) sv[i] += v[D * b + i] * w;
-    }
-    for (PetscInt i = 0; i < D; i++) vw[D * a + i] = sw > 0 ? 2.0 * v[D * a + i] - sv[i] / sw : v[D * a + i];
-    pg = sp + g[0] * sg[0] + g[1] * sg[1]; /* sum p_f W + g . sum rho_f r_wf W */
-    if (D == 3) pg += g[2] * sg[2];
+    SPHPairsW(ph->cells, P, a, PETSC_TRUE, WallPair, &s, D);
+    sw = s.sw;
+    for (PetscInt i = 0; i < D; i++) vw[D * a + i] = sw > 0 ? 2.0 * v[D * a + i] - s.sv[i] / sw : v[D * a + i];
+    pg = s.sp + g[0] * s.sg[0] + g[1] * s.sg[1]; /* sum p_f W + g . sum rho_f r_wf W */
+    if (D == 3) pg += g[2] * s.sg[2];
     if (solid) {
       if (pressure) fv[3 * a] = sw > 0 ? PetscMax(pg / sw, 0.0) : 0;
       fv[3 * a + 1] = pressure ? EOSDensity(&ph->fl, fv[3 * a]) : ph->fl.rho0;

@@ -6,6 +6,7 @@
 #include "fluid/fluid_terms.h"
 #include "fluid/shifting.h"
 #include "base/dim.h"
+#include "particles/pair_loop.h"
 
 const char *const ISPHFreeSurfaces[] = {"density", "divr", "ISPHFreeSurface", "ISPH_FS_", NULL};
 const char *const ISPHSources[]      = {"divergence", "density", "blend", "ISPHSource", "ISPH_SOURCE_", NULL};
@@ -135,35 +136,49 @@ PetscErrorCode ISPHTimeStep(Physics *ph, PetscReal *dt)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* What the predictor gathers over the pairs of fluid particle a (PredictorD). */
+typedef struct {
+  const FluidMaterial *fl;
+  Particles            P;
+  const PetscReal     *x, *v, *rho, *m, *h, *vw, *fv;
+  PetscReal            alpha;
+  PetscReal            ac[3];
+} PredictorSum;
+
+/* Eq. 16's pair against b's no-slip velocity, and Eq. 24's */
+SPH_INLINE void PredictorPair(void *ctx, PetscInt a, SPHPair p, const PetscInt D)
+{
+  PredictorSum        *s = (PredictorSum *)ctx;
+  const FluidMaterial *fl = s->fl;
+  const PetscReal     *v = s->v, *rho = s->rho;
+  PetscInt             b = p.b;
+  PetscReal            d[3], dvab[3], r2, hab = PairH(s->h[a], s->h[b]);
+  const PetscReal     *vb = KindIsBoundary(s->P->kind[b]) ? s->vw + D * b : v + D * b;
+  PetscReal            mb, rb, pb, c, av;
+  VSub(s->x + D * a, s->x + D * b, d, D);
+  r2 = VDot(d, d, D);
+  FluidView(s->fv, s->P->kind[b], b, s->m, rho, NULL, &mb, &rb, &pb);
+  c = LaminarViscosity(mb, fl->mu, rho[a], rb, p.F * r2, r2, hab, fl->eta, fl->lap_kappa);
+  VSub(v + D * a, v + D * b, dvab, D);
+  av = s->alpha > 0 ? mb * ArtificialViscosity(s->alpha, fl->c0, hab, 0.5 * (rho[a] + rb), VDot(dvab, d, D), r2) * p.F : 0;
+  for (PetscInt i = 0; i < D; i++) s->ac[i] += c * (v[D * a + i] - vb[i]) - av * d[i];
+}
+
 /* Eqs. 45-47: v* = v + dt (g + viscous Eq. 16) at r_t; r* = r + dt v.  Walls get
  * v* = v + dt g, the velocity whose projection with their Neumann pressure (ppe.h) leaves them
  * at rest, so that the velocity divergence sees no spurious source at a wall in hydrostatics. */
 SPH_INLINE PetscErrorCode PredictorD(Physics *ph, const PetscInt D)
 {
   Particles        P = ph->P;
-  Cells            C = ph->cells;
   const PetscReal *v = PField(P, FIELD_V), *rho = PField(P, FIELD_RHO), *m = PField(P, FIELD_M), *h = PField(P, FIELD_H), *vw = PField(P, FIELD_VWALL), *fv = PField(P, FIELD_FVIEW);
   PetscReal       *x = PField(P, FIELD_X), *vs = PField(P, FIELD_VSTAR);
   const PetscReal  dt = ph->dt, mu = ph->fl.mu, alpha = ph->isph->alpha;
 
   PetscFunctionBeginUser;
   for (PetscInt a = 0; a < P->n; a++) {
-    PetscReal ac[3] = {ph->g[0], ph->g[1], ph->g[2]};
-    if (KindIsFluid(P->kind[a]) && (mu > 0 || alpha > 0))
-      for (PetscInt k = C->nstart[a]; k < C->nstart[a + 1]; k++) {
-        PetscInt         b = C->nbr[k];
-        PetscReal        d[3], dvab[3], r2, hab = PairH(h[a], h[b]);
-        const PetscReal *vb = KindIsBoundary(P->kind[b]) ? vw + D * b : v + D * b;
-        PetscReal        mb, rb, pb, c, av;
-        VSub(x + D * a, x + D * b, d, D);
-        r2 = VDot(d, d, D);
-        FluidView(fv, P->kind[b], b, m, rho, NULL, &mb, &rb, &pb);
-        c = LaminarViscosity(mb, mu, rho[a], rb, C->f[k] * r2, r2, hab, ph->fl.eta, ph->fl.lap_kappa);
-        VSub(v + D * a, v + D * b, dvab, D);
-        av = alpha > 0 ? mb * ArtificialViscosity(alpha, ph->fl.c0, hab, 0.5 * (rho[a] + rb), VDot(dvab, d, D), r2) * C->f[k] : 0;
-        for (PetscInt i = 0; i < D; i++) ac[i] += c * (v[D * a + i] - vb[i]) - av * d[i];
-      }
-    for (PetscInt i = 0; i < D; i++) vs[D * a + i] = v[D * a + i] + dt * ac[i];
+    PredictorSum s = {.fl = &ph->fl, .P = P, .x = x, .v = v, .rho = rho, .m = m, .h = h, .vw = vw, .fv = fv, .alpha = alpha, .ac = {ph->g[0], ph->g[1], ph->g[2]}};
+    if (KindIsFluid(P->kind[a]) && (mu > 0 || alpha > 0)) SPHPairs(ph->cells, a, PredictorPair, &s, D);
+    for (PetscInt i = 0; i < D; i++) vs[D * a + i] = v[D * a + i] + dt * s.ac[i];
   }
   for (PetscInt a = 0; a < P->n; a++)
     if (KindIsFluid(P->kind[a]))
@@ -173,6 +188,28 @@ SPH_INLINE PetscErrorCode PredictorD(Physics *ph, const PetscInt D)
 
 static PetscErrorCode Predictor(Physics *ph) { return SPH_DIM_DISPATCH(ph->dim, PredictorD, ph); }
 
+/* What the summation density gathers over the pairs of fluid particle a. */
+typedef struct {
+  Particles        P;
+  const PetscReal *x, *m, *vs, *fv, *rho;
+  PetscReal        rho0;
+  PetscReal        sw, divr, div; /* sum m W, div r (unscaled), div v* */
+} DensitySum;
+
+/* Eq. 17's pair, div r's and Eq. 13's div v* */
+SPH_INLINE void DensityPair(void *ctx, PetscInt a, SPHPair p, const PetscInt D)
+{
+  DensitySum *s = (DensitySum *)ctx;
+  PetscInt    b = p.b;
+  PetscReal   d[3], dvs[3], F = p.F, mb, rb, pb;
+  VSub(s->x + D * a, s->x + D * b, d, D);
+  VSub(s->vs + D * b, s->vs + D * a, dvs, D);
+  FluidView(s->fv, s->P->kind[b], b, s->m, s->rho, NULL, &mb, &rb, &pb);
+  s->sw += mb * p.W;
+  s->divr -= mb / s->rho0 * F * VDot(d, d, D);
+  s->div += mb * F * VDot(dvs, d, D);
+}
+
 /* rho* by summation (Eq. 17) normalised by the full-lattice sum, walls at rho0; free surface by
  * rho* < beta rho0 (section 2.5) or div r < divr_min; and the PPE source of fluid rows,
  * (1 - w) div v* / dt (Eq. 13 with 1/rho_a, Eq. 48) + w (rho0 - rho*) / (rho0 dt^2) (density
@@ -181,7 +218,6 @@ SPH_INLINE PetscErrorCode DensityFreeSurfaceSourceD(Physics *ph, const PetscInt 
 {
   ISPH             s = ph->isph;
   Particles        P = ph->P;
-  Cells            C = ph->cells;
   const PetscReal *x = PField(P, FIELD_X), *m = PField(P, FIELD_M), *h = PField(P, FIELD_H), *vs = PField(P, FIELD_VSTAR), *fv = PField(P, FIELD_FVIEW);
   PetscReal       *rho = PField(P, FIELD_RHO), *fs = PField(P, FIELD_FS);
   const PetscReal  rho0 = ph->fl.rho0, dt = ph->dt, w = s->blend;
@@ -196,31 +232,20 @@ SPH_INLINE PetscErrorCode DensityFreeSurfaceSourceD(Physics *ph, const PetscInt 
     PetscCall(PetscMalloc1(s->cap_src, &s->src));
   }
   for (PetscInt a = 0; a < P->n; a++) {
-    PetscReal sw, divr = 0, div = 0;
     fs[a] = 0; s->src[a] = 0;
     if (!KindIsFluid(P->kind[a])) {
       if (!KindIsSolid(P->kind[a])) rho[a] = rho0; /* a solid keeps its own */
       continue;
     }
-    const PetscReal *wa = CellsPairW(C, P, a);
-    sw = m[a] * KernelW(&ph->kernel, 0, h[a]);
-    for (PetscInt k = C->nstart[a]; k < C->nstart[a + 1]; k++) {
-      PetscInt  b = C->nbr[k];
-      PetscReal d[3], dvs[3], F = C->f[k], mb, rb, pb;
-      VSub(x + D * a, x + D * b, d, D);
-      VSub(vs + D * b, vs + D * a, dvs, D);
-      FluidView(fv, P->kind[b], b, m, rho, NULL, &mb, &rb, &pb);
-      sw += mb * wa[k - C->nstart[a]];
-      divr -= mb / rho0 * F * VDot(d, d, D);
-      div += mb * F * VDot(dvs, d, D);
-    }
-    rho[a] = sw / s->lat_w;
-    divr *= 2.0 / s->lat_divr;
+    DensitySum sum = {.P = P, .x = x, .m = m, .vs = vs, .fv = fv, .rho = rho, .rho0 = rho0, .sw = m[a] * KernelW(&ph->kernel, 0, h[a])};
+    SPHPairsW(ph->cells, P, a, PETSC_TRUE, DensityPair, &sum, D);
+    rho[a] = sum.sw / s->lat_w;
+    sum.divr *= 2.0 / s->lat_divr;
     /* a confined flow (Taylor-Green, Poiseuille) has no free surface: a particle whose rho* dips
      * below beta rho0 there is disorder, and a P = 0 row inside the fluid would be wrong */
-    fs[a] = !confined && (s->fs == ISPH_FS_DENSITY ? rho[a] < s->beta * rho0 : divr < s->divr_min) ? 1.0 : 0.0;
+    fs[a] = !confined && (s->fs == ISPH_FS_DENSITY ? rho[a] < s->beta * rho0 : sum.divr < s->divr_min) ? 1.0 : 0.0;
     nfree += fs[a] > 0;
-    s->src[a] = (1 - w) * div / (rho[a] * dt) + w * (rho0 - rho[a]) / (rho0 * dt * dt);
+    s->src[a] = (1 - w) * sum.div / (rho[a] * dt) + w * (rho0 - rho[a]) / (rho0 * dt * dt);
   }
   PetscCall(MPIU_Allreduce(&nfree, &s->nfree, 1, MPIU_INT, MPI_SUM, ph->comm));
   PetscCall(HaloRefresh(ph->halo, P, 2, refresh));
@@ -229,6 +254,34 @@ SPH_INLINE PetscErrorCode DensityFreeSurfaceSourceD(Physics *ph, const PetscInt 
 
 static PetscErrorCode DensityFreeSurfaceSource(Physics *ph) { return SPH_DIM_DISPATCH(ph->dim, DensityFreeSurfaceSourceD, ph); }
 
+/* What the pressure gradient gathers over the pairs of fluid particle a. */
+typedef struct {
+  Particles        P;
+  const PetscReal *x, *m, *rho, *p, *fs, *fv;
+  PetscReal        rho0, pa;                  /* p_a / rho_a^2 */
+  PetscReal        gs[3], gd[3], M[6];        /* Eq. 14; the difference form and its correction matrix */
+  PetscBool        near, body;                /* a fluid neighbour on the free surface; a solid neighbour */
+} GradientSum;
+
+/* Eq. 14's pair, the difference form's and its correction matrix's */
+SPH_INLINE void PressureGradientPair(void *ctx, PetscInt a, SPHPair pr, const PetscInt D)
+{
+  GradientSum     *s = (GradientSum *)ctx;
+  const PetscReal *p = s->p, *fs = s->fs;
+  PetscInt         b = pr.b, kb = s->P->kind[b];
+  PetscReal        d[3], F = pr.F, mb, rb, pb, cs, vb;
+  VSub(s->x + D * a, s->x + D * b, d, D);
+  FluidView(s->fv, kb, b, s->m, s->rho, p, &mb, &rb, &pb);
+  cs = mb * (pb / (rb * rb) + s->pa) * F; vb = mb / s->rho0 * F;
+  for (PetscInt i = 0; i < D; i++) s->gs[i] += cs * d[i];
+  if (!(KindIsWall(kb) && fs[b] > 0)) { /* a dry wall (its pressure clipped, ppe.c) would tilt the plane fit */
+    for (PetscInt i = 0; i < D; i++) s->gd[i] += vb * (pb - p[a]) / s->rho0 * d[i];
+    SymOuterSubtract(s->M, vb, d, D); /* (x_b - x_a) (x) V_b grad_a W */
+  }
+  if (fs[b] > 0 && KindIsFluid(kb)) s->near = PETSC_TRUE;
+  if (KindIsSolid(kb)) s->body = PETSC_TRUE;
+}
+
 /* grad P / rho at particle a.  Eq. 14 (symmetric, conserves momentum; its rho_a cancels), or the
  * difference form with the kernel-gradient correction of Bonet & Lok 1999, exact for a linear P
  * on a truncated support: the free surface, where Eq. 14 sees half the gradient and lets surface
@@ -236,33 +289,48 @@ static PetscErrorCode DensityFreeSurfaceSource(Physics *ph) { return SPH_DIM_DIS
  * pass gathers both forms and whether a free-surface particle is in reach (hybrid). */
 SPH_INLINE void PressureGradient(Particles P, Cells C, PetscInt a, ISPHGradient mode, PetscBool solid_eq14, PetscReal cond, PetscReal rho0, PetscReal g[], const PetscInt D)
 {
-  const PetscReal *x = PField(P, FIELD_X), *m = PField(P, FIELD_M), *rho = PField(P, FIELD_RHO), *p = PField(P, FIELD_P), *fs = PField(P, FIELD_FS), *fv = PField(P, FIELD_FVIEW);
-  PetscReal        gs[3] = {0, 0, 0}, gd[3] = {0, 0, 0}, M[6] = {0, 0, 0, 0, 0, 0}, pa = p[a] / (rho[a] * rho[a]);
-  PetscBool        near = (PetscBool)(fs[a] > 0), corrected, body = PETSC_FALSE;
-  for (PetscInt k = C->nstart[a]; k < C->nstart[a + 1]; k++) {
-    PetscInt  b = C->nbr[k];
-    PetscReal d[3], F = C->f[k], mb, rb, pb, cs, vb;
-    VSub(x + D * a, x + D * b, d, D);
-    FluidView(fv, P->kind[b], b, m, rho, p, &mb, &rb, &pb);
-    cs = mb * (pb / (rb * rb) + pa) * F; vb = mb / rho0 * F;
-    for (PetscInt i = 0; i < D; i++) gs[i] += cs * d[i];
-    if (!(KindIsWall(P->kind[b]) && fs[b] > 0)) { /* a dry wall (its pressure clipped, ppe.c) would tilt the plane fit */
-      for (PetscInt i = 0; i < D; i++) gd[i] += vb * (pb - p[a]) / rho0 * d[i];
-      SymOuterSubtract(M, vb, d, D); /* (x_b - x_a) (x) V_b grad_a W */
-    }
-    if (fs[b] > 0 && KindIsFluid(P->kind[b])) near = PETSC_TRUE;
-    if (KindIsSolid(P->kind[b])) body = PETSC_TRUE;
-  }
-  corrected = (PetscBool)(mode == ISPH_GRAD_CORRECTED || (mode == ISPH_GRAD_HYBRID && near));
-  if (solid_eq14 && body && !near) corrected = PETSC_FALSE; /* the pair forces the body receives (FluidLoad) */
+  const PetscReal *rho = PField(P, FIELD_RHO), *p = PField(P, FIELD_P), *fs = PField(P, FIELD_FS);
+  GradientSum      s = {.P = P, .x = PField(P, FIELD_X), .m = PField(P, FIELD_M), .rho = rho, .p = p, .fs = fs, .fv = PField(P, FIELD_FVIEW), .rho0 = rho0, .pa = p[a] / (rho[a] * rho[a]), .near = (PetscBool)(fs[a] > 0)};
+  PetscBool        corrected;
+  SPHPairs(C, a, PressureGradientPair, &s, D);
+  corrected = (PetscBool)(mode == ISPH_GRAD_CORRECTED || (mode == ISPH_GRAD_HYBRID && s.near));
+  if (solid_eq14 && s.body && !s.near) corrected = PETSC_FALSE; /* the pair forces the body receives (FluidLoad) */
   if (!corrected) {
-    for (PetscInt i = 0; i < D; i++) g[i] = gs[i];
+    for (PetscInt i = 0; i < D; i++) g[i] = s.gs[i];
     return;
   }
   /* the correction only where M is well conditioned: its eigenvalues' ratio above cond (a thin jet's
    * M is nearly singular, and M^-1 amplifies the pressure's noise across it) */
-  if (!SymSolveConditioned(M, gd, cond, g, D))
-    for (PetscInt i = 0; i < D; i++) g[i] = gd[i];
+  if (!SymSolveConditioned(s.M, s.gd, cond, g, D))
+    for (PetscInt i = 0; i < D; i++) g[i] = s.gd[i];
+}
+
+/* What the wall contact gathers over the pairs of particle a: the wall's volume gradient, then the
+ * distance along its normal n. */
+typedef struct {
+  Particles        P;
+  const PetscReal *x, *m;
+  PetscReal        rho0;
+  PetscReal        g[3], n[3], dmin;
+} WallContactSum;
+
+/* V_w grad_a W_aw of a wall neighbour */
+SPH_INLINE void WallVolumePair(void *ctx, PetscInt a, SPHPair p, const PetscInt D)
+{
+  WallContactSum *s = (WallContactSum *)ctx;
+  PetscInt        b = p.b;
+  if (!KindIsWall(s->P->kind[b])) return;
+  for (PetscInt i = 0; i < D; i++) s->g[i] += s->m[b] / s->rho0 * p.F * (s->x[D * a + i] - s->x[D * b + i]);
+}
+
+/* (x_a - x_w) . n of a first-row wall neighbour */
+SPH_INLINE void WallDistancePair(void *ctx, PetscInt a, SPHPair p, const PetscInt D)
+{
+  WallContactSum *s = (WallContactSum *)ctx;
+  PetscReal       d[3];
+  if (s->P->kind[p.b] != KIND_WALL) return;
+  VSub(s->x + D * a, s->x + D * p.b, d, D);
+  s->dmin = PetscMin(s->dmin, VDot(d, s->n, D));
 }
 
 /* A free-surface particle has P = 0 in the pressure equation, so no pressure acts on it and a wall
@@ -273,26 +341,16 @@ SPH_INLINE void PressureGradient(Particles P, Cells C, PetscInt a, ISPHGradient 
  * (x_a - x_w) . n over the first-row (KIND_WALL) neighbours.  Walls are at rest. */
 SPH_INLINE void WallContact(Particles P, Cells C, PetscInt a, PetscReal rho0, PetscReal dxa, PetscReal v[], const PetscInt D)
 {
-  const PetscReal *x = PField(P, FIELD_X), *m = PField(P, FIELD_M);
-  PetscReal        g[3] = {0, 0, 0}, gn, n[3], dmin = PETSC_MAX_REAL, vn;
-  for (PetscInt k = C->nstart[a]; k < C->nstart[a + 1]; k++) {
-    PetscInt b = C->nbr[k];
-    if (!KindIsWall(P->kind[b])) continue;
-    for (PetscInt i = 0; i < D; i++) g[i] += m[b] / rho0 * C->f[k] * (x[D * a + i] - x[D * b + i]);
-  }
-  gn = PetscSqrtReal(VDot(g, g, D));
+  WallContactSum s = {.P = P, .x = PField(P, FIELD_X), .m = PField(P, FIELD_M), .rho0 = rho0, .dmin = PETSC_MAX_REAL};
+  PetscReal      gn, vn;
+  SPHPairs(C, a, WallVolumePair, &s, D);
+  gn = PetscSqrtReal(VDot(s.g, s.g, D));
   if (gn == 0) return;
-  for (PetscInt i = 0; i < D; i++) n[i] = -g[i] / gn;
-  for (PetscInt k = C->nstart[a]; k < C->nstart[a + 1]; k++) {
-    PetscInt  b = C->nbr[k];
-    PetscReal d[3];
-    if (P->kind[b] != KIND_WALL) continue;
-    VSub(x + D * a, x + D * b, d, D);
-    dmin = PetscMin(dmin, VDot(d, n, D));
-  }
-  vn = VDot(v, n, D);
-  if (dmin < dxa && vn < 0)
-    for (PetscInt i = 0; i < D; i++) v[i] -= vn * n[i];
+  for (PetscInt i = 0; i < D; i++) s.n[i] = -s.g[i] / gn;
+  SPHPairs(C, a, WallDistancePair, &s, D);
+  vn = VDot(v, s.n, D);
+  if (s.dmin < dxa && vn < 0)
+    for (PetscInt i = 0; i < D; i++) v[i] -= vn * s.n[i];
 }
 
 /* Eqs. 49, 51: v = v* - dt grad P / rho; acc = (v - v_t) / dt. */
@@ -322,13 +380,46 @@ SPH_INLINE PetscErrorCode CorrectorD(Physics *ph, const PetscInt D)
 
 static PetscErrorCode Corrector(Physics *ph) { return SPH_DIM_DISPATCH(ph->dim, CorrectorD, ph); }
 
+/* What the drift gathers over the pairs of fluid particle a. */
+typedef struct {
+  Particles        P;
+  const PetscReal *x, *v, *m, *rho, *fs;
+  PetscReal        rho0;
+  PetscBool        xsph, grad;        /* XSPH; the shift's velocity correction */
+  PetscReal        sx[3], c[3];       /* XSPH; grad C */
+  PetscBool        near;              /* a fluid neighbour on the free surface */
+  ShiftGrad        sg;
+} DriftSum;
+
+/* XSPH's pair (Eq. 44) and shifting's (shifting.h) */
+SPH_INLINE void DriftPair(void *ctx, PetscInt a, SPHPair p, const PetscInt D)
+{
+  DriftSum        *s = (DriftSum *)ctx;
+  const PetscReal *m = s->m, *rho = s->rho;
+  PetscInt         b = p.b;
+  PetscReal        d[3], dvab[3];
+  VSub(s->x + D * a, s->x + D * b, d, D);
+  VSub(s->v + D * a, s->v + D * b, dvab, D);
+  if (KindIsFluid(s->P->kind[b])) {
+    if (s->xsph) {
+      PetscReal w = XSPHWeight(p.W, m[b], rho[a], rho[b]);
+      for (PetscInt i = 0; i < D; i++) s->sx[i] -= w * dvab[i];
+    }
+    if (s->fs[b] > 0) s->near = PETSC_TRUE;
+    if (s->grad) ShiftGradAdd(&s->sg, m[b] / s->rho0, p.F, d, dvab, D);
+  }
+  if (!KindIsSolid(s->P->kind[b])) /* a solid's volume: its own mass over its own density */
+    for (PetscInt i = 0; i < D; i++) s->c[i] += m[b] / s->rho0 * p.F * d[i];
+  else
+    for (PetscInt i = 0; i < D; i++) s->c[i] += m[b] / rho[b] * p.F * d[i];
+}
+
 /* Position corrections as velocities: XSPH (Eq. 44) and Fickian shifting (shifting.h); a particle
  * is next to the free surface when a fluid neighbour is on it. */
 SPH_INLINE PetscErrorCode DriftD(Physics *ph, const PetscInt D)
 {
   ISPH             s = ph->isph;
   Particles        P = ph->P;
-  Cells            C = ph->cells;
   const PetscReal *x = PField(P, FIELD_X), *m = PField(P, FIELD_M), *rho = PField(P, FIELD_RHO), *v = PField(P, FIELD_V), *h = PField(P, FIELD_H), *fs = PField(P, FIELD_FS);
   PetscReal       *xs = PField(P, FIELD_XSPH);
   const PetscReal  dt = ph->dt, rho0 = ph->fl.rho0, eps = ph->fl.xsph;
@@ -339,36 +430,16 @@ SPH_INLINE PetscErrorCode DriftD(Physics *ph, const PetscInt D)
   if (s->shift > 0 && ph->fl.shift_correct) PetscCall(PetscCalloc1(D * P->n, &dv));
   if (eps != 0 || dv) PetscCall(HaloRefresh(ph->halo, P, 1, vel)); /* only XSPH and the shift's velocity correction read the neighbours' v */
   for (PetscInt a = 0; a < P->n; a++) {
-    PetscReal sx[3] = {0, 0, 0}, c[3] = {0, 0, 0};
-    PetscBool near_fs = PETSC_FALSE;
-    ShiftGrad sg = {{0}, {0}};
     for (PetscInt i = 0; i < D; i++) xs[D * a + i] = 0;
     if (!KindIsFluid(P->kind[a])) continue;
-    const PetscReal *wa = eps != 0 ? CellsPairW(C, P, a) : NULL; /* W only for XSPH */
-    for (PetscInt k = C->nstart[a]; k < C->nstart[a + 1]; k++) {
-      PetscInt  b = C->nbr[k];
-      PetscReal d[3], dvab[3];
-      VSub(x + D * a, x + D * b, d, D);
-      VSub(v + D * a, v + D * b, dvab, D);
-      if (KindIsFluid(P->kind[b])) {
-        if (wa) {
-          PetscReal w = XSPHWeight(wa[k - C->nstart[a]], m[b], rho[a], rho[b]);
-          for (PetscInt i = 0; i < D; i++) sx[i] -= w * dvab[i];
-        }
-        if (fs[b] > 0) near_fs = PETSC_TRUE;
-        if (dv) ShiftGradAdd(&sg, m[b] / rho0, C->f[k], d, dvab, D);
-      }
-      if (!KindIsSolid(P->kind[b])) /* a solid's volume: its own mass over its own density */
-        for (PetscInt i = 0; i < D; i++) c[i] += m[b] / rho0 * C->f[k] * d[i];
-      else
-        for (PetscInt i = 0; i < D; i++) c[i] += m[b] / rho[b] * C->f[k] * d[i];
-    }
-    for (PetscInt i = 0; i < D; i++) xs[D * a + i] = eps * sx[i];
-    ShiftVelocity(s->shift, fs[a] > 0 ? SHIFT_SURFACE : near_fs ? SHIFT_NEAR_SURFACE : SHIFT_BULK, h[a], v + D * a, dt, c, xs + D * a, D);
+    DriftSum sum = {.P = P, .x = x, .v = v, .m = m, .rho = rho, .fs = fs, .rho0 = rho0, .xsph = (PetscBool)(eps != 0), .grad = (PetscBool)!!dv};
+    SPHPairsW(ph->cells, P, a, sum.xsph, DriftPair, &sum, D); /* W only for XSPH */
+    for (PetscInt i = 0; i < D; i++) xs[D * a + i] = eps * sum.sx[i];
+    ShiftVelocity(s->shift, fs[a] > 0 ? SHIFT_SURFACE : sum.near ? SHIFT_NEAR_SURFACE : SHIFT_BULK, h[a], v + D * a, dt, sum.c, xs + D * a, D);
     if (dv) {
       PetscReal dr[3];
-      for (PetscInt i = 0; i < D; i++) dr[i] = dt * (xs[D * a + i] - eps * sx[i]);
-      ShiftCorrectVelocity(&sg, dr, dv + D * a, D);
+      for (PetscInt i = 0; i < D; i++) dr[i] = dt * (xs[D * a + i] - eps * sum.sx[i]);
+      ShiftCorrectVelocity(&sum.sg, dr, dv + D * a, D);
     }
   }
   if (dv) {

@@ -1,6 +1,7 @@
 #include "fluid/ppe.h"
 #include "base/options_used.h"
 #include "base/dim.h"
+#include "particles/pair_loop.h"
 #include "fluid/fluid_terms.h"
 #include "base/kernel.h"
 #include "fluid/boundary.h"
@@ -281,19 +282,29 @@ SPH_INLINE PetscReal MovingSolidRow(PPE ppe, Physics *ph, PetscInt a, PetscReal 
   return -va * (rho0 * VDot(gam, R, D) - rhs_last);
 }
 
+/* sum_f W_af (x_f - x_a) over the fluid neighbours f of wall a */
+typedef struct {
+  Particles        P;
+  const PetscReal *x;
+  PetscReal        n[3];
+} WallNormalSum;
+
+SPH_INLINE void WallNormalPair(void *ctx, PetscInt a, SPHPair p, const PetscInt D)
+{
+  WallNormalSum *s = (WallNormalSum *)ctx;
+  PetscInt       b = p.b;
+  if (!KindIsFluid(s->P->kind[b])) return;
+  for (PetscInt i = 0; i < D; i++) s->n[i] += p.W * (s->x[D * b + i] - s->x[D * a + i]);
+}
+
 /* The unit normal of wall (or solid) particle a into the fluid: towards the kernel-weighted centre
  * of its fluid neighbours (a flat wall's normal; a corner's bisector). */
 SPH_INLINE void WallNormal(Particles P, Cells C, PetscInt a, PetscReal n[], const PetscInt D)
 {
-  const PetscReal *x = PField(P, FIELD_X);
-  PetscReal        nn;
-  const PetscReal *wa = CellsPairW(C, P, a);
-  for (PetscInt i = 0; i < D; i++) n[i] = 0;
-  for (PetscInt k = C->nstart[a]; k < C->nstart[a + 1]; k++) {
-    PetscInt b = C->nbr[k];
-    if (!KindIsFluid(P->kind[b])) continue;
-    for (PetscInt i = 0; i < D; i++) n[i] += wa[k - C->nstart[a]] * (x[D * b + i] - x[D * a + i]);
-  }
+  WallNormalSum s = {.P = P, .x = PField(P, FIELD_X)};
+  PetscReal     nn;
+  SPHPairsW(C, P, a, PETSC_TRUE, WallNormalPair, &s, D);
+  for (PetscInt i = 0; i < D; i++) n[i] = s.n[i];
   nn = PetscSqrtReal(VDot(n, n, D));
   if (nn > 0)
     for (PetscInt i = 0; i < D; i++) n[i] /= nn;

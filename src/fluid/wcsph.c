@@ -6,6 +6,7 @@
 #include "solid/solid.h"
 #include "fluid/shifting.h"
 #include "base/dim.h"
+#include "particles/pair_loop.h"
 
 PetscErrorCode WCSPHSetFromOptions(Physics *ph)
 {
@@ -64,6 +65,46 @@ PetscErrorCode WCSPHPressure(Physics *ph)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* What the continuity loop gathers over the pairs of fluid particle a (ContinuityD). */
+typedef struct {
+  Particles        P;
+  const PetscReal *x, *v, *rho, *m, *h, *g, *fs;
+  PetscReal        dcoef, dhyd;                  /* delta-SPH: delta c0, rho0 / c0^2 */
+  PetscBool        shift, surf, grad, xsph;      /* shifting; its free-surface flags; its velocity correction; XSPH */
+  PetscReal        ra;                           /* rho_a */
+  PetscReal        dr, dd, divr, sxs[3], c[3];   /* div v, the diffusion, div r, XSPH, grad C */
+  PetscBool        near;                         /* a fluid neighbour on the free surface */
+  ShiftGrad        sg;
+} ContinuitySum;
+
+/* Eq. 18's pair, delta-SPH's, XSPH's (Eq. 44) and shifting's (shifting.h) */
+SPH_INLINE void ContinuityPair(void *ctx, PetscInt a, SPHPair p, const PetscInt D)
+{
+  ContinuitySum *s = (ContinuitySum *)ctx;
+  PetscInt       b = p.b;
+  PetscReal      d[3], dvab[3], F = p.F, vb = s->m[b] / s->rho[b];
+  VSub(s->x + D * a, s->x + D * b, d, D);
+  VSub(s->v + D * a, s->v + D * b, dvab, D);
+  s->dr += vb * F * VDot(dvab, d, D);
+  if (s->shift) {
+    for (PetscInt i = 0; i < D; i++) s->c[i] += vb * F * d[i];
+    s->divr -= vb * F * VDot(d, d, D);
+  }
+  if (!KindIsFluid(s->P->kind[b])) return;
+  if (s->grad) ShiftGradAdd(&s->sg, vb, F, d, dvab, D);
+  if (s->surf && s->fs[b] > 0) s->near = PETSC_TRUE;
+  if (s->dcoef > 0) {
+    PetscReal gd = -s->g[0] * d[0] - s->g[1] * d[1], dh;
+    if (D == 3) gd -= s->g[2] * d[2];
+    dh = s->dhyd * gd; /* rho_b^H - rho_a^H */
+    s->dd += PairH(s->h[a], s->h[b]) * vb * (-2.0 * F) * (s->rho[b] - s->ra - dh);
+  }
+  if (s->xsph) {
+    PetscReal w = XSPHWeight(p.W, s->m[b], s->ra, s->rho[b]);
+    for (PetscInt i = 0; i < D; i++) s->sxs[i] -= w * dvab[i];
+  }
+}
+
 /* drho/dt of owned fluid: continuity Eq. 18, optional delta-SPH diffusion (Molteni & Colagrossi
  * 2009, hydrostatic part removed); and the XSPH velocity correction Eq. 44 plus the shifting
  * velocity (shifting.h) over the coming step ph->dt.  With shifting, the free-surface flags (div r)
@@ -87,46 +128,19 @@ SPH_INLINE PetscErrorCode ContinuityD(Physics *ph, const PetscInt D)
   if (surf) PetscCall(PetscCalloc1(P->n, &surface));
   if (shift && fl->shift_correct) PetscCall(PetscCalloc1(D * P->n, &dv));
   for (PetscInt a = 0; a < P->n; a++) {
-    PetscReal dr = 0, dd = 0, sxs[3] = {0, 0, 0}, c[3] = {0, 0, 0}, divr = 0;
-    PetscBool near = PETSC_FALSE;
-    ShiftGrad sg = {{0}, {0}};
-    const PetscReal *xa = x + D * a, *va = v + D * a, ra = rho[a], *wa;
+    ContinuitySum s = {.P = P, .x = x, .v = v, .rho = rho, .m = m, .h = h, .g = g, .fs = fs, .dcoef = dcoef, .dhyd = dhyd, .shift = shift, .surf = surf, .grad = (PetscBool)!!dv, .xsph = (PetscBool)!!xs, .ra = rho[a]};
     if (!KindIsFluid(P->kind[a])) continue;
-    wa = xs ? CellsPairW(C, P, a) : NULL;
-    for (PetscInt k = C->nstart[a]; k < C->nstart[a + 1]; k++) {
-      PetscInt  b = C->nbr[k];
-      PetscReal d[3], dvab[3], F = C->f[k], vb = m[b] / rho[b];
-      VSub(xa, x + D * b, d, D);
-      VSub(va, v + D * b, dvab, D);
-      dr += vb * F * VDot(dvab, d, D);
-      if (shift) {
-        for (PetscInt i = 0; i < D; i++) c[i] += vb * F * d[i];
-        divr -= vb * F * VDot(d, d, D);
-      }
-      if (!KindIsFluid(P->kind[b])) continue;
-      if (dv) ShiftGradAdd(&sg, vb, F, d, dvab, D);
-      if (surf && fs[b] > 0) near = PETSC_TRUE;
-      if (dcoef > 0) {
-        PetscReal gd = -g[0] * d[0] - g[1] * d[1], dh;
-        if (D == 3) gd -= g[2] * d[2];
-        dh = dhyd * gd; /* rho_b^H - rho_a^H */
-        dd += PairH(h[a], h[b]) * vb * (-2.0 * F) * (rho[b] - ra - dh);
-      }
-      if (xs) {
-        PetscReal w = XSPHWeight(wa[k - C->nstart[a]], m[b], ra, rho[b]);
-        for (PetscInt i = 0; i < D; i++) sxs[i] -= w * dvab[i];
-      }
-    }
-    drho[a] = ra * dr + dcoef * dd;
+    SPHPairsW(C, P, a, s.xsph, ContinuityPair, &s, D);
+    drho[a] = s.ra * s.dr + dcoef * s.dd;
     if (xs)
-      for (PetscInt i = 0; i < D; i++) xs[D * a + i] = fl->xsph * sxs[i];
-    if (surf) surface[a] = (PetscBool)(2.0 * divr / fl->lat_divr < SHIFT_DIVR_SURFACE);
+      for (PetscInt i = 0; i < D; i++) xs[D * a + i] = fl->xsph * s.sxs[i];
+    if (surf) surface[a] = (PetscBool)(2.0 * s.divr / fl->lat_divr < SHIFT_DIVR_SURFACE);
     if (shift) {
       PetscReal s0[3], dr[3];
       for (PetscInt i = 0; i < D; i++) s0[i] = xs[D * a + i];
-      ShiftVelocity(fl->shift, surf && surface[a] ? SHIFT_SURFACE : near ? SHIFT_NEAR_SURFACE : SHIFT_BULK, h[a], v + D * a, ph->dt, c, xs + D * a, D);
+      ShiftVelocity(fl->shift, surf && surface[a] ? SHIFT_SURFACE : s.near ? SHIFT_NEAR_SURFACE : SHIFT_BULK, h[a], v + D * a, ph->dt, s.c, xs + D * a, D);
       for (PetscInt i = 0; i < D; i++) dr[i] = ph->dt * (xs[D * a + i] - s0[i]);
-      if (dv) ShiftCorrectVelocity(&sg, dr, dv + D * a, D);
+      if (dv) ShiftCorrectVelocity(&s.sg, dr, dv + D * a, D);
     }
   }
   if (dv) {
@@ -143,43 +157,57 @@ SPH_INLINE PetscErrorCode ContinuityD(Physics *ph, const PetscInt D)
 
 static PetscErrorCode Continuity(Physics *ph) { return SPH_DIM_DISPATCH(ph->dim, ContinuityD, ph); }
 
+/* What the momentum loop gathers over the pairs of fluid particle a (MomentumD). */
+typedef struct {
+  Physics             *ph;
+  Particles            P;
+  const PetscReal     *x, *v, *rho, *p, *m, *h, *vw, *fv, *nrm;
+  const FluidMaterial *fl;
+  PetscReal            ra, pa, ha; /* rho_a, p_a / rho_a^2, h_a */
+  PetscReal            ac[3];
+} MomentumSum;
+
+/* Eq. 19 with Eq. 24, Eq. 16 and Eq. 41's pair */
+SPH_INLINE void MomentumPair(void *ctx, PetscInt a, SPHPair pr, const PetscInt D)
+{
+  MomentumSum         *s = (MomentumSum *)ctx;
+  const FluidMaterial *fl = s->fl;
+  const PetscReal     *va = s->v + D * a;
+  PetscInt             b = pr.b;
+  PetscReal            d[3], dvab[3], r2, F = pr.F;
+  PetscReal            hab = PairH(s->ha, s->h[b]), rb, mb, pb, pterm, visc;
+  VSub(s->x + D * a, s->x + D * b, d, D);
+  VSub(va, s->v + D * b, dvab, D);
+  r2 = VDot(d, d, D);
+  FluidView(s->fv, s->P->kind[b], b, s->m, s->rho, s->p, &mb, &rb, &pb);
+  pterm = s->pa + pb / (rb * rb) + ArtificialViscosity(fl->alpha, fl->c0, hab, 0.5 * (s->ra + rb), VDot(dvab, d, D), r2);
+  visc  = LaminarViscosity(mb, fl->mu, s->ra, rb, F * r2, r2, hab, fl->eta, fl->lap_kappa);
+  if (s->nrm && KindIsSolid(s->P->kind[b])) {
+    PetscReal f = FSIRepulsion(VDot(dvab, s->nrm + D * b, D), PetscSqrtReal(r2) / (2 * hab), s->ph->dt);
+    f *= s->ph->solid->repulsion_scale; /* to the paper's 2D sum at 1.3 dx (solid.c); 1 there */
+    for (PetscInt i = 0; i < D; i++) s->ac[i] += f * s->nrm[D * b + i];
+  }
+  if (KindIsBoundary(s->P->kind[b])) VSub(va, s->vw + D * b, dvab, D);
+  for (PetscInt i = 0; i < D; i++) s->ac[i] += (visc * dvab[i] - mb * pterm * F * d[i]);
+}
+
 /* Acceleration of owned fluid: pressure Eq. 19 with artificial viscosity Eq. 24, laminar viscosity
  * Eq. 16 (walls and solids with their no-slip velocity), gravity; solids as the fluid sees them
  * (boundary.h) and, when on, the repulsive force Eq. 41 along their normals. */
 SPH_INLINE PetscErrorCode MomentumD(Physics *ph, const PetscInt D)
 {
-  Particles            P = ph->P;
-  Cells                C = ph->cells;
-  const PetscReal     *x = PField(P, FIELD_X), *v = PField(P, FIELD_V), *rho = PField(P, FIELD_RHO), *p = PField(P, FIELD_P);
-  const PetscReal     *m = PField(P, FIELD_M), *h = PField(P, FIELD_H), *vw = PField(P, FIELD_VWALL), *fv = PField(P, FIELD_FVIEW);
-  const PetscReal     *nrm = ph->solid && ph->solid->repulsion ? PField(P, FIELD_NORMAL) : NULL;
-  PetscReal           *acc = PField(P, FIELD_ACC);
-  const FluidMaterial *fl  = &ph->fl;
+  Particles        P = ph->P;
+  const PetscReal *x = PField(P, FIELD_X), *v = PField(P, FIELD_V), *rho = PField(P, FIELD_RHO), *p = PField(P, FIELD_P);
+  const PetscReal *m = PField(P, FIELD_M), *h = PField(P, FIELD_H), *vw = PField(P, FIELD_VWALL), *fv = PField(P, FIELD_FVIEW);
+  const PetscReal *nrm = ph->solid && ph->solid->repulsion ? PField(P, FIELD_NORMAL) : NULL;
+  PetscReal       *acc = PField(P, FIELD_ACC);
 
   PetscFunctionBeginUser;
   for (PetscInt a = 0; a < P->n; a++) {
-    PetscReal        ac[3] = {0, 0, 0};
-    const PetscReal *xa = x + D * a, *va = v + D * a, ra = rho[a], pa = p[a] / (ra * ra), ha = h[a];
+    MomentumSum s = {.ph = ph, .P = P, .x = x, .v = v, .rho = rho, .p = p, .m = m, .h = h, .vw = vw, .fv = fv, .nrm = nrm, .fl = &ph->fl, .ra = rho[a], .pa = p[a] / (rho[a] * rho[a]), .ha = h[a]};
     if (!KindIsFluid(P->kind[a])) continue;
-    for (PetscInt k = C->nstart[a]; k < C->nstart[a + 1]; k++) {
-      PetscInt  b = C->nbr[k];
-      PetscReal d[3], dvab[3], r2, F = C->f[k];
-      PetscReal hab = PairH(ha, h[b]), rb, mb, pb, pterm, visc;
-      VSub(xa, x + D * b, d, D);
-      VSub(va, v + D * b, dvab, D);
-      r2 = VDot(d, d, D);
-      FluidView(fv, P->kind[b], b, m, rho, p, &mb, &rb, &pb);
-      pterm = pa + pb / (rb * rb) + ArtificialViscosity(fl->alpha, fl->c0, hab, 0.5 * (ra + rb), VDot(dvab, d, D), r2);
-      visc  = LaminarViscosity(mb, fl->mu, ra, rb, F * r2, r2, hab, fl->eta, fl->lap_kappa);
-      if (nrm && KindIsSolid(P->kind[b])) {
-        PetscReal f = FSIRepulsion(VDot(dvab, nrm + D * b, D), PetscSqrtReal(r2) / (2 * hab), ph->dt);
-        f *= ph->solid->repulsion_scale; /* to the paper's 2D sum at 1.3 dx (solid.c); 1 there */
-        for (PetscInt i = 0; i < D; i++) ac[i] += f * nrm[D * b + i];
-      }
-      if (KindIsBoundary(P->kind[b])) VSub(va, vw + D * b, dvab, D);
-      for (PetscInt i = 0; i < D; i++) ac[i] += (visc * dvab[i] - mb * pterm * F * d[i]);
-    }
-    for (PetscInt i = 0; i < D; i++) acc[D * a + i] = ac[i] + ph->g[i];
+    SPHPairs(ph->cells, a, MomentumPair, &s, D);
+    for (PetscInt i = 0; i < D; i++) acc[D * a + i] = s.ac[i] + ph->g[i];
   }
   PetscFunctionReturn(PETSC_SUCCESS);
 }

@@ -11,6 +11,7 @@
 #include "scenes/scene.h"
 #include "base/options_used.h"
 #include "solid/solid.h"
+#include "particles/pair_loop.h"
 
 typedef enum { BLOCK_TRANSLATE = 0, BLOCK_ROTATE, BLOCK_STRETCH } BlockMotion;
 static const char *const BlockMotions[] = {"translate", "rotate", "stretch", "BlockMotion", "BLOCK_", NULL};
@@ -115,6 +116,21 @@ static PetscErrorCode Prescribe(Sim sim)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* The smallest squared distance from owned solid a to a solid neighbour (the scene is 2D) */
+typedef struct {
+  Particles        P;
+  const PetscReal *x;
+  PetscReal        d2;
+} NearestSum;
+
+SPH_INLINE void NearestPair(void *ctx, PetscInt a, SPHPair p, const PetscInt D)
+{
+  NearestSum *s = (NearestSum *)ctx;
+  PetscInt    b = p.b;
+  PetscReal   dx = s->x[D * a] - s->x[D * b], dy = s->x[D * a + 1] - s->x[D * b + 1];
+  if (KindIsSolid(s->P->kind[b])) s->d2 = PetscMin(s->d2, dx * dx + dy * dy);
+}
+
 static PetscErrorCode Probe(Sim sim, PetscReal *vals)
 {
   Block     *c = (Block *)sim->scene_ctx;
@@ -129,11 +145,9 @@ static PetscErrorCode Probe(Sim sim, PetscReal *vals)
   for (PetscInt a = 0; a < P->n; a++) {
     if (P->kind[a] != KIND_SOLID) continue;
     for (PetscInt i = 0; i < 3; i++) e = PetscMax(e, PetscAbsReal(S[3 * a + i] - ref[i]));
-    for (PetscInt k = C->nstart[a]; k < C->nstart[a + 1]; k++) {
-      PetscInt  b = C->nbr[k];
-      PetscReal dx = x[2 * a] - x[2 * b], dy = x[2 * a + 1] - x[2 * b + 1];
-      if (KindIsSolid(P->kind[b])) d2 = PetscMin(d2, dx * dx + dy * dy);
-    }
+    NearestSum ns = {.P = P, .x = x, .d2 = d2};
+    SPHPairs(C, a, NearestPair, &ns, 2);
+    d2 = ns.d2;
   }
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &e, 1, MPIU_REAL, MPIU_MAX, sim->comm));
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &d2, 1, MPIU_REAL, MPIU_MIN, sim->comm));

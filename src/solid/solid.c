@@ -8,6 +8,7 @@
 #include "fluid/isph.h"
 #include "solid/solid_impl.h"
 #include "base/dim.h"
+#include "particles/pair_loop.h"
 
 const char *const SolidGradients[]    = {"standard", "corrected", "SolidGradient", "SOLID_GRAD_", NULL};
 const char *const SolidFormulations[] = {"updated", "total", "SolidFormulation", "SOLID_", NULL};
@@ -152,30 +153,41 @@ PetscErrorCode SolidDestroy(Solid *s)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* -sum_b V_b grad_a W_ab over the solid neighbours b of a */
+typedef struct {
+  Particles        P;
+  const PetscReal *x, *m, *rho;
+  PetscReal        g[3];
+} NormalSum;
+
+SPH_INLINE void NormalPair(void *ctx, PetscInt a, SPHPair p, const PetscInt D)
+{
+  NormalSum *s = (NormalSum *)ctx;
+  PetscInt   b = p.b;
+  if (!KindIsSolid(s->P->kind[b])) return;
+  for (PetscInt i = 0; i < D; i++) s->g[i] -= s->m[b] / s->rho[b] * p.F * (s->x[D * a + i] - s->x[D * b + i]);
+}
+
 /* Outward normal of solid surface particles, -sum_b V_b grad_a W / |.| over solid neighbours (the
  * kernel form of Eqs. 42-43's tangent turned by 90 degrees: it needs no ordering of the surface
  * particles); zero inside the body. */
 SPH_INLINE PetscErrorCode NormalsD(Physics *ph, const PetscInt D)
 {
   Particles        P = ph->P;
-  Cells            C = ph->solid->nl;
   const PetscReal *x = PField(P, FIELD_X), *m = PField(P, FIELD_M), *rho = PField(P, FIELD_RHO), *h = PField(P, FIELD_H);
   PetscReal       *nrm = PField(P, FIELD_NORMAL);
   const FieldId    refresh[] = {FIELD_NORMAL};
 
   PetscFunctionBeginUser;
   for (PetscInt a = 0; a < P->n; a++) {
-    PetscReal g[3] = {0, 0, 0}, gn, dxa = h[a] / ph->kernel.h_factor;
+    NormalSum s = {.P = P, .x = x, .m = m, .rho = rho};
+    PetscReal gn, dxa = h[a] / ph->kernel.h_factor;
     for (PetscInt i = 0; i < D; i++) nrm[D * a + i] = 0;
     if (!KindIsSolid(P->kind[a])) continue;
-    for (PetscInt k = C->nstart[a]; k < C->nstart[a + 1]; k++) {
-      PetscInt b = C->nbr[k];
-      if (!KindIsSolid(P->kind[b])) continue;
-      for (PetscInt i = 0; i < D; i++) g[i] -= m[b] / rho[b] * C->f[k] * (x[D * a + i] - x[D * b + i]);
-    }
-    gn = PetscSqrtReal(VDot(g, g, D));
+    SPHPairs(ph->solid->nl, a, NormalPair, &s, D);
+    gn = PetscSqrtReal(VDot(s.g, s.g, D));
     if (gn * dxa > ph->solid->nrm_min)
-      for (PetscInt i = 0; i < D; i++) nrm[D * a + i] = g[i] / gn;
+      for (PetscInt i = 0; i < D; i++) nrm[D * a + i] = s.g[i] / gn;
   }
   PetscCall(HaloRefreshKinds(ph->halo, P, SolidKeep, 1, refresh));
   PetscFunctionReturn(PETSC_SUCCESS);

@@ -21,6 +21,7 @@
 #include "solid/solid_terms.h"
 #include "base/kernel.h"
 #include "particles/halo.h"
+#include "particles/pair_loop.h"
 
 /* The fit's basis size: D first-order terms and D (D + 1) / 2 second-order ones (5 or 9). */
 #define NB(D) ((D) + (D) * ((D) + 1) / 2)
@@ -79,26 +80,38 @@ static PetscBool ClampFace(Particles P, PetscInt b)
   return moved;
 }
 
+/* The nearest solid neighbour of clamp a in the reference configuration, within sqrt(best). */
+typedef struct {
+  Particles        P;
+  const PetscReal *X;
+  PetscReal        best;
+  PetscInt         nearest;
+} NearestSolid;
+
+SPH_INLINE void NearestSolidPair(void *ctx, PetscInt a, SPHPair p, const PetscInt D)
+{
+  NearestSolid *s = (NearestSolid *)ctx;
+  PetscReal     d[3], r2;
+  if (s->P->kind[p.b] != KIND_SOLID) return;
+  VSub(s->X + D * p.b, s->X + D * a, d, D);
+  r2 = VDot(d, d, D);
+  if (r2 < s->best * (1 - 1e-9)) { s->best = r2; s->nearest = p.b; }
+}
+
 SPH_INLINE PetscErrorCode ClampFacesD(Physics *ph, const PetscInt D)
 {
-  Cells            C = ph->solid->nl;
   Particles        P = ph->P;
   PetscReal       *X = PField(P, FIELD_X0);
   const PetscReal *h = PField(P, FIELD_H);
   const FieldId    x0[] = {FIELD_X0};
   PetscFunctionBeginUser;
   for (PetscInt a = 0; a < P->n; a++) {
-    PetscReal lim = 1.5 * h[a] / ph->kernel.h_factor, best = lim * lim, mid[3];
-    PetscInt  nearest = -1;
+    PetscReal    lim = 1.5 * h[a] / ph->kernel.h_factor, mid[3];
+    NearestSolid s   = {.P = P, .X = X, .best = lim * lim, .nearest = -1};
+    PetscInt     nearest;
     if (P->kind[a] != KIND_CLAMP || ClampFace(P, a)) continue;
-    for (PetscInt k = C->nstart[a]; k < C->nstart[a + 1]; k++) {
-      PetscInt  b = C->nbr[k];
-      PetscReal d[3], r2;
-      if (P->kind[b] != KIND_SOLID) continue;
-      VSub(X + D * b, X + D * a, d, D);
-      r2 = VDot(d, d, D);
-      if (r2 < best * (1 - 1e-9)) { best = r2; nearest = b; }
-    }
+    SPHPairs(ph->solid->nl, a, NearestSolidPair, &s, D);
+    nearest = s.nearest;
     if (nearest < 0) continue;
     for (PetscInt i = 0; i < D; i++) mid[i] = 0.5 * (X[D * a + i] + X[D * nearest + i]);
     for (PetscInt i = 0; i < D; i++) X[D * a + i] = mid[i];
@@ -157,6 +170,48 @@ static PetscErrorCode SolidSlots(Physics *ph, const PetscInt D)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* What the reference fit of particle a gathers over its pairs: each pair's reference F0 (into the
+ * solid's f0), their count, and the fit's moment matrix M. */
+typedef struct {
+  Physics         *ph;
+  Solid            s;
+  Particles        P;
+  const PetscReal *X, *m, *h;
+  PetscReal        rho0;
+  PetscInt         nb, nbmax, npair;
+  PetscReal        M[81];
+} ReferenceFit;
+
+/* F0 of clamp face point a's pair with solid b, which the face's reaction reads */
+SPH_INLINE void FacePair(void *ctx, PetscInt a, SPHPair p, const PetscInt D)
+{
+  ReferenceFit *r = (ReferenceFit *)ctx;
+  PetscInt      b = p.b;
+  PetscReal     d[3];
+  if (r->P->kind[b] != KIND_SOLID || !FaceInSupport(r->ph, b, a, D)) return;
+  VSub(r->X + D * b, r->X + D * a, d, D);
+  r->s->f0[p.k] = KernelF(&r->ph->kernel, PetscSqrtReal(VDot(d, d, D)), PairH(r->h[a], r->h[b]));
+  if (r->s->f0[p.k] != 0) r->npair++;
+}
+
+/* F0 of a pair of the fit and its share of M = sum_b w_ab p_ab p_ab^T */
+SPH_INLINE void FitMomentPair(void *ctx, PetscInt a, SPHPair pr, const PetscInt D)
+{
+  ReferenceFit *r = (ReferenceFit *)ctx;
+  Solid         s = r->s;
+  PetscInt      b = pr.b, k = pr.k;
+  PetscReal     d[3], w, p[9];
+  if (!InFit(s, r->P, a, b) || (r->P->kind[b] == KIND_CLAMP && !FaceInSupport(r->ph, a, b, D))) return;
+  VSub(r->X + D * b, r->X + D * a, d, D);
+  s->f0[k] = KernelF(&r->ph->kernel, PetscSqrtReal(VDot(d, d, D)), PairH(r->h[a], r->h[b]));
+  if (s->f0[k] == 0) return;
+  r->npair++;
+  w = -r->m[b] / r->rho0 * s->f0[k];
+  Basis(d, r->h[a], p, D);
+  for (PetscInt i = 0; i < r->nb; i++)
+    for (PetscInt j = 0; j < r->nb; j++) r->M[r->nbmax * i + j] += w * p[i] * p[j];
+}
+
 SPH_INLINE PetscErrorCode TotalPrepareD(Physics *ph, const PetscInt D)
 {
   Solid            s = ph->solid;
@@ -176,36 +231,21 @@ SPH_INLINE PetscErrorCode TotalPrepareD(Physics *ph, const PetscInt D)
   }
   PetscCall(SolidSlots(ph, D));
   for (PetscInt a = 0; a < P->n; a++) {
-    PetscReal M[81] = {0}, M2[81] = {0}, *G;
+    ReferenceFit     r = {.ph = ph, .s = s, .P = P, .X = X, .m = m, .h = h, .rho0 = rho0, .nb = nb, .nbmax = nbmax};
+    const PetscReal *M = r.M;
+    PetscReal        M2[81] = {0}, *G;
     if (!KindIsSolid(P->kind[a])) continue;
     G = s->G0 + n2 * s->slot[a];
     for (PetscInt k = C->nstart[a]; k < C->nstart[a + 1]; k++) s->f0[k] = 0;
     if (s->clamp_face && P->kind[a] == KIND_CLAMP) { /* no fit, no energy; a face point keeps its pairs with the solids that fit it, for the support's reaction */
       PetscCall(PetscArrayzero(G, n2));
       if (!ClampFace(P, a)) continue;
-      for (PetscInt k = C->nstart[a]; k < C->nstart[a + 1]; k++) {
-        PetscInt  b = C->nbr[k];
-        PetscReal d[3];
-        if (P->kind[b] != KIND_SOLID || !FaceInSupport(ph, b, a, D)) continue;
-        VSub(X + D * b, X + D * a, d, D);
-        s->f0[k] = KernelF(&ph->kernel, PetscSqrtReal(VDot(d, d, D)), PairH(h[a], h[b]));
-        if (s->f0[k] != 0) npair++;
-      }
+      SPHPairs(C, a, FacePair, &r, D);
+      npair += r.npair;
       continue;
     }
-    for (PetscInt k = C->nstart[a]; k < C->nstart[a + 1]; k++) {
-      PetscInt  b = C->nbr[k];
-      PetscReal d[3], w, p[9];
-      if (!InFit(s, P, a, b) || (P->kind[b] == KIND_CLAMP && !FaceInSupport(ph, a, b, D))) continue;
-      VSub(X + D * b, X + D * a, d, D);
-      s->f0[k] = KernelF(&ph->kernel, PetscSqrtReal(VDot(d, d, D)), PairH(h[a], h[b]));
-      if (s->f0[k] == 0) continue;
-      npair++;
-      w = -m[b] / rho0 * s->f0[k];
-      Basis(d, h[a], p, D);
-      for (PetscInt i = 0; i < nb; i++)
-        for (PetscInt j = 0; j < nb; j++) M[nbmax * i + j] += w * p[i] * p[j];
-    }
+    SPHPairs(C, a, FitMomentPair, &r, D);
+    npair += r.npair;
     if (nb == nbmax && Inverse(nbmax, nbmax, M, G)) continue;
     for (PetscInt i = 0; i < D; i++) /* order 1, or a corner with too few neighbours for order 2 */
       for (PetscInt j = 0; j < D; j++) M2[nbmax * i + j] = M[nbmax * i + j];
@@ -222,27 +262,39 @@ SPH_INLINE PetscErrorCode TotalPrepareD(Physics *ph, const PetscInt D)
 
 PetscErrorCode SolidTotalPrepare(Physics *ph) { return SPH_DIM_DISPATCH(ph->dim, TotalPrepareD, ph); }
 
+/* A_a = sum_b w_ab (x_b - x_a) (x) p_ab over the reference pairs of a */
+typedef struct {
+  Solid            s;
+  Particles        P;
+  const PetscReal *X, *x, *m, *h;
+  PetscReal        ir0;
+  PetscReal        A[27];
+} FitSum;
+
+SPH_INLINE void FitPair(void *ctx, PetscInt a, SPHPair p, const PetscInt D)
+{
+  FitSum          *f = (FitSum *)ctx;
+  const PetscReal *X = f->X, *x = f->x, *f0 = f->s->f0;
+  const PetscInt   nb = NB(D);
+  PetscInt         b = p.b;
+  PetscReal        w, pb[9], u[3], Xab[3];
+  if (f0[p.k] == 0) return; /* not a reference neighbour (or not a solid) */
+  w = -f->m[b] * f->ir0 * f0[p.k];
+  const PetscReal *xb = f->P->kind[b] == KIND_CLAMP && f->s->clamp_face ? X + D * b : x + D * b; /* a clamp face point does not move */
+  VSub(X + D * b, X + D * a, Xab, D);
+  Basis(Xab, f->h[a], pb, D);
+  for (PetscInt c = 0; c < D; c++) u[c] = w * (xb[c] - x[D * a + c]);
+  for (PetscInt i = 0; i < nb; i++)
+    for (PetscInt c = 0; c < D; c++) f->A[nb * c + i] += u[c] * pb[i];
+}
+
 /* A_a = sum_b w_ab (x_b - x_a) (x) p_ab (D x NB): F_a = A G01^T, the second derivatives A G2^T. */
 SPH_INLINE void Fit(Physics *ph, PetscInt a, PetscReal *A, const PetscInt D)
 {
-  Solid            s = ph->solid;
-  Cells            C = s->nl;
-  Particles        P = ph->P;
-  const PetscReal *X = PField(P, FIELD_X0), *x = PField(P, FIELD_X), *m = PField(P, FIELD_M), *h = PField(P, FIELD_H), ir0 = 1.0 / ph->sl.rho0;
-  const PetscInt   nb = NB(D);
-  for (PetscInt i = 0; i < D * nb; i++) A[i] = 0;
-  for (PetscInt k = C->nstart[a]; k < C->nstart[a + 1]; k++) {
-    PetscInt  b = C->nbr[k];
-    PetscReal w, pb[9], u[3], Xab[3];
-    if (s->f0[k] == 0) continue; /* not a reference neighbour (or not a solid) */
-    w = -m[b] * ir0 * s->f0[k];
-    const PetscReal *xb = P->kind[b] == KIND_CLAMP && s->clamp_face ? X + D * b : x + D * b; /* a clamp face point does not move */
-    VSub(X + D * b, X + D * a, Xab, D);
-    Basis(Xab, h[a], pb, D);
-    for (PetscInt c = 0; c < D; c++) u[c] = w * (xb[c] - x[D * a + c]);
-    for (PetscInt i = 0; i < nb; i++)
-      for (PetscInt c = 0; c < D; c++) A[nb * c + i] += u[c] * pb[i];
-  }
+  Particles P = ph->P;
+  FitSum    f = {.s = ph->solid, .P = P, .X = PField(P, FIELD_X0), .x = PField(P, FIELD_X), .m = PField(P, FIELD_M), .h = PField(P, FIELD_H), .ir0 = 1.0 / ph->sl.rho0};
+  SPHPairs(ph->solid->nl, a, FitPair, &f, D);
+  for (PetscInt i = 0; i < D * NB(D); i++) A[i] = f.A[i];
 }
 
 /* Energy density of a particle from its fit A and operator G (solid_terms.h: the neo-Hookean
@@ -335,12 +387,59 @@ SPH_INLINE PetscErrorCode DeformationAndStressD(Physics *ph, const PetscInt D)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* What the momentum of solid a gathers over its pairs (MomentumD). */
+typedef struct {
+  Physics             *ph;
+  Solid                s;
+  Particles            P;
+  const SolidMaterial *sm;
+  const PetscReal     *X, *x, *v, *m, *h, *rho, *F, *Q, *Qa;
+  const PetscInt      *slot;
+  PetscReal            ir0;
+  PetscReal            ac[3], fl[3], hg[3]; /* elastic and Eq. 24; the fluid's load; hourglass control */
+} MomentumSum;
+
+/* The elastic force of a reference pair and its hourglass control, Eq. 24 on a current pair, or a
+ * fluid neighbour's load */
+SPH_INLINE void MomentumPair(void *ctx, PetscInt a, SPHPair pr, const PetscInt D)
+{
+  MomentumSum         *ms = (MomentumSum *)ctx;
+  Solid                s = ms->s;
+  const SolidMaterial *sm = ms->sm;
+  const PetscReal     *X = ms->X, *x = ms->x, *m = ms->m, ir0 = ms->ir0;
+  const PetscInt       nb = NB(D), b = pr.b, k = pr.k;
+  PetscReal            d[3];
+  if (KindIsFluid(ms->P->kind[b])) { if (pr.F != 0) FluidLoad(ms->ph, a, b, pr.F, ms->fl, D); return; }
+  if (!KindIsSolid(ms->P->kind[b])) return;
+  VSub(x + D * a, x + D * b, d, D);
+  if (s->f0[k] != 0) {
+    const PetscReal *Qa = ms->Qa, *Qb = ms->Q + D * nb * ms->slot[b];
+    PetscReal        c = -m[b] * ir0 * s->f0[k] * ir0, Xab[3], Xba[3], pa[9], pb[9];
+    VSub(X + D * b, X + D * a, Xab, D);
+    for (PetscInt i = 0; i < D; i++) Xba[i] = -Xab[i];
+    Basis(Xab, ms->h[a], pa, D); /* the bond from a */
+    Basis(Xba, ms->h[b], pb, D); /* from b */
+    for (PetscInt q = 0; q < nb; q++)
+      for (PetscInt i = 0; i < D; i++) ms->ac[i] += c * (Qa[nb * i + q] * pa[q] - Qb[nb * i + q] * pb[q]);
+    if (s->hourglass > 0 && !(s->clamp_face && ms->P->kind[b] == KIND_CLAMP)) {
+      PetscReal xab[3];
+      for (PetscInt i = 0; i < D; i++) xab[i] = -d[i];
+      HourglassAcc(s->hourglass * sm->G * m[b] * ir0 * -s->f0[k] * ir0, ms->F + D * D * ms->slot[a], ms->F + D * D * ms->slot[b], Xab, xab, ms->hg, D);
+    }
+  }
+  if (pr.F != 0 && sm->alpha > 0) {
+    PetscReal dv[3], pi;
+    VSub(ms->v + D * a, ms->v + D * b, dv, D);
+    pi = ArtificialViscosity(sm->alpha, sm->c0, PairH(ms->h[a], ms->h[b]), 0.5 * (ms->rho[a] + ms->rho[b]), VDot(dv, d, D), VDot(d, d, D));
+    for (PetscInt i = 0; i < D; i++) ms->ac[i] -= m[b] * pi * pr.F * d[i];
+  }
+}
+
 /* Owned solids: the elastic forces over the reference pairs, hourglass control and Eq. 24 on
  * the current pairs, the fluid's loads; clamps held (solid_impl.h). */
 SPH_INLINE PetscErrorCode MomentumD(Physics *ph, const PetscInt D)
 {
   Solid                s = ph->solid;
-  Cells                C = s->nl;
   Particles            P = ph->P;
   const SolidMaterial *sm = &ph->sl;
   const PetscReal     *X = PField(P, FIELD_X0), *x = PField(P, FIELD_X), *v = PField(P, FIELD_V), *m = PField(P, FIELD_M), *h = PField(P, FIELD_H), *rho = PField(P, FIELD_RHO);
@@ -352,40 +451,11 @@ SPH_INLINE PetscErrorCode MomentumD(Physics *ph, const PetscInt D)
 
   PetscFunctionBeginUser;
   for (PetscInt a = 0; a < P->n; a++) {
-    PetscReal        ac[3] = {0, 0, 0}, fl[3] = {0, 0, 0}, hg[3] = {0, 0, 0};
-    const PetscReal *Qa;
     if (!KindIsSolid(P->kind[a])) continue;
-    Qa = Q + D * nb * slot[a];
-    for (PetscInt k = C->nstart[a]; k < C->nstart[a + 1]; k++) {
-      PetscInt  b = C->nbr[k];
-      PetscReal d[3];
-      if (KindIsFluid(P->kind[b])) { if (C->f[k] != 0) FluidLoad(ph, a, b, C->f[k], fl, D); continue; }
-      if (!KindIsSolid(P->kind[b])) continue;
-      VSub(x + D * a, x + D * b, d, D);
-      if (s->f0[k] != 0) {
-        const PetscReal *Qb = Q + D * nb * slot[b];
-        PetscReal        c = -m[b] * ir0 * s->f0[k] * ir0, Xab[3], Xba[3], pa[9], pb[9];
-        VSub(X + D * b, X + D * a, Xab, D);
-        for (PetscInt i = 0; i < D; i++) Xba[i] = -Xab[i];
-        Basis(Xab, h[a], pa, D); /* the bond from a */
-        Basis(Xba, h[b], pb, D); /* from b */
-        for (PetscInt q = 0; q < nb; q++)
-          for (PetscInt i = 0; i < D; i++) ac[i] += c * (Qa[nb * i + q] * pa[q] - Qb[nb * i + q] * pb[q]);
-        if (s->hourglass > 0 && !(s->clamp_face && P->kind[b] == KIND_CLAMP)) {
-          PetscReal xab[3];
-          for (PetscInt i = 0; i < D; i++) xab[i] = -d[i];
-          HourglassAcc(s->hourglass * sm->G * m[b] * ir0 * -s->f0[k] * ir0, F + D * D * slot[a], F + D * D * slot[b], Xab, xab, hg, D);
-        }
-      }
-      if (C->f[k] != 0 && sm->alpha > 0) {
-        PetscReal dv[3], pi;
-        VSub(v + D * a, v + D * b, dv, D);
-        pi = ArtificialViscosity(sm->alpha, sm->c0, PairH(h[a], h[b]), 0.5 * (rho[a] + rho[b]), VDot(dv, d, D), VDot(d, d, D));
-        for (PetscInt i = 0; i < D; i++) ac[i] -= m[b] * pi * C->f[k] * d[i];
-      }
-    }
-    for (PetscInt i = 0; i < D; i++) ac[i] += hg[i];
-    SolidAccelerate(ph, a, ac, fl, acc, support, load, D);
+    MomentumSum ms = {.ph = ph, .s = s, .P = P, .sm = sm, .X = X, .x = x, .v = v, .m = m, .h = h, .rho = rho, .F = F, .Q = Q, .Qa = Q + D * nb * slot[a], .slot = slot, .ir0 = ir0};
+    SPHPairs(s->nl, a, MomentumPair, &ms, D);
+    for (PetscInt i = 0; i < D; i++) ms.ac[i] += ms.hg[i];
+    SolidAccelerate(ph, a, ms.ac, ms.fl, acc, support, load, D);
   }
   for (PetscInt i = 0; i < D; i++) { s->support[i] = support[i]; s->load[i] = load[i]; }
   PetscFunctionReturn(PETSC_SUCCESS);
@@ -399,10 +469,27 @@ PetscErrorCode SolidTotalRates(Physics *ph)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* The hourglass energy of particle a's reference bonds (TotalStrainEnergyD) */
+typedef struct {
+  Solid            s;
+  const PetscReal *X, *x, *m, *Fa;
+  PetscReal        G, ir0;
+  PetscReal        e;
+} HourglassSum;
+
+SPH_INLINE void HourglassPair(void *ctx, PetscInt a, SPHPair p, const PetscInt D)
+{
+  HourglassSum *hs = (HourglassSum *)ctx;
+  PetscInt      b = p.b;
+  PetscReal     Xab[3], xab[3];
+  VSub(hs->X + D * b, hs->X + D * a, Xab, D);
+  VSub(hs->x + D * b, hs->x + D * a, xab, D);
+  if (hs->s->f0[p.k] != 0) hs->e += HourglassEnergy(0.5 * hs->s->hourglass * hs->G * hs->m[b] * hs->ir0 * -hs->s->f0[p.k], hs->Fa, Xab, xab, D);
+}
+
 SPH_INLINE PetscReal TotalStrainEnergyD(Physics *ph, const PetscInt D)
 {
   Solid            s = ph->solid;
-  Cells            C = s->nl;
   Particles        P = ph->P;
   const PetscReal *m = PField(P, FIELD_M), *X = PField(P, FIELD_X0), *x = PField(P, FIELD_X), *h = PField(P, FIELD_H);
   const PetscReal  ir0 = 1.0 / ph->sl.rho0;
@@ -413,14 +500,11 @@ SPH_INLINE PetscReal TotalStrainEnergyD(Physics *ph, const PetscInt D)
     if (!KindIsSolid(P->kind[a]) || (s->clamp_face && P->kind[a] == KIND_CLAMP)) continue;
     Fit(ph, a, A, D);
     if (!ParticleEnergy(&ph->sl, s->G0 + nb * nb * s->slot[a], A, h[a], s->quadrature ? dxa * dxa / 24 : 0, Fa, NULL, &ea, D)) ea = NAN;
-    if (s->hourglass > 0)
-      for (PetscInt k = C->nstart[a]; k < C->nstart[a + 1]; k++) {
-        PetscInt  b = C->nbr[k];
-        PetscReal Xab[3], xab[3];
-        VSub(X + D * b, X + D * a, Xab, D);
-        VSub(x + D * b, x + D * a, xab, D);
-        if (s->f0[k] != 0) ea += HourglassEnergy(0.5 * s->hourglass * ph->sl.G * m[b] * ir0 * -s->f0[k], Fa, Xab, xab, D);
-      }
+    if (s->hourglass > 0) {
+      HourglassSum hs = {.s = s, .X = X, .x = x, .m = m, .Fa = Fa, .G = ph->sl.G, .ir0 = ir0, .e = ea};
+      SPHPairs(s->nl, a, HourglassPair, &hs, D);
+      ea = hs.e;
+    }
     e += m[a] * ir0 * ea;
   }
   return e;

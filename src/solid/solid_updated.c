@@ -7,6 +7,7 @@
 #include "base/kernel.h"
 #include "fluid/operators.h"
 #include "particles/halo.h"
+#include "particles/pair_loop.h"
 
 /* Pressure (Eq. 20) and artificial stress (Eqs. 25-34) of owned and ghost solids: both are
  * functions of the particle's own density and stress, so ghosts compute theirs. */
@@ -52,6 +53,52 @@ SPH_INLINE void SymRow(const PetscReal *T, PetscInt i, PetscReal c, PetscReal s,
   for (PetscInt j = 0; j < D; j++) row[j] = (j == i ? T[SymIndex(i, j, D)] - c : T[SymIndex(i, j, D)]) * s;
 }
 
+/* What Eq. 23 gathers over the pairs of solid a (MomentumD). */
+typedef struct {
+  Physics             *ph;
+  Particles            P;
+  const SolidMaterial *sm;
+  const PetscReal     *x, *v, *rho, *p, *mass, *h, *S, *R, *L;
+  PetscReal            ra, wdx, sa[9]; /* rho_a, W(dx, h_a), sigma_a / rho_a^2 */
+  PetscReal            ac[3], fl[3];   /* the solid's own acceleration, the fluid's load */
+} MomentumSum;
+
+/* Eq. 23's pair with Eq. 24 and the artificial stress, or the fluid's load */
+SPH_INLINE void MomentumPair(void *ctx, PetscInt a, SPHPair pr, const PetscInt D)
+{
+  MomentumSum         *s = (MomentumSum *)ctx;
+  const SolidMaterial *m = s->sm;
+  const PetscReal     *x = s->x, *v = s->v, *S = s->S, *R = s->R, *L = s->L, *mass = s->mass;
+  const PetscInt       NS = D * (D + 1) / 2;
+  PetscInt             b = pr.b;
+  PetscReal            d[3], g[3], dv[3], r2, rb = s->rho[b], ib = 1.0 / (rb * rb), ga[3], gb[3], gm[3], pi;
+  if (pr.F == 0) return; /* in the skin */
+  if (KindIsFluid(s->P->kind[b])) { FluidLoad(s->ph, a, b, pr.F, s->fl, D); return; }
+  if (!KindIsSolid(s->P->kind[b])) return;
+  VSub(x + D * a, x + D * b, d, D);
+  VSub(v + D * a, v + D * b, dv, D);
+  r2 = VDot(d, d, D);
+  for (PetscInt i = 0; i < D; i++) g[i] = pr.F * d[i];
+  pi = ArtificialViscosity(m->alpha, m->c0, PairH(s->h[a], s->h[b]), 0.5 * (s->ra + rb), VDot(dv, d, D), r2);
+  Apply(L ? L + D * D * a : NULL, g, ga, D);
+  Apply(L ? L + D * D * b : NULL, g, gb, D);
+  for (PetscInt i = 0; i < D; i++) gm[i] = 0.5 * (ga[i] + gb[i]);
+  /* sigma_a / rho_a^2 through ga, sigma_b / rho_b^2 through gb, Pi (and R) through the mean */
+  for (PetscInt i = 0; i < D; i++) {
+    PetscReal sb[3];
+    SymRow(S + NS * b, i, s->p[b], 1.0, sb, D);
+    s->ac[i] += mass[b] * (VDot(s->sa + D * i, ga, D) + VDot(sb, gb, D) * ib - pi * gm[i]);
+  }
+  if (R) {
+    PetscReal fn = PetscPowReal(pr.W / s->wdx, m->n), t[6], row[3];
+    for (PetscInt q = 0; q < NS; q++) t[q] = fn * (R[NS * a + q] + R[NS * b + q]);
+    for (PetscInt i = 0; i < D; i++) {
+      SymRow(t, i, 0.0, 1.0, row, D);
+      s->ac[i] += mass[b] * VDot(row, gm, D);
+    }
+  }
+}
+
 /* Eq. 23 for owned solids over their solid neighbours: stress, artificial viscosity (Eq. 24) and
  * artificial stress; the fluid's loads (FluidLoad); gravity.  Walls do not act; clamps do not
  * accelerate: what would, the support takes (Solid.support).  With the corrected gradient each
@@ -59,50 +106,21 @@ SPH_INLINE void SymRow(const PetscReal *T, PetscInt i, PetscReal c, PetscReal s,
  * sigma_b L_b grad W (pair terms with the mean), which keeps the pair forces opposite. */
 SPH_INLINE PetscErrorCode MomentumD(Physics *ph, const PetscInt D)
 {
-  Particles            P = ph->P;
-  Cells                C = ph->solid->nl;
-  const SolidMaterial *m = &ph->sl;
-  const PetscReal     *x = PField(P, FIELD_X), *v = PField(P, FIELD_V), *rho = PField(P, FIELD_RHO), *p = PField(P, FIELD_P);
-  const PetscReal     *mass = PField(P, FIELD_M), *h = PField(P, FIELD_H), *S = PField(P, FIELD_S), *R = ph->solid->R, *L = PField(P, FIELD_KCORR);
-  PetscReal           *acc = PField(P, FIELD_ACC), support[3] = {0, 0, 0}, load[3] = {0, 0, 0};
-  const PetscInt       NS = D * (D + 1) / 2;
+  Particles        P = ph->P;
+  const PetscReal *x = PField(P, FIELD_X), *v = PField(P, FIELD_V), *rho = PField(P, FIELD_RHO), *p = PField(P, FIELD_P);
+  const PetscReal *mass = PField(P, FIELD_M), *h = PField(P, FIELD_H), *S = PField(P, FIELD_S), *R = ph->solid->R, *L = PField(P, FIELD_KCORR);
+  PetscReal       *acc = PField(P, FIELD_ACC), support[3] = {0, 0, 0}, load[3] = {0, 0, 0};
+  const PetscInt   NS = D * (D + 1) / 2;
 
   PetscFunctionBeginUser;
   for (PetscInt a = 0; a < P->n; a++) {
-    PetscReal ac[3] = {0, 0, 0}, ra = rho[a], ia = 1.0 / (ra * ra), wdx, fl[3] = {0, 0, 0}, sa[9];
+    MomentumSum s = {.ph = ph, .P = P, .sm = &ph->sl, .x = x, .v = v, .rho = rho, .p = p, .mass = mass, .h = h, .S = S, .R = R, .L = L, .ra = rho[a]};
+    PetscReal   ia = 1.0 / (s.ra * s.ra);
     if (!KindIsSolid(P->kind[a])) continue;
-    for (PetscInt i = 0; i < D; i++) SymRow(S + NS * a, i, p[a], ia, sa + D * i, D); /* sigma_a / rho_a^2 */
-    wdx = R ? KernelW(&ph->kernel, h[a] / ph->kernel.h_factor, h[a]) : 1;
-    for (PetscInt k = C->nstart[a]; k < C->nstart[a + 1]; k++) {
-      PetscInt  b = C->nbr[k];
-      PetscReal d[3], g[3], dv[3], r2, rb = rho[b], ib = 1.0 / (rb * rb), ga[3], gb[3], gm[3], pi;
-      if (C->f[k] == 0) continue; /* in the skin */
-      if (KindIsFluid(P->kind[b])) { FluidLoad(ph, a, b, C->f[k], fl, D); continue; }
-      if (!KindIsSolid(P->kind[b])) continue;
-      VSub(x + D * a, x + D * b, d, D);
-      VSub(v + D * a, v + D * b, dv, D);
-      r2 = VDot(d, d, D);
-      for (PetscInt i = 0; i < D; i++) g[i] = C->f[k] * d[i];
-      pi = ArtificialViscosity(m->alpha, m->c0, PairH(h[a], h[b]), 0.5 * (ra + rb), VDot(dv, d, D), r2);
-      Apply(L ? L + D * D * a : NULL, g, ga, D);
-      Apply(L ? L + D * D * b : NULL, g, gb, D);
-      for (PetscInt i = 0; i < D; i++) gm[i] = 0.5 * (ga[i] + gb[i]);
-      /* sigma_a / rho_a^2 through ga, sigma_b / rho_b^2 through gb, Pi (and R) through the mean */
-      for (PetscInt i = 0; i < D; i++) {
-        PetscReal sb[3];
-        SymRow(S + NS * b, i, p[b], 1.0, sb, D);
-        ac[i] += mass[b] * (VDot(sa + D * i, ga, D) + VDot(sb, gb, D) * ib - pi * gm[i]);
-      }
-      if (R) {
-        PetscReal fn = PetscPowReal(C->w[k] / wdx, m->n), t[6], row[3];
-        for (PetscInt q = 0; q < NS; q++) t[q] = fn * (R[NS * a + q] + R[NS * b + q]);
-        for (PetscInt i = 0; i < D; i++) {
-          SymRow(t, i, 0.0, 1.0, row, D);
-          ac[i] += mass[b] * VDot(row, gm, D);
-        }
-      }
-    }
-    SolidAccelerate(ph, a, ac, fl, acc, support, load, D);
+    for (PetscInt i = 0; i < D; i++) SymRow(S + NS * a, i, p[a], ia, s.sa + D * i, D); /* sigma_a / rho_a^2 */
+    s.wdx = R ? KernelW(&ph->kernel, h[a] / ph->kernel.h_factor, h[a]) : 1;
+    SPHPairsW(ph->solid->nl, P, a, (PetscBool)!!R, MomentumPair, &s, D);
+    SolidAccelerate(ph, a, s.ac, s.fl, acc, support, load, D);
   }
   for (PetscInt i = 0; i < D; i++) { ph->solid->support[i] = support[i]; ph->solid->load[i] = load[i]; }
   PetscFunctionReturn(PETSC_SUCCESS);
@@ -121,26 +139,35 @@ PetscErrorCode SolidUpdatedRates(Physics *ph)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* sum_b V_b (v_b - v_a) (x) L_a grad_a W_ab over the solid neighbours of a */
+typedef struct {
+  Particles        P;
+  const PetscReal *x, *v, *rho, *m, *L;
+  PetscReal        g[9];
+} VelocityGradientSum;
+
+SPH_INLINE void VelocityGradientPair(void *ctx, PetscInt a, SPHPair p, const PetscInt D)
+{
+  VelocityGradientSum *s = (VelocityGradientSum *)ctx;
+  PetscInt             b = p.b;
+  PetscReal            gw[3], fd[3], V, dv[3];
+  if (!KindIsSolid(s->P->kind[b]) || p.F == 0) return;
+  for (PetscInt i = 0; i < D; i++) fd[i] = p.F * (s->x[D * a + i] - s->x[D * b + i]);
+  Apply(s->L ? s->L + D * D * a : NULL, fd, gw, D);
+  V = s->m[b] / s->rho[b];
+  for (PetscInt i = 0; i < D; i++) dv[i] = V * (s->v[D * b + i] - s->v[D * a + i]);
+  for (PetscInt i = 0; i < D; i++)
+    for (PetscInt j = 0; j < D; j++) s->g[D * i + j] += dv[i] * gw[j];
+}
+
 /* Velocity gradient g_ij = dv_i/dx_j (row-major) of owned solid a from its solid neighbours:
  * Eqs. 35-38 use g = sum V_b (v_b - v_a) (x) grad_a W; corrected, grad_a W becomes L_a grad_a W. */
 SPH_INLINE void VelocityGradient(Physics *ph, PetscInt a, PetscReal *g, const PetscInt D)
 {
-  Particles        P = ph->P;
-  Cells            C = ph->solid->nl;
-  const PetscReal *x = PField(P, FIELD_X), *v = PField(P, FIELD_V), *rho = PField(P, FIELD_RHO), *m = PField(P, FIELD_M), *L = PField(P, FIELD_KCORR);
-
-  for (PetscInt i = 0; i < D * D; i++) g[i] = 0;
-  for (PetscInt k = C->nstart[a]; k < C->nstart[a + 1]; k++) {
-    PetscInt  b = C->nbr[k];
-    PetscReal gw[3], fd[3], V, dv[3];
-    if (!KindIsSolid(P->kind[b]) || C->f[k] == 0) continue;
-    for (PetscInt i = 0; i < D; i++) fd[i] = C->f[k] * (x[D * a + i] - x[D * b + i]);
-    Apply(L ? L + D * D * a : NULL, fd, gw, D);
-    V = m[b] / rho[b];
-    for (PetscInt i = 0; i < D; i++) dv[i] = V * (v[D * b + i] - v[D * a + i]);
-    for (PetscInt i = 0; i < D; i++)
-      for (PetscInt j = 0; j < D; j++) g[D * i + j] += dv[i] * gw[j];
-  }
+  Particles           P = ph->P;
+  VelocityGradientSum s = {.P = P, .x = PField(P, FIELD_X), .v = PField(P, FIELD_V), .rho = PField(P, FIELD_RHO), .m = PField(P, FIELD_M), .L = PField(P, FIELD_KCORR)};
+  SPHPairs(ph->solid->nl, a, VelocityGradientPair, &s, D);
+  for (PetscInt i = 0; i < D * D; i++) g[i] = s.g[i];
 }
 
 /* Density (continuity, Eq. 18 as -rho div v) and deviatoric stress (Eqs. 35-40) of owned solids

@@ -25,6 +25,8 @@ PetscErrorCode SimCreate(MPI_Comm comm, Sim *sim)
   PetscCallMPI(MPI_Comm_rank(comm, &s->rank));
   PetscCallMPI(MPI_Comm_size(comm, &s->size));
   s->refdata.rank   = s->rank;
+  s->counter.add      = SizeGuardAdd; /* the scenes count what they add through these (scene layer) */
+  s->counter.counting = SizeGuardCounting;
   s->t_end          = -1;
   s->max_steps      = PETSC_MAX_INT;
   s->progress_every = 5;

@@ -53,6 +53,10 @@ struct _p_Sim {
   PetscInt  ckpt_step;                   /* step of the last complete checkpoint */
   Guard     guard;
   SizeGuard size_guard;                  /* the memory estimate against the node's (size_guard.h) */
+  struct {                               /* the scenes' builders count what they add through these (the driver wires the size guard) */
+    PetscErrorCode (*add)(Sim sim, ParticleKind kind, PetscInt64 n); /* n particles of a kind: counted, or checked against the memory */
+    PetscBool (*counting)(Sim sim);                                  /* a dry count: count, add nothing */
+  } counter;
   PetscInt  exit_status;                 /* 0, or SIM_EXIT_STOPPED / SIM_EXIT_FAULT (guard.h) */
   /* scene state that changes during a run (probe histories, running extremes): SceneKeep* */
   Series    *keep_series[SIM_MAX_KEEP];

@@ -1,6 +1,5 @@
 #include "scenes/scene.h"
 #include "base/kernel.h"
-#include "run/size_guard.h"
 
 extern const SceneOps SceneHydrostatic, SceneDamBreak, SceneDamBreakLobovsky, SceneSluiceGate, SceneTaylorGreen, ScenePoiseuille, SceneOscillatingPlate, SceneSolidBlock, SceneElasticGate, SceneWaterOnPlate, SceneSphericTest2;
 extern const SceneOps SceneParticlesFile;
@@ -50,11 +49,11 @@ PetscErrorCode SceneListNames(char *buf, size_t len)
 PetscErrorCode SceneCount(Sim sim, ParticleKind kind, PetscInt64 n)
 {
   PetscFunctionBeginUser;
-  PetscCall(SizeGuardAdd(sim, kind, n));
+  PetscCall(sim->counter.add(sim, kind, n));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscBool SceneCounting(Sim sim) { return SizeGuardCounting(sim); }
+PetscBool SceneCounting(Sim sim) { return sim->counter.counting(sim); }
 
 /* One particle at p (coordinates of the layout) spaced s[d] along each of its directions: mass rho0
  * times their product (and dz when extruding); smoothing length from the nominal spacing dx; the next id. */
@@ -62,8 +61,8 @@ static PetscErrorCode AddPointSpaced(Sim sim, ParticleKind kind, const PetscReal
 {
   PetscReal m = rho0 * s[0] * s[1];
   PetscFunctionBeginUser;
-  PetscCall(SizeGuardAdd(sim, kind, sim->extrude.n > 0 ? sim->extrude.n : 1)); /* counted, or checked against the memory */
-  if (SizeGuardCounting(sim)) PetscFunctionReturn(PETSC_SUCCESS);
+  PetscCall(SceneCount(sim, kind, sim->extrude.n > 0 ? sim->extrude.n : 1)); /* counted, or checked against the memory */
+  if (SceneCounting(sim)) PetscFunctionReturn(PETSC_SUCCESS);
   if (sim->extrude.n > 0) { /* p is a point of the 2D layout */
     m *= sim->extrude.dz;
     for (PetscInt k = 0; k < sim->extrude.n; k++) {
@@ -148,9 +147,9 @@ static PetscErrorCode AddBlockSpaced(Sim sim, ParticleKind kind, const PetscReal
   const PetscReal jit = kind == KIND_FLUID ? sim->start_jitter * dx : 0;
   const PetscInt  D = SceneLayoutDim(sim), nz = D == 3 ? n[2] : 1;
   PetscFunctionBeginUser;
-  if (SizeGuardCounting(sim)) { /* the size guard's dry count: the whole block at once */
+  if (SceneCounting(sim)) { /* the size guard's dry count: the whole block at once */
     const PetscInt64 pts = (PetscInt64)PetscMax(n[0], 0) * PetscMax(n[1], 0) * PetscMax(nz, 0);
-    PetscCall(SizeGuardAdd(sim, kind, pts * (sim->extrude.n > 0 ? sim->extrude.n : 1)));
+    PetscCall(SceneCount(sim, kind, pts * (sim->extrude.n > 0 ? sim->extrude.n : 1)));
     PetscFunctionReturn(PETSC_SUCCESS);
   }
   for (PetscInt k = 0; k < nz; k++)

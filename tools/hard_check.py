@@ -263,6 +263,17 @@ def verdict(fails, meas, bound):
 
 
 # ------------------------------------------------------------------------------------------------------
+def first_last_drift(snaps, dx):
+    """The first and last snapshots, their water by id, whether the ids agree, and the largest
+    displacement between them in dx (inf when the ids differ)."""
+    first, last = snap(snaps[0]), snap(snaps[-1])
+    i0, x0 = fluid_by_id(first)
+    i1, x1 = fluid_by_id(last)
+    ok_ids = np.array_equal(i0, i1)
+    drift = np.linalg.norm(x1 - x0, axis=1).max() / dx if ok_ids else float("inf")
+    return first, last, i0, x0, i1, x1, ok_ids, drift
+
+
 def check_hydrostatic(runs):
     r = runs[0]
     if r.problem():
@@ -280,11 +291,7 @@ def check_hydrostatic(runs):
     vb = HYD_VMAX * math.sqrt(G * H)
     vmax = pr["v_max"][late].max()
     snaps = r.snapshots()
-    first, last = snap(snaps[0]), snap(snaps[-1])
-    i0, x0 = fluid_by_id(first)
-    i1, x1 = fluid_by_id(last)
-    ok_ids = np.array_equal(i0, i1)
-    drift = np.linalg.norm(x1 - x0, axis=1).max() / dx if ok_ids else float("inf")
+    first, last, i0, x0, i1, x1, ok_ids, drift = first_last_drift(snaps, dx)
     fails, meas = [], []
     meas.append(f"p_bottom mean {'+' if mean_err >= 0 else ''}{fmt_pct(mean_err)}, std {fmt_pct(std)} of ρgH (t ≥ {HYD_T_LATE:g} s)")
     meas.append(f"v_max {vmax:.2g} m/s")
@@ -589,12 +596,7 @@ def check_still(runs):
     if not late.any():
         return False, f"no probe rows after t = {STILL_T_LATE:g} s", "no late probes", ""
     vb, vmax = STILL_VMAX * math.sqrt(G * H), pr["v_max"][late].max()
-    snaps = r.snapshots()
-    first, last = snap(snaps[0]), snap(snaps[-1])
-    i0, x0 = fluid_by_id(first)
-    i1, x1 = fluid_by_id(last)
-    ok_ids = np.array_equal(i0, i1)
-    drift = np.linalg.norm(x1 - x0, axis=1).max() / dx if ok_ids else float("inf")
+    first, last, i0, _, _, _, ok_ids, drift = first_last_drift(r.snapshots(), dx)
     fails = []
     if vmax > vb: fails.append("max speed")
     if drift > STILL_DRIFT: fails.append("drift" if ok_ids else "fluid ids differ between the first and last snapshot")

@@ -200,7 +200,7 @@ PetscErrorCode CheckpointSave(Output *out)
   if (out->fault.set) PetscFunctionReturn(PETSC_SUCCESS); /* not renamed into place */
   out->nckpt++;
   if (out->ckpt_interval > 0)
-    while (out->next_ckpt <= out->phys->t + 1e-12 * out->t_end) out->next_ckpt += out->ckpt_interval;
+    out->next_ckpt = OutputNextTime(out->next_ckpt, out->ckpt_interval, out->phys->t + 1e-12 * out->t_end);
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

@@ -241,7 +241,7 @@ PetscErrorCode IOSnapshot(Output *out)
   out->snaps[2 * out->nsnap + 1] = (PetscReal)out->phys->nb->nparticles;
   out->nsnap++;
   PetscCall(WriteXDMF(out, "particles.xmf", out->nsnap, NULL, out->snaps));
-  while (out->next_snap <= out->phys->t + 1e-12 * out->t_end) out->next_snap += out->snap_interval;
+  out->next_snap = OutputNextTime(out->next_snap, out->snap_interval, out->phys->t + 1e-12 * out->t_end);
   PetscCall(PetscLogStagePop());
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -271,7 +271,7 @@ PetscErrorCode IOProbes(Output *out)
   }
   out->nprobe_rows++;
   if (out->probe_interval > 0)
-    while (out->next_probe <= out->phys->t + 1e-12 * out->t_end) out->next_probe += out->probe_interval;
+    out->next_probe = OutputNextTime(out->next_probe, out->probe_interval, out->phys->t + 1e-12 * out->t_end);
   PetscCall(PetscLogStagePop());
   PetscFunctionReturn(PETSC_SUCCESS);
 }

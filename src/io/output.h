@@ -11,6 +11,20 @@
 #include "particles/grid.h"
 #include "base/refdata.h"
 
+/* The next output time after t: next + k interval, the least k with it past t.  Stepped by
+ * repeated addition as the schedule always was; an interval far below the step (e.g. a snapshot at
+ * every step with -output_interval 1e-9) first skips the whole intervals at once: the loop alone
+ * took a billion additions a step there. */
+static inline PetscReal OutputNextTime(PetscReal next, PetscReal interval, PetscReal t)
+{
+  PetscReal behind;
+  if (!(interval > 0)) return next; /* no schedule */
+  behind = PetscFloorReal((t - next) / interval);
+  if (behind > 1000) next += (behind - 1) * interval;
+  while (next <= t) next += interval;
+  return next;
+}
+
 #define OUTPUT_MAX_PROBES 16 /* probe columns of a scene besides t (the driver checks the scene's) */
 #define OUTPUT_MAX_KEPT   16 /* scene histories and values a checkpoint carries (SceneKeep*) */
 

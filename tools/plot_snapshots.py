@@ -5,6 +5,7 @@
 
 Reads OUTDIR/particles_*.h5 (the snapshot nearest each time); shows up to a little above the water.  Needs numpy, h5py, matplotlib."""
 import glob
+import json
 import sys
 
 import h5py
@@ -33,10 +34,15 @@ allx = np.concatenate([x for _, x, _, _ in snaps])
 fluid_y = np.concatenate([x[k == 0, 1] for _, x, k, _ in snaps])
 ytop = 1.15 * np.percentile(fluid_y, 99.5) if fluid_y.size else allx[:, 1].max()  # walls may reach far above the water
 fig, axs = plt.subplots(1, len(snaps), figsize=(4 * len(snaps), 2.6), squeeze=False)
+try:  # a marker about 0.8 of a particle spacing wide on a 4-inch (288 pt) panel, at least the 0.3 of large runs
+    dx = json.load(open(out + "/summary.json"))["dx"]
+    ms = max(0.3, (0.8 * 288 * dx / np.ptp(allx[:, 0])) ** 2)
+except (OSError, KeyError, ValueError):
+    ms = 0.3
 for ax, (t, x, k, p) in zip(axs[0], snaps):
     fl = k == 0
-    ax.scatter(x[~fl, 0], x[~fl, 1], s=0.3, c="0.45", linewidths=0)
-    sc = ax.scatter(x[fl, 0], x[fl, 1], s=0.3, c=p[fl], cmap="viridis", vmin=0, vmax=vmax, linewidths=0)
+    ax.scatter(x[~fl, 0], x[~fl, 1], s=ms, c="0.45", linewidths=0)
+    sc = ax.scatter(x[fl, 0], x[fl, 1], s=ms, c=p[fl], cmap="viridis", vmin=0, vmax=vmax, linewidths=0)
     ax.set_aspect("equal")
     ax.set_xlim(allx[:, 0].min(), allx[:, 0].max())
     ax.set_ylim(allx[:, 1].min(), ytop)

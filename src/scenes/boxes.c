@@ -42,7 +42,6 @@ typedef struct {
 
 typedef struct {
   Box       fluid[NBOX], tank[NTANK], solid[NBOX], clamp[NBOX], wall[NBOX];
-  ShapesBoxes bodies; /* the walls', solids' and clamps' boxes, for the shapes' overlap check */
   PetscInt  nfluid, ntank, nsolid, nclamp, nwall, nlevel, npress, nsgauge;
   PetscReal level[NGAUGE][2], press[NGAUGE][3], sgauge[NGAUGE][6];
   char      names[SCENE_MAX_PROBES][32];
@@ -325,13 +324,14 @@ static PetscErrorCode Create(Sim sim)
     PetscCheck(in, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-gauge_pressure_%d %g,%g%s is outside the domain", (int)k + 1, (double)c->press[k][0], (double)c->press[k][1], D == 3 ? ",..." : "");
   }
   {
-    PetscReal box[NBOX][6], sp[NBOX];
+    PetscReal   box[NBOX][6], sp[NBOX];
+    ShapesBoxes bodies; /* the walls', solids' and clamps' boxes, for the shapes' overlap check */
     for (PetscInt i = 0; i < c->nfluid; i++) {
       for (PetscInt k = 0; k < 6; k++) box[i][k] = c->fluid[i].b[k];
       sp[i] = c->fluid[i].s;
     }
-    PetscCall(BodyBoxes(c, D, &c->bodies));
-    PetscCall(ShapesSetUp(sim, &c->shapes, c->nfluid, (const PetscReal(*)[6])box, sp, &c->bodies));
+    PetscCall(BodyBoxes(c, D, &bodies));
+    PetscCall(ShapesSetUp(sim, &c->shapes, c->nfluid, (const PetscReal(*)[6])box, sp, &bodies));
   }
   PetscCheck(!c->nsgauge || c->nsolid, sim->comm, PETSC_ERR_ARG_INCOMP, "-gauge_solid_1 needs a -solid_box_1");
   /* c0 = 10 x the speed of a fall from the highest water surface to the lowest water */

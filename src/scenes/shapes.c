@@ -166,6 +166,14 @@ static void LatticePoint(const Shapes *S, const PetscInt i[], PetscInt D, PetscR
   for (PetscInt d = 0; d < D; d++) p[d] = S->origin[d] + (i[d] + 0.5) * S->h[d];
 }
 
+/* Whether p is strictly inside the box b (its low corner, then its high one): touching is not. */
+static PetscBool InsideBox(const PetscReal p[], const PetscReal b[], PetscInt D)
+{
+  PetscBool in = PETSC_TRUE;
+  for (PetscInt d = 0; d < D; d++) in = (PetscBool)(in && p[d] > b[d] && p[d] < b[D + d]);
+  return in;
+}
+
 /* The signed distance of p to shape s or, for a shape across a periodic boundary, to the nearest of
  * its periodic images (exact within dmax, else the sign: GeomSignedDistanceNear). */
 static PetscReal ShapeDistance(const Shape *s, const PetscReal p[], PetscReal dmax, PetscInt D)
@@ -212,7 +220,7 @@ static PetscBool InDryBox(const PetscReal p[], void *ctx)
 {
   const Shapes *S = (const Shapes *)ctx;
   for (PetscInt b = 0; b < S->ndry; b++)
-    if (p[0] > S->dry[b][0] && p[0] < S->dry[b][3] && p[1] > S->dry[b][1] && p[1] < S->dry[b][4] && p[2] > S->dry[b][2] && p[2] < S->dry[b][5]) return PETSC_TRUE;
+    if (InsideBox(p, S->dry[b], 3)) return PETSC_TRUE;
   return PETSC_FALSE;
 }
 
@@ -236,11 +244,11 @@ static PetscBool IsBody(ShapeKind k) { return (PetscBool)(k != SHAPE_FLUID); }
 
 /* Whether the lattice point p is in or on another shape of the solid kinds that takes it from s: a
  * clamp takes the points it shares with a solid. */
-static PetscBool TakenByClamp(const Shapes *S, PetscInt si, const PetscReal p[])
+static PetscBool TakenByClamp(const Shapes *S, PetscInt si, const PetscReal p[], PetscInt D)
 {
   if (S->s[si].kind != SHAPE_SOLID) return PETSC_FALSE;
   for (PetscInt j = 0; j < S->n; j++)
-    if (S->s[j].kind == SHAPE_CLAMP && ShapeDistance(&S->s[j], p, 0, S->dim) <= 0) return PETSC_TRUE; /* the sign only */
+    if (S->s[j].kind == SHAPE_CLAMP && ShapeDistance(&S->s[j], p, 0, D) <= 0) return PETSC_TRUE; /* the sign only */
   return PETSC_FALSE;
 }
 
@@ -256,7 +264,6 @@ PetscErrorCode ShapesSetUp(Sim sim, Shapes *S, PetscInt nbox, const PetscReal (*
       S->h[d]      = SceneFitSpacing(box[0][D + d] - box[0][d], sim->phys.dx, &n);
     }
   S->flow_measure = 1;
-  S->dim          = D;
   for (PetscInt d = 0; d < D; d++) {
     S->flow_measure *= sim->dom_hi[d] - sim->dom_lo[d];
     S->lo[d] = sim->dom_lo[d];
@@ -294,17 +301,10 @@ PetscErrorCode ShapesSetUp(Sim sim, Shapes *S, PetscInt nbox, const PetscReal (*
             if (IsBody(ki) != IsBody(kj) || (ki == SHAPE_SOLID && kj == SHAPE_CLAMP) || (kj == SHAPE_SOLID && ki == SHAPE_CLAMP)) continue; /* water is cut by bodies; a clamp takes from a solid */
             PetscCheck(ShapeDistance(&S->s[j], p, 0, D) > 0, sim->comm, PETSC_ERR_ARG_INCOMP, "%s (%s) overlaps %s (%s) at (%g, %g): shapes of these kinds cannot share space", S->s[i].name, ShapeKinds[ki], S->s[j].name, ShapeKinds[kj], (double)p[0], (double)p[1]);
           }
-          for (PetscInt b = 0; b < bodies->n; b++) { /* strictly inside: touching is fine */
-            PetscBool inbox = PETSC_TRUE;
-            for (PetscInt d = 0; d < D; d++) inbox = (PetscBool)(inbox && p[d] > bodies->b[b][d] && p[d] < bodies->b[b][D + d]);
-            PetscCheck(!inbox, sim->comm, PETSC_ERR_ARG_INCOMP, "%s (%s) overlaps %s at (%g, %g%s): a shape cannot share space with walls, solids or clamps (they may touch)", S->s[i].name, ShapeKinds[S->s[i].kind], bodies->name[b], (double)p[0], (double)p[1], D == 3 ? ", ..." : "");
-          }
+          for (PetscInt b = 0; b < bodies->n; b++) /* strictly inside: touching is fine */
+            PetscCheck(!InsideBox(p, bodies->b[b], D), sim->comm, PETSC_ERR_ARG_INCOMP, "%s (%s) overlaps %s at (%g, %g%s): a shape cannot share space with walls, solids or clamps (they may touch)", S->s[i].name, ShapeKinds[S->s[i].kind], bodies->name[b], (double)p[0], (double)p[1], D == 3 ? ", ..." : "");
           if (S->s[i].kind != SHAPE_FLUID) continue;
-          for (PetscInt b = 0; b < nbox; b++) {
-            PetscBool inbox = PETSC_TRUE;
-            for (PetscInt d = 0; d < D; d++) inbox = (PetscBool)(inbox && p[d] > box[b][d] && p[d] < box[b][D + d]);
-            PetscCheck(!inbox, sim->comm, PETSC_ERR_ARG_INCOMP, "%s (fluid) overlaps -fluid_box_%d at (%g, %g)", S->s[i].name, (int)b + 1, (double)p[0], (double)p[1]);
-          }
+          for (PetscInt b = 0; b < nbox; b++) PetscCheck(!InsideBox(p, box[b], D), sim->comm, PETSC_ERR_ARG_INCOMP, "%s (fluid) overlaps -fluid_box_%d at (%g, %g)", S->s[i].name, (int)b + 1, (double)p[0], (double)p[1]);
         }
   }
   PetscFunctionReturn(PETSC_SUCCESS);
@@ -342,7 +342,7 @@ PetscErrorCode ShapesPopulate(Sim sim, Shapes *S)
             if (sd > 0) continue;
             for (PetscInt d = 0; d < 3; d++) pu[d] = p[d]; /* in the shape's frame */
             Wrap(S, s, p, D);
-            if (TakenByClamp(S, i, p)) continue;
+            if (TakenByClamp(S, i, p, D)) continue;
             top = PetscMax(top, p[D - 1] + 0.5 * h[D - 1]);
             switch (s->kind) {
             case SHAPE_WALL: /* the row next to the surface is wall, the deeper rows dummies, down to rows deep */

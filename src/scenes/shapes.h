@@ -28,7 +28,6 @@ typedef struct {
   PetscInt  rows;           /* an obstacle's rows of wall + dummy particles inside its surface */
   PetscReal origin[3], h[3]; /* the lattice: points at origin + (i + 1/2) h */
   PetscReal lo[3], hi[3];    /* the domain */
-  PetscInt  dim;
   PetscBool flow;           /* -flow_probe: superficial velocity and drag columns */
   PetscReal flow_measure;   /* the domain's area (volume) */
   Series    drag;           /* the drag column's history (for its mean over the run's last tenth) */

@@ -2,6 +2,7 @@
 #include "scenes/shapes.h"
 #include "base/options_used.h"
 #include "base/refdata.h"
+#include <stdint.h>
 
 const char *const ShapeKinds[] = {"wall", "fluid", "solid", "clamp", "ShapeKind", "SHAPE_", NULL};
 
@@ -252,6 +253,100 @@ static PetscBool TakenByClamp(const Shapes *S, PetscInt si, const PetscReal p[],
   return PETSC_FALSE;
 }
 
+/* How shape s walks its lattice (ShapesPopulate): the index ranges, an own lattice's first point and
+ * spacings, a wall row's depth, how far the distance matters, dry faces. */
+typedef struct {
+  PetscInt   lo[3], hi[3];
+  PetscReal  f0[3], sp[3];
+  PetscReal  hw, dmax;
+  PetscBool  dry;
+  PetscInt64 n; /* points in the ranges */
+} ShapeWalk;
+
+static void WalkSetUp(Sim sim, const Shapes *S, const Shape *s, ShapeWalk *w)
+{
+  const PetscInt D = sim->phys.dim;
+  w->hw   = s->own ? sim->phys.dx : (D == 3 ? PetscMin(S->h[0], PetscMin(S->h[1], S->h[2])) : PetscMin(S->h[0], S->h[1])); /* a wall box's rows are -dx deep */
+  w->dmax = s->kind != SHAPE_WALL ? 0 : (s->own ? 2 : S->rows + 1) * w->hw;
+  w->dry  = (PetscBool)(s->g.type == GEOM_MESH && s->g.mesh->dry);
+  if (s->own) OwnLattice(sim, &s->g, D, w->f0, w->sp, w->lo, w->hi);
+  else LatticeRange(S, &s->g, D, w->lo, w->hi);
+  w->n = 1;
+  for (PetscInt d = 0; d < 3; d++) w->n *= PetscMax(0, w->hi[d] - w->lo[d] + 1);
+}
+
+/* The l-th point of the walk (x fastest, then y, then z) */
+static void WalkPoint(const Shapes *S, const Shape *s, const ShapeWalk *w, PetscInt64 l, PetscInt D, PetscReal p[])
+{
+  const PetscInt64 n0 = w->hi[0] - w->lo[0] + 1, n1 = w->hi[1] - w->lo[1] + 1;
+  const PetscInt   idx[3] = {w->lo[0] + (PetscInt)(l % n0), w->lo[1] + (PetscInt)(l / n0 % n1), w->lo[2] + (PetscInt)(l / n0 / n1)};
+  p[0] = p[1] = p[2] = 0;
+  if (s->own)
+    for (PetscInt d = 0; d < D; d++) p[d] = w->f0[d] + idx[d] * w->sp[d];
+  else LatticePoint(S, idx, D, p);
+}
+
+/* What shape si puts at the l-th point of its walk: nothing (0) or a particle of kind code - 1. */
+static unsigned char PointCode(const Shapes *S, PetscInt si, const ShapeWalk *w, PetscInt64 l, PetscInt D)
+{
+  const Shape *s = &S->s[si];
+  PetscReal    p[3], pu[3], sd;
+  ParticleKind kind;
+  WalkPoint(S, s, w, l, D, p);
+  sd = GeomSignedDistanceNear(&s->g, p, w->dmax); /* exact within the wall rows; else the sign */
+  if (sd > 0) return 0;
+  for (PetscInt d = 0; d < 3; d++) pu[d] = p[d]; /* in the shape's frame */
+  Wrap(S, s, p, D);
+  if (TakenByClamp(S, si, p, D)) return 0;
+  switch (s->kind) {
+  case SHAPE_WALL: /* the row next to the surface is wall, the deeper rows dummies, down to rows deep */
+    if (sd <= -S->rows * w->hw && !s->own) return 0; /* an own lattice fills the inside, as a wall box */
+    kind = sd > -w->hw ? KIND_WALL : KIND_DUMMY;
+    if (w->dry && kind == KIND_WALL && GeomMeshDistanceWet(s->g.mesh, pu, w->hw) >= w->hw) kind = KIND_DUMMY; /* near dry faces only */
+    break;
+  case SHAPE_FLUID: kind = KIND_FLUID; break;
+  case SHAPE_SOLID: kind = KIND_SOLID; break;
+  default: kind = KIND_CLAMP; break;
+  }
+  return (unsigned char)(kind + 1);
+}
+
+/* The points of a walk in blocks of WALK_BLOCK, dealt to the ranks in turn: rank r tests blocks r,
+ * r + size, ... (the signed distances are the cost, spread over the ranks). */
+#define WALK_BLOCK 256
+static PetscBool WalkMine(Sim sim, PetscInt64 l) { return (PetscBool)((l / WALK_BLOCK) % sim->size == sim->rank); }
+
+/* Whether the l-th point of shape i's walk (the shared lattice) lies in shape i and in space that
+ * another shape or box of the scene holds: then msg says which (ShapesSetUp). */
+static PetscBool Overlap(const Shapes *S, PetscInt i, const ShapeWalk *w, PetscInt64 l, PetscInt nbox, const PetscReal (*box)[6], const ShapesBoxes *bodies, PetscInt D, char *msg, size_t len)
+{
+  const ShapeKind ki = S->s[i].kind;
+  PetscReal       p[3];
+  WalkPoint(S, &S->s[i], w, l, D, p);
+  if (GeomSignedDistanceNear(&S->s[i].g, p, 0) > 0) return PETSC_FALSE;
+  Wrap(S, &S->s[i], p, D);
+  for (PetscInt j = i + 1; j < S->n; j++) {
+    const ShapeKind kj = S->s[j].kind;
+    if (IsBody(ki) != IsBody(kj) || (ki == SHAPE_SOLID && kj == SHAPE_CLAMP) || (kj == SHAPE_SOLID && ki == SHAPE_CLAMP)) continue; /* water is cut by bodies; a clamp takes from a solid */
+    if (ShapeDistance(&S->s[j], p, 0, D) <= 0) {
+      (void)PetscSNPrintf(msg, len, "%s (%s) overlaps %s (%s) at (%g, %g): shapes of these kinds cannot share space", S->s[i].name, ShapeKinds[ki], S->s[j].name, ShapeKinds[kj], (double)p[0], (double)p[1]);
+      return PETSC_TRUE;
+    }
+  }
+  for (PetscInt b = 0; b < bodies->n; b++) /* strictly inside: touching is fine */
+    if (InsideBox(p, bodies->b[b], D)) {
+      (void)PetscSNPrintf(msg, len, "%s (%s) overlaps %s at (%g, %g%s): a shape cannot share space with walls, solids or clamps (they may touch)", S->s[i].name, ShapeKinds[ki], bodies->name[b], (double)p[0], (double)p[1], D == 3 ? ", ..." : "");
+      return PETSC_TRUE;
+    }
+  if (ki != SHAPE_FLUID) return PETSC_FALSE;
+  for (PetscInt b = 0; b < nbox; b++)
+    if (InsideBox(p, box[b], D)) {
+      (void)PetscSNPrintf(msg, len, "%s (fluid) overlaps -fluid_box_%d at (%g, %g)", S->s[i].name, (int)b + 1, (double)p[0], (double)p[1]);
+      return PETSC_TRUE;
+    }
+  return PETSC_FALSE;
+}
+
 PetscErrorCode ShapesSetUp(Sim sim, Shapes *S, PetscInt nbox, const PetscReal (*box)[6], const PetscReal *spacing, const ShapesBoxes *bodies)
 {
   const PetscInt D = sim->phys.dim;
@@ -285,77 +380,64 @@ PetscErrorCode ShapesSetUp(Sim sim, Shapes *S, PetscInt nbox, const PetscReal (*
     }
     PetscCheck(in, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "%s reaches outside the domain (it spans x %g to %g, y %g to %g): move it, or widen -domain (or make the domain periodic there)", s->name, (double)g->lo[0], (double)g->hi[0], (double)g->lo[1], (double)g->hi[1]);
   }
-  /* points shared: bodies with bodies (but a clamp with a solid), water shapes with water */
+  /* points shared: bodies with bodies (but a clamp with a solid), water shapes with water; each rank
+   * tests its share of a shape's points, and all raise the error of the first point in the walk */
   for (PetscInt i = 0; i < S->n; i++) {
-    PetscInt lo[3], hi[3], idx[3];
-    LatticeRange(S, &S->s[i].g, D, lo, hi);
-    for (idx[2] = lo[2]; idx[2] <= hi[2]; idx[2]++)
-      for (idx[1] = lo[1]; idx[1] <= hi[1]; idx[1]++)
-        for (idx[0] = lo[0]; idx[0] <= hi[0]; idx[0]++) {
-          PetscReal p[3] = {0, 0, 0};
-          LatticePoint(S, idx, D, p);
-          if (GeomSignedDistanceNear(&S->s[i].g, p, 0) > 0) continue;
-          Wrap(S, &S->s[i], p, D);
-          for (PetscInt j = i + 1; j < S->n; j++) {
-            const ShapeKind ki = S->s[i].kind, kj = S->s[j].kind;
-            if (IsBody(ki) != IsBody(kj) || (ki == SHAPE_SOLID && kj == SHAPE_CLAMP) || (kj == SHAPE_SOLID && ki == SHAPE_CLAMP)) continue; /* water is cut by bodies; a clamp takes from a solid */
-            PetscCheck(ShapeDistance(&S->s[j], p, 0, D) > 0, sim->comm, PETSC_ERR_ARG_INCOMP, "%s (%s) overlaps %s (%s) at (%g, %g): shapes of these kinds cannot share space", S->s[i].name, ShapeKinds[ki], S->s[j].name, ShapeKinds[kj], (double)p[0], (double)p[1]);
-          }
-          for (PetscInt b = 0; b < bodies->n; b++) /* strictly inside: touching is fine */
-            PetscCheck(!InsideBox(p, bodies->b[b], D), sim->comm, PETSC_ERR_ARG_INCOMP, "%s (%s) overlaps %s at (%g, %g%s): a shape cannot share space with walls, solids or clamps (they may touch)", S->s[i].name, ShapeKinds[S->s[i].kind], bodies->name[b], (double)p[0], (double)p[1], D == 3 ? ", ..." : "");
-          if (S->s[i].kind != SHAPE_FLUID) continue;
-          for (PetscInt b = 0; b < nbox; b++) PetscCheck(!InsideBox(p, box[b], D), sim->comm, PETSC_ERR_ARG_INCOMP, "%s (fluid) overlaps -fluid_box_%d at (%g, %g)", S->s[i].name, (int)b + 1, (double)p[0], (double)p[1]);
-        }
+    ShapeWalk  w;
+    PetscInt64 bad = INT64_MAX;
+    char       msg[256];
+    LatticeRange(S, &S->s[i].g, D, w.lo, w.hi);
+    w.n = 1;
+    for (PetscInt d = 0; d < 3; d++) w.n *= PetscMax(0, w.hi[d] - w.lo[d] + 1);
+    for (PetscInt64 l = 0; l < w.n && bad == INT64_MAX; l++)
+      if (WalkMine(sim, l) && Overlap(S, i, &w, l, nbox, box, bodies, D, msg, sizeof(msg))) bad = l;
+    PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &bad, 1, MPIU_INT64, MPI_MIN, sim->comm));
+    if (bad < INT64_MAX) {
+      (void)Overlap(S, i, &w, bad, nbox, box, bodies, D, msg, sizeof(msg));
+      SETERRQ(sim->comm, PETSC_ERR_ARG_INCOMP, "%s", msg);
+    }
   }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* Every point's code (PointCode) on every rank: each rank tests its share, an allreduce joins them. */
+static PetscErrorCode WalkCodes(Sim sim, const Shapes *S, PetscInt si, const ShapeWalk *w, unsigned char **code)
+{
+  PetscFunctionBeginUser;
+  PetscCheck(w->n < PETSC_MPI_INT_MAX, sim->comm, PETSC_ERR_SUP, "%s spans %" PetscInt64_FMT " lattice points, more than %d: split it", S->s[si].name, w->n, (int)PETSC_MPI_INT_MAX);
+  PetscCall(PetscCalloc1(w->n + 1, code));
+  for (PetscInt64 l = 0; l < w->n; l++)
+    if (WalkMine(sim, l)) (*code)[l] = PointCode(S, si, w, l, sim->phys.dim);
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, *code, (PetscMPIInt)w->n, MPI_UNSIGNED_CHAR, MPI_MAX, sim->comm));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
 PetscErrorCode ShapesPopulate(Sim sim, Shapes *S)
 {
-  const PetscInt  D = sim->phys.dim;
-  const PetscReal hmin = D == 3 ? PetscMin(S->h[0], PetscMin(S->h[1], S->h[2])) : PetscMin(S->h[0], S->h[1]);
-  const PetscInt  n0   = sim->P->n;
-  PetscLogDouble  t0, t1;
+  const PetscInt D  = sim->phys.dim;
+  const PetscInt n0 = sim->P->n;
+  PetscLogDouble t0, t1;
   PetscFunctionBeginUser;
   PetscCall(PetscTime(&t0));
   for (PetscInt pass = 0; pass < 2; pass++) /* water first, then the bodies in the order given */
     for (PetscInt i = 0; i < S->n; i++) {
-      const Shape *s = &S->s[i];
-      PetscInt     lo[3], hi[3], idx[3], first = sim->P->n;
-      PetscReal    top = -PETSC_MAX_REAL, f0[3], sp[3]; /* water: the highest point's top; an own lattice */
-      const PetscReal *h = s->own ? sp : S->h;
-      const PetscBool  dry = (PetscBool)(s->g.type == GEOM_MESH && s->g.mesh->dry);
-      const PetscReal  hw  = s->own ? sim->phys.dx : hmin; /* a wall row's depth: a wall box's is -dx */
-      const PetscReal  dmax = s->kind != SHAPE_WALL ? 0 : (s->own ? 2 : S->rows + 1) * hw; /* how far the distance matters */
+      const Shape   *s = &S->s[i];
+      ShapeWalk      w;
+      unsigned char *code;
+      PetscInt       first = sim->P->n;
+      PetscReal      top   = -PETSC_MAX_REAL; /* water: the highest point's top */
       if ((pass == 0) != (s->kind == SHAPE_FLUID)) continue;
-      if (s->own) OwnLattice(sim, &s->g, D, f0, sp, lo, hi);
-      else LatticeRange(S, &s->g, D, lo, hi);
-      for (idx[2] = lo[2]; idx[2] <= hi[2]; idx[2]++)
-        for (idx[1] = lo[1]; idx[1] <= hi[1]; idx[1]++)
-          for (idx[0] = lo[0]; idx[0] <= hi[0]; idx[0]++) {
-            PetscReal    p[3] = {0, 0, 0}, pu[3], sd;
-            ParticleKind kind;
-            if (s->own)
-              for (PetscInt d = 0; d < D; d++) p[d] = f0[d] + idx[d] * sp[d];
-            else LatticePoint(S, idx, D, p);
-            sd = GeomSignedDistanceNear(&s->g, p, dmax); /* exact within the wall rows; else the sign */
-            if (sd > 0) continue;
-            for (PetscInt d = 0; d < 3; d++) pu[d] = p[d]; /* in the shape's frame */
-            Wrap(S, s, p, D);
-            if (TakenByClamp(S, i, p, D)) continue;
-            top = PetscMax(top, p[D - 1] + 0.5 * h[D - 1]);
-            switch (s->kind) {
-            case SHAPE_WALL: /* the row next to the surface is wall, the deeper rows dummies, down to rows deep */
-              if (sd <= -S->rows * hw && !s->own) continue; /* an own lattice fills the inside, as a wall box */
-              kind = sd > -hw ? KIND_WALL : KIND_DUMMY;
-              if (dry && kind == KIND_WALL && GeomMeshDistanceWet(s->g.mesh, pu, hw) >= hw) kind = KIND_DUMMY; /* near dry faces only */
-              break;
-            case SHAPE_FLUID: kind = KIND_FLUID; break;
-            case SHAPE_SOLID: kind = KIND_SOLID; break;
-            default: kind = KIND_CLAMP; break;
-            }
-            PetscCall(SceneAddPoint(sim, kind, p, h, sim->phys.dx, kind == KIND_SOLID || kind == KIND_CLAMP ? sim->phys.sl.rho0 : sim->phys.fl.rho0));
-          }
+      WalkSetUp(sim, S, s, &w);
+      PetscCall(WalkCodes(sim, S, i, &w, &code));
+      for (PetscInt64 l = 0; l < w.n; l++) { /* every rank adds the same points in the same order: the ids */
+        PetscReal p[3];
+        if (!code[l]) continue;
+        WalkPoint(S, s, &w, l, D, p);
+        Wrap(S, s, p, D);
+        top = PetscMax(top, p[D - 1] + 0.5 * (s->own ? w.sp : S->h)[D - 1]);
+        PetscCall(SceneAddPoint(sim, (ParticleKind)(code[l] - 1), p, s->own ? w.sp : S->h, sim->phys.dx, code[l] - 1 == KIND_SOLID || code[l] - 1 == KIND_CLAMP ? sim->phys.sl.rho0 : sim->phys.fl.rho0));
+      }
+      PetscCall(PetscFree(code));
       if (s->kind == SHAPE_FLUID) {
         PetscCall(ShapesCutWater(sim, S, first, NULL, NULL, 0));
         PetscCall(SceneHydrostaticDensity(sim, first, top));

@@ -4,8 +4,8 @@
 #    period (to 0.35 s): its first bending period within 5 % of Euler-Bernoulli (the issue's bound at
 #    6 across; measured +1.5 % at 4, +1.1 % at 6), its amplitude within 5 % of V_f c0 / omega.
 # 2. The plate as a slab periodic across its width (-plate_periodic: plane strain) must move as the
-#    2D plate at the same dx: the tip within 0.5 % of the 2D tip's swing at t = 0.02 s (measured
-#    0.01 %: only the 3D kernel's sums differ), which checks periodic images of a solid (its reference
+#    2D plate at the same dx: the tip within 0.5 % of the 2D tip's swing to t = 0.01 s (measured
+#    0.007 % to 0.02 s: only the 3D kernel's sums differ), which checks periodic images of a solid (its reference
 #    positions shift with its images).  1 and 2 ranks agree bit for bit, and a restart from a
 #    checkpoint repeats the run bit for bit.
 # 3. The elastic gate as a slab periodic in z (-case elastic_gate -dim 3, ISPH, uniform dx = t/3) must
@@ -29,9 +29,9 @@ assert e["zero_crossings"] >= 2, "the beam did not swing through a period"
 assert abs(e["period_rel_err"]) < 0.05, "3D cantilever period off beam theory"
 assert abs(e["amplitude_rel_err"]) < 0.05, "3D cantilever amplitude off beam theory"
 PY
-S3="$P3 -plate_width 0.05 -plate_periodic -t_end 0.02 -output_interval 0.02"
+S3="$P3 -plate_width 0.05 -plate_periodic -t_end 0.01 -output_interval 0.01"
 timeout 300 $MPI $BIN $S3 -output_dir "$OUT/slab" > "$OUT/slab.log" 2>&1
-timeout 300 $MPI $BIN -options_file cases/oscillating_plate.opts -plate_ny 4 -progress_every 0 -t_end 0.02 -output_interval 0.02 -output_dir "$OUT/plate2d" > "$OUT/plate2d.log" 2>&1
+timeout 300 $MPI $BIN -options_file cases/oscillating_plate.opts -plate_ny 4 -progress_every 0 -t_end 0.01 -output_interval 0.01 -output_dir "$OUT/plate2d" > "$OUT/plate2d.log" 2>&1
 python3 - "$OUT/slab" "$OUT/plate2d" <<'PY'
 import sys
 t3, t2 = ([float(l.split(",")[1]) for l in open(d + "/probes.csv").read().split("\n")[1:] if l] for d in sys.argv[1:3])
@@ -42,7 +42,7 @@ PY
 timeout 300 $MPI1 $BIN $S3 -output_dir "$OUT/slab_rank1" > "$OUT/slab_rank1.log" 2>&1
 r=$(python3 tests/compare_snapshots.py "$OUT/slab_rank1" "$OUT/slab" 0) || { echo "3d solid: 1 and 2 ranks differ: $r"; exit 1; }
 echo "3d solid ranks (1 against 2): $r"
-timeout 300 $MPI $BIN $S3 -checkpoint_interval 0.01 -max_steps 400 -output_dir "$OUT/slab_restart" > "$OUT/slab_restart1.log" 2>&1
+timeout 300 $MPI $BIN $S3 -checkpoint_interval 0.005 -max_steps 200 -output_dir "$OUT/slab_restart" > "$OUT/slab_restart1.log" 2>&1
 timeout 300 $MPI $BIN $S3 -restart "$OUT/slab_restart/checkpoint.h5" -output_dir "$OUT/slab_restart" > "$OUT/slab_restart2.log" 2>&1
 r=$(python3 tests/compare_snapshots.py "$OUT/slab" "$OUT/slab_restart" 0) || { echo "3d solid: the restarted run differs: $r"; exit 1; }
 echo "3d solid restart: $r"

@@ -17,7 +17,9 @@ esac
 OUT=${2:-out/${SHAPE}_array}; NS=${3:-$DNS}; PHIS=${4:-$DPHIS}; FLUIDS=${5:-$DFLUIDS}
 cd "$(dirname "$0")/.." || exit 2
 mkdir -p "$OUT"
-FLAGS=${MPIEXEC_FLAGS-$(${MPIEXEC:-mpiexec} --version 2>/dev/null | grep -Eqi "open ?-?mpi|openrte" && echo --oversubscribe)}
+# Open MPI binds rank 0 of every mpiexec to core 0 (at most 2 ranks a job): jobs run side by side
+# would share that core (each had half of it), so none is bound here
+FLAGS=${MPIEXEC_FLAGS-$(${MPIEXEC:-mpiexec} --version 2>/dev/null | grep -Eqi "open ?-?mpi|openrte" && echo --oversubscribe --bind-to none)}
 one() { # fluid n phi: the body's radius from phi; run to steady flow (about 8 settling times)
   local f=$1 n=$2 phi=$3 d="$OUT/${1}_${3}_$2" a t body
   if [ "$SHAPE" = cylinder ]; then

@@ -260,7 +260,8 @@ typedef struct {
   PetscReal  f0[3], sp[3];
   PetscReal  hw, dmax;
   PetscBool  dry;
-  PetscInt64 n; /* points in the ranges */
+  PetscBool  own; /* on the shape's own lattice (f0, sp), else on the shared one */
+  PetscInt64 n;   /* points in the ranges */
 } ShapeWalk;
 
 static void WalkSetUp(Sim sim, const Shapes *S, const Shape *s, ShapeWalk *w)
@@ -269,6 +270,7 @@ static void WalkSetUp(Sim sim, const Shapes *S, const Shape *s, ShapeWalk *w)
   w->hw   = s->own ? sim->phys.dx : (D == 3 ? PetscMin(S->h[0], PetscMin(S->h[1], S->h[2])) : PetscMin(S->h[0], S->h[1])); /* a wall box's rows are -dx deep */
   w->dmax = s->kind != SHAPE_WALL ? 0 : (s->own ? 2 : S->rows + 1) * w->hw;
   w->dry  = (PetscBool)(s->g.type == GEOM_MESH && s->g.mesh->dry);
+  w->own  = s->own;
   if (s->own) OwnLattice(sim, &s->g, D, w->f0, w->sp, w->lo, w->hi);
   else LatticeRange(S, &s->g, D, w->lo, w->hi);
   w->n = 1;
@@ -276,12 +278,12 @@ static void WalkSetUp(Sim sim, const Shapes *S, const Shape *s, ShapeWalk *w)
 }
 
 /* The l-th point of the walk (x fastest, then y, then z) */
-static void WalkPoint(const Shapes *S, const Shape *s, const ShapeWalk *w, PetscInt64 l, PetscInt D, PetscReal p[])
+static void WalkPoint(const Shapes *S, const ShapeWalk *w, PetscInt64 l, PetscInt D, PetscReal p[])
 {
   const PetscInt64 n0 = w->hi[0] - w->lo[0] + 1, n1 = w->hi[1] - w->lo[1] + 1;
   const PetscInt   idx[3] = {w->lo[0] + (PetscInt)(l % n0), w->lo[1] + (PetscInt)(l / n0 % n1), w->lo[2] + (PetscInt)(l / n0 / n1)};
   p[0] = p[1] = p[2] = 0;
-  if (s->own)
+  if (w->own)
     for (PetscInt d = 0; d < D; d++) p[d] = w->f0[d] + idx[d] * w->sp[d];
   else LatticePoint(S, idx, D, p);
 }
@@ -292,7 +294,7 @@ static unsigned char PointCode(const Shapes *S, PetscInt si, const ShapeWalk *w,
   const Shape *s = &S->s[si];
   PetscReal    p[3], pu[3], sd;
   ParticleKind kind;
-  WalkPoint(S, s, w, l, D, p);
+  WalkPoint(S, w, l, D, p);
   sd = GeomSignedDistanceNear(&s->g, p, w->dmax); /* exact within the wall rows; else the sign */
   if (sd > 0) return 0;
   for (PetscInt d = 0; d < 3; d++) pu[d] = p[d]; /* in the shape's frame */
@@ -322,7 +324,7 @@ static PetscBool Overlap(const Shapes *S, PetscInt i, const ShapeWalk *w, PetscI
 {
   const ShapeKind ki = S->s[i].kind;
   PetscReal       p[3];
-  WalkPoint(S, &S->s[i], w, l, D, p);
+  WalkPoint(S, w, l, D, p);
   if (GeomSignedDistanceNear(&S->s[i].g, p, 0) > 0) return PETSC_FALSE;
   Wrap(S, &S->s[i], p, D);
   for (PetscInt j = i + 1; j < S->n; j++) {
@@ -383,7 +385,7 @@ PetscErrorCode ShapesSetUp(Sim sim, Shapes *S, PetscInt nbox, const PetscReal (*
   /* points shared: bodies with bodies (but a clamp with a solid), water shapes with water; each rank
    * tests its share of a shape's points, and all raise the error of the first point in the walk */
   for (PetscInt i = 0; i < S->n; i++) {
-    ShapeWalk  w;
+    ShapeWalk  w   = {.own = PETSC_FALSE}; /* the shared lattice, for every shape */
     PetscInt64 bad = INT64_MAX;
     char       msg[256];
     LatticeRange(S, &S->s[i].g, D, w.lo, w.hi);
@@ -432,7 +434,7 @@ PetscErrorCode ShapesPopulate(Sim sim, Shapes *S)
       for (PetscInt64 l = 0; l < w.n; l++) { /* every rank adds the same points in the same order: the ids */
         PetscReal p[3];
         if (!code[l]) continue;
-        WalkPoint(S, s, &w, l, D, p);
+        WalkPoint(S, &w, l, D, p);
         Wrap(S, s, p, D);
         top = PetscMax(top, p[D - 1] + 0.5 * (s->own ? w.sp : S->h)[D - 1]);
         PetscCall(SceneAddPoint(sim, (ParticleKind)(code[l] - 1), p, s->own ? w.sp : S->h, sim->phys.dx, code[l] - 1 == KIND_SOLID || code[l] - 1 == KIND_CLAMP ? sim->phys.sl.rho0 : sim->phys.fl.rho0));

@@ -264,6 +264,13 @@ typedef struct {
   PetscInt64 n;   /* points in the ranges */
 } ShapeWalk;
 
+/* The number of points in the walk's ranges */
+static void WalkCount(ShapeWalk *w)
+{
+  w->n = 1;
+  for (PetscInt d = 0; d < 3; d++) w->n *= PetscMax(0, w->hi[d] - w->lo[d] + 1);
+}
+
 static void WalkSetUp(Sim sim, const Shapes *S, const Shape *s, ShapeWalk *w)
 {
   const PetscInt D = sim->phys.dim;
@@ -273,8 +280,7 @@ static void WalkSetUp(Sim sim, const Shapes *S, const Shape *s, ShapeWalk *w)
   w->own  = s->own;
   if (s->own) OwnLattice(sim, &s->g, D, w->f0, w->sp, w->lo, w->hi);
   else LatticeRange(S, &s->g, D, w->lo, w->hi);
-  w->n = 1;
-  for (PetscInt d = 0; d < 3; d++) w->n *= PetscMax(0, w->hi[d] - w->lo[d] + 1);
+  WalkCount(w);
 }
 
 /* The l-th point of the walk (x fastest, then y, then z) */
@@ -389,8 +395,7 @@ PetscErrorCode ShapesSetUp(Sim sim, Shapes *S, PetscInt nbox, const PetscReal (*
     PetscInt64 bad = INT64_MAX;
     char       msg[256];
     LatticeRange(S, &S->s[i].g, D, w.lo, w.hi);
-    w.n = 1;
-    for (PetscInt d = 0; d < 3; d++) w.n *= PetscMax(0, w.hi[d] - w.lo[d] + 1);
+    WalkCount(&w);
     for (PetscInt64 l = 0; l < w.n && bad == INT64_MAX; l++)
       if (WalkMine(sim, l) && Overlap(S, i, &w, l, nbox, box, bodies, D, msg, sizeof(msg))) bad = l;
     PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &bad, 1, MPIU_INT64, MPI_MIN, sim->comm));
@@ -429,15 +434,18 @@ PetscErrorCode ShapesPopulate(Sim sim, Shapes *S)
       PetscInt       first = sim->P->n;
       PetscReal      top   = -PETSC_MAX_REAL; /* water: the highest point's top */
       if ((pass == 0) != (s->kind == SHAPE_FLUID)) continue;
+      const PetscReal *h;
       WalkSetUp(sim, S, s, &w);
+      h = s->own ? w.sp : S->h; /* the points' spacings */
       PetscCall(WalkCodes(sim, S, i, &w, &code));
       for (PetscInt64 l = 0; l < w.n; l++) { /* every rank adds the same points in the same order: the ids */
-        PetscReal p[3];
+        const ParticleKind kind = (ParticleKind)(code[l] - 1);
+        PetscReal          p[3];
         if (!code[l]) continue;
         WalkPoint(S, &w, l, D, p);
         Wrap(S, s, p, D);
-        top = PetscMax(top, p[D - 1] + 0.5 * (s->own ? w.sp : S->h)[D - 1]);
-        PetscCall(SceneAddPoint(sim, (ParticleKind)(code[l] - 1), p, s->own ? w.sp : S->h, sim->phys.dx, code[l] - 1 == KIND_SOLID || code[l] - 1 == KIND_CLAMP ? sim->phys.sl.rho0 : sim->phys.fl.rho0));
+        top = PetscMax(top, p[D - 1] + 0.5 * h[D - 1]);
+        PetscCall(SceneAddPoint(sim, kind, p, h, sim->phys.dx, KindIsSolid(kind) ? sim->phys.sl.rho0 : sim->phys.fl.rho0));
       }
       PetscCall(PetscFree(code));
       if (s->kind == SHAPE_FLUID) {

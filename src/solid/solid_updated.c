@@ -121,7 +121,7 @@ SPH_INLINE PetscErrorCode MomentumD(Physics *ph, const PetscInt D)
   const PetscReal *x = PField(P, FIELD_X), *v = PField(P, FIELD_V), *rho = PField(P, FIELD_RHO), *p = PField(P, FIELD_P);
   const PetscReal *mass = PField(P, FIELD_M), *h = PField(P, FIELD_H), *S = PField(P, FIELD_S), *R = ph->solid->R, *L = PField(P, FIELD_KCORR);
   PetscReal       *acc = PField(P, FIELD_ACC), support[3] = {0, 0, 0}, load[3] = {0, 0, 0};
-  const PetscInt   NS = D * (D + 1) / 2;
+  const PetscInt   NS = D * (D + 1) / 2, n_int = ph->sl.n >= 1 && ph->sl.n <= 16 && ph->sl.n == PetscFloorReal(ph->sl.n) ? (PetscInt)ph->sl.n : 0;
 
   PetscFunctionBeginUser;
   for (PetscInt a = 0; a < P->n; a++) {
@@ -130,7 +130,7 @@ SPH_INLINE PetscErrorCode MomentumD(Physics *ph, const PetscInt D)
     if (!KindIsSolid(P->kind[a])) continue;
     for (PetscInt i = 0; i < D; i++) SymRow(S + NS * a, i, p[a], ia, s.sa + D * i, D); /* sigma_a / rho_a^2 */
     s.wdx   = R ? KernelW(&ph->kernel, h[a] / ph->kernel.h_factor, h[a]) : 1;
-    s.n_int = ph->sl.n >= 1 && ph->sl.n <= 16 && ph->sl.n == PetscFloorReal(ph->sl.n) ? (PetscInt)ph->sl.n : 0;
+    s.n_int = n_int;
     SPHPairsW(ph->solid->nl, P, a, (PetscBool)!!R, MomentumPair, &s, D);
     SolidAccelerate(ph, a, s.ac, s.fl, acc, support, load, D);
   }

@@ -51,17 +51,25 @@ else
   BUILD    := build
   BINDIR   := bin
 endif
-CFLAGS  := $(OPT) -std=gnu11 -Wall -Wextra -Wno-unused-parameter -Isrc $(PETSC_CFLAGS) $(METIS_CFLAGS)
+CFLAGS  := $(OPT) -std=gnu11 -Wall -Wextra -Wno-unused-parameter -Iinclude -Isrc $(PETSC_CFLAGS) $(METIS_CFLAGS)
 LDLIBS  := $(PETSC_LIBS) $(METIS_LIBS) -lm
 LDFLAGS := $(SANFLAGS)
 
-# src/<layer>/: base, particles, fluid, solid, io, scenes, run (docs/architecture.md); headers beside their sources
+# src/<layer>/: base, particles, physics (fluid, solid), io, run, build, scenes, app (docs/architecture.md);
+# internal headers beside their sources, the public interface in include/ (<sphfsi.h>, <sphfsi/*.h>)
 LIB_SRC  := $(wildcard src/*/*.c)
-LIB_SRC  := $(filter-out src/run/main.c,$(LIB_SRC))
+LIB_SRC  := $(filter-out src/app/main.c,$(LIB_SRC))
 LIB_OBJ  := $(LIB_SRC:%.c=$(BUILD)/%.o)
 TEST_SRC := $(wildcard tests/test_*.c)
 TEST_BIN := $(TEST_SRC:tests/%.c=$(BINDIR)/%)
 BIN      := $(BINDIR)/sphfsi
+# The library: lib/libsphfsi.a (bin/sphfsi and the tests link it) and lib/libsphfsi.so (objects built
+# again as position-independent code; a program of one's own links it through pkg-config sphfsi)
+LIBDIR   := $(if $(filter 1,$(SAN)),lib/san,lib)
+LIB_A    := $(LIBDIR)/libsphfsi.a
+LIB_SO   := $(LIBDIR)/libsphfsi.so
+SO_MAJOR := $(firstword $(subst ., ,$(shell cat VERSION 2>/dev/null || echo 0)))
+PIC_OBJ  := $(LIB_SRC:%.c=$(BUILD)/pic/%.o)
 
 NP      ?= $(shell nproc 2>/dev/null || echo 2)
 MPIEXEC ?= mpiexec
@@ -72,11 +80,15 @@ MPIEXEC_FLAGS ?= $(shell $(MPIEXEC) --version 2>/dev/null | grep -Eqi "open ?-?m
 export MPIEXEC MPIEXEC_FLAGS
 
 .PHONY: all deps run check check-unit bench hard ranks study slurm clean tests install layers FORCE
-all: $(BIN) $(TEST_BIN)
+all: $(BIN) $(TEST_BIN) $(if $(filter 1,$(SAN)),,$(LIB_SO))
 
-$(BUILD)/%.o: %.c $(wildcard src/*/*.h)
+HEADERS := $(wildcard src/*/*.h include/*.h include/sphfsi/*.h)
+$(BUILD)/%.o: %.c $(HEADERS)
 	@mkdir -p $(dir $@)
 	$(CC) $(CFLAGS) -c $< -o $@
+$(BUILD)/pic/%.o: %.c $(HEADERS)
+	@mkdir -p $(dir $@)
+	$(CC) $(CFLAGS) -fPIC -fno-semantic-interposition -c $< -o $@
 
 # The version (file VERSION) and the commit, for -version and summary.json, and the absolute path of
 # the reference data of this source tree (REFDATA), so that the program finds them from any current
@@ -88,18 +100,23 @@ $(BUILD)/sphfsi_build.h: FORCE
 	@mkdir -p $(BUILD)
 	@printf '#define SPHFSI_VERSION "%s"\n#define SPHFSI_COMMIT "%s"\n#define SPHFSI_SOURCE_REFDATA "%s"\n' '$(SPHFSI_VERSION)' '$(SPHFSI_COMMIT)' '$(abspath $(REFDATA))' > $@.tmp
 	@if cmp -s $@.tmp $@; then rm -f $@.tmp; else mv $@.tmp $@; fi
-$(BUILD)/src/base/version.o: $(BUILD)/sphfsi_build.h
-$(BUILD)/src/base/version.o: CFLAGS += -I$(BUILD)
+$(BUILD)/src/base/version.o $(BUILD)/pic/src/base/version.o: $(BUILD)/sphfsi_build.h
+$(BUILD)/src/base/version.o $(BUILD)/pic/src/base/version.o: CFLAGS += -I$(BUILD)
 FORCE:
 
-$(BUILD)/libsphfsi.a: $(LIB_OBJ)
+$(LIB_A): $(LIB_OBJ)
+	@mkdir -p $(LIBDIR)
 	@rm -f $@; ar rcs $@ $^
 
-$(BIN): $(BUILD)/src/run/main.o $(BUILD)/libsphfsi.a
+$(LIB_SO): $(PIC_OBJ)
+	@mkdir -p $(LIBDIR)
+	$(CC) $(LDFLAGS) -shared -Wl,-soname,libsphfsi.so.$(SO_MAJOR) -o $@ $^ $(LDLIBS)
+
+$(BIN): $(BUILD)/src/app/main.o $(LIB_A)
 	@mkdir -p $(BINDIR)
 	$(CC) $(LDFLAGS) -o $@ $^ $(LDLIBS)
 
-$(BINDIR)/test_%: $(BUILD)/tests/test_%.o $(BUILD)/libsphfsi.a
+$(BINDIR)/test_%: $(BUILD)/tests/test_%.o $(LIB_A)
 	@mkdir -p $(BINDIR)
 	$(CC) $(LDFLAGS) -o $@ $^ $(LDLIBS)
 
@@ -164,18 +181,33 @@ layers:
 	@python3 tools/layers.py --list
 
 # Partition statistics of a scene's cell graph for many ranks (tools/partition_model.c)
-$(BINDIR)/partition_model: $(BUILD)/tools/partition_model.o $(BUILD)/libsphfsi.a
+$(BINDIR)/partition_model: $(BUILD)/tools/partition_model.o $(LIB_A)
 	@mkdir -p $(BINDIR)
 	$(CC) $(LDFLAGS) -o $@ $^ $(LDLIBS)
 
 # Install for users who do not run from the source tree: PREFIX/bin/sphfsi, the case files and tools
 # in PREFIX/share/sphfsi (cases/, tools/) and the reference data (REFDATA, ../shared/refdata) in
-# PREFIX/share/sphfsi/refdata, where the installed program finds it.
+# PREFIX/share/sphfsi/refdata, where the installed program finds it; the library for programs of
+# one's own: PREFIX/include (sphfsi.h, sphfsi/), PREFIX/lib (libsphfsi.a, libsphfsi.so) and
+# PREFIX/lib/pkgconfig/sphfsi.pc (pkg-config --cflags --libs sphfsi; it Requires PETSc's own .pc).
 PREFIX  ?= /usr/local
 SHARE   := $(DESTDIR)$(PREFIX)/share/sphfsi
+PC_REQUIRES := $(if $(PETSC_DIR),,PETSc)
 install: all
-	install -d $(DESTDIR)$(PREFIX)/bin $(SHARE)/cases/boxes $(SHARE)/tools $(SHARE)/refdata
+	install -d $(DESTDIR)$(PREFIX)/bin $(SHARE)/cases/boxes $(SHARE)/tools $(SHARE)/refdata $(DESTDIR)$(PREFIX)/include/sphfsi $(DESTDIR)$(PREFIX)/lib/pkgconfig
 	install -m 755 $(BIN) $(DESTDIR)$(PREFIX)/bin/sphfsi
+	install -m 644 include/sphfsi.h $(DESTDIR)$(PREFIX)/include/
+	install -m 644 include/sphfsi/*.h $(DESTDIR)$(PREFIX)/include/sphfsi/
+	install -m 644 $(LIB_A) $(DESTDIR)$(PREFIX)/lib/
+	install -m 755 $(LIB_SO) $(DESTDIR)$(PREFIX)/lib/libsphfsi.so.$(SPHFSI_VERSION)
+	ln -sf libsphfsi.so.$(SPHFSI_VERSION) $(DESTDIR)$(PREFIX)/lib/libsphfsi.so.$(SO_MAJOR)
+	ln -sf libsphfsi.so.$(SO_MAJOR) $(DESTDIR)$(PREFIX)/lib/libsphfsi.so
+	@printf '%s\n' 'prefix=$(PREFIX)' 'libdir=$${prefix}/lib' 'includedir=$${prefix}/include' '' \
+	  'Name: sphfsi' 'Description: Smoothed Particle Hydrodynamics for fluid-structure interaction (MPI, PETSc)' \
+	  'Version: $(SPHFSI_VERSION)' 'Requires: $(PC_REQUIRES)' \
+	  'Cflags: -I$${includedir} $(if $(PETSC_DIR),$(PETSC_CFLAGS))' \
+	  'Libs: -L$${libdir} -Wl,-rpath,$${libdir} -lsphfsi $(if $(PETSC_DIR),$(PETSC_LIBS)) -lm' \
+	  'Libs.private: $(METIS_LIBS)' > $(DESTDIR)$(PREFIX)/lib/pkgconfig/sphfsi.pc
 	install -m 644 cases/*.opts $(SHARE)/cases/
 	install -m 644 cases/boxes/*.opts cases/boxes/*.txt cases/boxes/*.stl $(SHARE)/cases/boxes/
 	install -m 755 tools/*.py tools/*.sh $(SHARE)/tools/
@@ -183,4 +215,4 @@ install: all
 	@echo "installed: $(DESTDIR)$(PREFIX)/bin/sphfsi; cases in $(SHARE)/cases"
 
 clean:
-	rm -rf build build-san bin out
+	rm -rf build build-san bin lib out

@@ -3,6 +3,7 @@
  * let in through gravity after 15 steps of a dam break (the state itself was checked finite then),
  * so it first shows in step 16; the last good state is the copy of step 10.  Run on 2 ranks. */
 #include "run/sim.h"
+#include <sphfsi.h>
 #include "run/guard.h"
 #include <math.h>
 
@@ -14,6 +15,7 @@ int main(int argc, char **argv)
   const char *good = "out/test_fault/last_good.h5";
 
   PetscCall(PetscInitialize(&argc, &argv, NULL, NULL));
+  PetscCall(SPHFSIRegisterBuiltinScenes());
   PetscCall(PetscOptionsSetValue(NULL, "-overwrite", NULL)); /* a test reruns into its own output directories */
   PetscCall(PetscOptionsSetValue(NULL, "-case", "dam_break"));
   PetscCall(PetscOptionsSetValue(NULL, "-dx", "0.004"));

@@ -6,7 +6,7 @@
  * -tol 1e-6.  Another scene with -case NAME and its options.  Run on 2 ranks or more (tests/run_tests.sh:
  * 2 and 8), where some ranks may own no fluid or no particle at all. */
 #include "run/sim.h"
-#include "scenes/scene.h"
+#include <sphfsi.h>
 #include "run/guard.h"
 
 static PetscErrorCode RunCase(MPI_Comm comm, const char *outdir, Sim *sim)
@@ -37,6 +37,7 @@ int main(int argc, char **argv)
   PetscInt    worst = -1, wcomp = 0; /* particle id and component (x, y, vx, vy, rho) of the largest difference */
   PetscBool   other;
   PetscCall(PetscInitialize(&argc, &argv, NULL, NULL));
+  PetscCall(SPHFSIRegisterBuiltinScenes());
   PetscCall(PetscOptionsSetValue(NULL, "-overwrite", NULL)); /* a test reruns into its own output directories */
   PetscCall(PetscOptionsGetReal(NULL, NULL, "-tol", &tol, NULL));
   PetscCall(PetscOptionsGetReal(NULL, NULL, "-min_speed", &vmin, NULL)); /* the run must reach this speed (m/s) */

@@ -10,7 +10,7 @@
  * across rank counts; with -fluid isph the solver's parallel preconditioner does not, so use
  * -ppe_ksp_rtol 1e-10 -tol 1e-8 there.  Another scene with -case NAME and its options.  2 ranks. */
 #include "run/sim.h"
-#include "scenes/scene.h"
+#include <sphfsi.h>
 
 typedef struct {
   PetscInt   N, w, nrow, ncol, step;
@@ -129,6 +129,7 @@ int main(int argc, char **argv)
   const char *ckw = "out/test_restart/world/checkpoint.h5", *cks = "out/test_restart/self/checkpoint.h5";
 
   PetscCall(PetscInitialize(&argc, &argv, NULL, NULL));
+  PetscCall(SPHFSIRegisterBuiltinScenes());
   PetscCall(PetscOptionsSetValue(NULL, "-overwrite", NULL)); /* a test reruns into its own output directories */
   PetscCall(PetscOptionsGetReal(NULL, NULL, "-tol", &tol, NULL));
   PetscCall(PetscOptionsGetReal(NULL, NULL, "-tol_same", &tol_same, NULL));

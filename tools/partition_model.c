@@ -12,7 +12,7 @@
  * -split_solids: the solid particles balanced as a second constraint (-decomp_split_solids of a run).
  * Usage: bin/partition_model -options_file cases/dam_break.opts -dx 8.2e-5 [-nparts_max 1024] */
 #include "run/sim.h"
-#include "scenes/scene.h"
+#include <sphfsi.h>
 #include "solid/solid.h"
 #include "base/kernel.h"
 #include <petscbt.h>
@@ -136,6 +136,7 @@ int main(int argc, char **argv)
   PetscBool    header = PETSC_TRUE;
 
   PetscCall(PetscInitialize(&argc, &argv, NULL, "Partition statistics of a scene's cell graph for 2..nparts_max ranks (CSV)\n"));
+  PetscCall(SPHFSIRegisterBuiltinScenes());
   PetscCallMPI(MPI_Comm_size(PETSC_COMM_WORLD, &size));
   PetscCheck(size == 1, PETSC_COMM_WORLD, PETSC_ERR_ARG_WRONG, "Run partition_model on one process");
   PetscCall(PetscOptionsGetInt(NULL, NULL, "-nparts_max", &npmax, NULL));

@@ -1,13 +1,7 @@
 /* Common includes and compatibility across PETSc versions (3.18 and newer). */
 #pragma once
-#include <petscsys.h>
-#ifndef PETSC_SUCCESS
-  #define PETSC_SUCCESS 0
-#endif
+#include <sphfsi/base.h> /* PETSc's types, PETSC_SUCCESS on older versions, RoundToInt */
 #include <petscviewer.h>
-
-/* nearest integer */
-static inline PetscInt RoundToInt(PetscReal x) { return (PetscInt)PetscFloorReal(x + 0.5); }
 
 /* The program's exit statuses besides 0 (docs/cluster.md, "Exit statuses") */
 #define SIM_EXIT_BAD_INPUT 2 /* bad input found while setting up: one line on stderr (main.c) */

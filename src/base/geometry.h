@@ -1,7 +1,7 @@
 /* Shapes as geometry, without particles: a circle (2D) or sphere (3D), and a closed polygon (2D).
  * Each gives its signed distance (negative inside, positive outside, the distance to the surface in
  * either case), an inside test and the outward unit normal (the signed distance's gradient).  The
- * builders that turn a shape into particles are in the scenes (scenes/shapes.h). */
+ * builders that turn a shape into particles are in src/build/shapes.c (<sphfsi/shapes.h>). */
 #pragma once
 #include "base/base.h"
 #include "base/mesh.h"

@@ -57,6 +57,39 @@ static struct {
 } renamed[32];
 static int nrenamed = 0;
 
+PetscErrorCode SPHOptionsReal(PetscOptionItems *PetscOptionsObject, const char opt[], const char text[], const char man[], PetscReal cur, PetscReal *val, PetscBool *set)
+{
+  PetscFunctionBegin;
+  PetscCall(PetscOptionsReal(opt, text, man, cur, val, set));
+  PetscCall(OptionsRecordReal(PetscOptionsObject->prefix, opt, *val, set));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode SPHOptionsInt(PetscOptionItems *PetscOptionsObject, const char opt[], const char text[], const char man[], PetscInt cur, PetscInt *val, PetscBool *set)
+{
+  PetscFunctionBegin;
+  PetscCall(PetscOptionsInt(opt, text, man, cur, val, set));
+  PetscCall(OptionsRecordInt(PetscOptionsObject->prefix, opt, *val, set));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode SPHOptionsBool(PetscOptionItems *PetscOptionsObject, const char opt[], const char text[], const char man[], PetscBool cur, PetscBool *val, PetscBool *set)
+{
+  PetscFunctionBegin;
+  PetscCall(PetscOptionsBool(opt, text, man, cur, val, set));
+  PetscCall(OptionsRecordInt(PetscOptionsObject->prefix, opt, (PetscInt)*val, set));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode SPHOptionsEList(PetscOptionItems *PetscOptionsObject, const char opt[], const char text[], const char man[], const char *const *list, PetscInt n, const char cur[], PetscInt *val, PetscBool *set)
+{
+  PetscFunctionBegin;
+  PetscCall(PetscOptionsEList(opt, text, man, list, n, cur, val, set));
+  PetscCall(OptionsRecord(PetscOptionsObject->prefix, opt, list[*val], set));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+
 PetscErrorCode OptionsDeprecated(PetscOptionItems *PetscOptionsObject, const char *old, const char *now)
 {
   char          *prefix = PetscOptionsObject->prefix, value[PETSC_MAX_PATH_LEN] = "";

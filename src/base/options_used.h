@@ -18,28 +18,10 @@ PetscErrorCode OptionsUsedWrite(MPI_Comm comm, const char *outdir, const char *h
 PetscErrorCode OptionsRecord(const char *prefix, const char *name, const char *value, const void *set);
 PetscErrorCode OptionsRecordReal(const char *prefix, const char *name, PetscReal v, const void *set);
 PetscErrorCode OptionsRecordInt(const char *prefix, const char *name, PetscInt v, const void *set);
-/* The name recorded is the full one: the block's prefix (PetscOptionsBegin's, PetscOptionsObject->prefix)
- * and the name, "-wcsph_shift" for "-shift" in the block of the prefix "wcsph_". */
-#define OptReal(opt, text, man, cur, val, set) \
-  ({ \
-    PetscErrorCode ierr_opt_ = PetscOptionsReal(opt, text, man, cur, val, set); \
-    ierr_opt_ ? ierr_opt_ : OptionsRecordReal(PetscOptionsObject->prefix, opt, *(val), set); \
-  })
-#define OptInt(opt, text, man, cur, val, set) \
-  ({ \
-    PetscErrorCode ierr_opt_ = PetscOptionsInt(opt, text, man, cur, val, set); \
-    ierr_opt_ ? ierr_opt_ : OptionsRecordInt(PetscOptionsObject->prefix, opt, *(val), set); \
-  })
-#define OptBool(opt, text, man, cur, val, set) \
-  ({ \
-    PetscErrorCode ierr_opt_ = PetscOptionsBool(opt, text, man, cur, val, set); \
-    ierr_opt_ ? ierr_opt_ : OptionsRecordInt(PetscOptionsObject->prefix, opt, (PetscInt) * (val), set); \
-  })
-#define OptEList(opt, text, man, list, n, cur, val, set) \
-  ({ \
-    PetscErrorCode ierr_opt_ = PetscOptionsEList(opt, text, man, list, n, cur, val, set); \
-    ierr_opt_ ? ierr_opt_ : OptionsRecord(PetscOptionsObject->prefix, opt, (list)[*(val)], set); \
-  })
+/* OptReal, OptInt, OptBool, OptEList (<sphfsi/options.h>) record the full name: the block's prefix
+ * (PetscOptionsBegin's, PetscOptionsObject->prefix) and the name, "-wcsph_shift" for "-shift" in the
+ * block of the prefix "wcsph_". */
+#include <sphfsi/options.h>
 
 /* An option renamed when the modules took their prefixes (issue 47: -alpha is -wcsph_alpha, -rho0
  * -fluid_rho0, ...): in the module's PetscOptionsBegin block, before the new name is read,

@@ -1,46 +1,8 @@
-/* Reference curves from the reference data (CSV with '#' comments; where they are looked for:
- * RefDataOpen) and time series of probes, for the errors a scene reports in summary.json. */
+/* Reference curves and probe histories (the public part: <sphfsi/refdata.h>); where the reference
+ * files are looked for: RefDataOpen. */
 #pragma once
 #include "base/base.h"
-#include <stdio.h>
+#include <sphfsi/refdata.h>
 
-typedef struct _n_Series Series;
-struct _n_Series {
-  PetscInt   n, cap;
-  PetscReal *t, *y;
-};
-
-PetscErrorCode SeriesAppend(Series *s, PetscReal t, PetscReal y);
-PetscErrorCode SeriesDestroy(Series *s);
-/* Drop the points with y >= ymax (a reference measured beyond what the scene's geometry can hold). */
-void SeriesKeepBelow(Series *s, PetscReal ymax);
-/* Linear interpolation (clamped to the ends). */
-PetscReal SeriesAt(const Series *s, PetscReal t);
-
-/* The largest value of a series for t in [t0, t1] and its time (-PETSC_MAX_REAL, 0 if none). */
-void SeriesPeak(const Series *s, PetscReal t0, PetscReal t1, PetscReal *v, PetscReal *t);
-
-/* Where the reference files are looked for, and those that were not found: the driver owns one
- * (sim->refdata) and hands it to the scenes, whose errors read the files, and to summary.json. */
-typedef struct {
-  PetscMPIInt rank;                    /* only rank 0 reads the files */
-  char        dir[PETSC_MAX_PATH_LEN]; /* -refdata_dir; empty: $SPHFSI_REFDATA or the default folders */
-  char       *missing;                 /* rank 0: the files not found, "a.csv", "b.csv" (NULL: none) */
-} RefData;
-
-/* Open FILE of the reference data for reading, on rank 0 (*f NULL on the others): from -refdata_dir,
- * else $SPHFSI_REFDATA, else the first of PREFIX/share/sphfsi/refdata (installed), <exe dir>/refdata,
- * the source tree's (REFDATA at build time) and ../shared/refdata from the current directory that
- * holds it.  Not found: *f NULL, one warning line on stdout per file and the file in
- * summary.json's reference_missing (rd->missing). */
-PetscErrorCode RefDataOpen(RefData *rd, const char *file, FILE **f);
-
-/* Load columns xcol, ycol of FILE of the reference data (RefDataOpen). On rank 0 only; *found says
- * whether the file was there with those columns. */
-PetscErrorCode RefDataLoad(RefData *rd, const char *file, const char *xcol, const char *ycol, Series *ref, PetscBool *found);
-
-/* Relative errors |sim - ref| / |ref| at the reference points with ref.t in [t0, t1], where the
- * simulated series is sampled at ref.t * tscale and its values divided by yscale. */
-PetscErrorCode SeriesCompare(const Series *sim, const Series *ref, PetscReal tscale, PetscReal yscale, PetscReal t0, PetscReal t1, PetscBool relative, PetscReal *rms, PetscReal *max, PetscInt *npts);
 /* Free the list of missing files. */
 PetscErrorCode RefDataDestroy(RefData *rd);

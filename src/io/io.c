@@ -347,7 +347,7 @@ PetscErrorCode IOSummary(Output *out, const char *status, const char *message, P
   }
   PetscCall(RootCheck(out, err, "summary.json"));
   if (!out->rank) {
-    fprintf(f, "{\n  \"version\": \"%s\",\n  \"commit\": \"%s\",\n", SphfsiVersion(), SphfsiCommit());
+    fprintf(f, "{\n  \"version\": \"%s\",\n  \"commit\": \"%s\",\n", SPHFSIVersion(), SPHFSICommit());
     fprintf(f, "  \"case\": \"%s\",\n  \"dim\": %d,\n  \"fluid\": \"%s\",\n  \"ranks\": %d,\n", out->scene.name, (int)ph->dim, ph->has_fluid ? FluidSchemes[ph->fluid] : "none", out->size);
     JsonString(f, "status", out->fault.set ? "io_error" : status);
     if (out->fault.set) JsonString(f, "message", out->fault.msg);

@@ -4,12 +4,8 @@
 #pragma once
 #include "base/base.h"
 
-typedef enum { KIND_FLUID = 0, KIND_WALL, KIND_DUMMY, KIND_SOLID, KIND_CLAMP, KIND_COUNT } ParticleKind;
+#include <sphfsi/particles.h> /* ParticleKind, KindIsFluid/Wall/Solid; a scene's view of the fields */
 extern const char *const ParticleKindNames[];
-
-static inline PetscBool KindIsFluid(PetscInt k) { return (PetscBool)(k == KIND_FLUID); }
-static inline PetscBool KindIsWall(PetscInt k) { return (PetscBool)(k == KIND_WALL || k == KIND_DUMMY); }
-static inline PetscBool KindIsSolid(PetscInt k) { return (PetscBool)(k == KIND_SOLID || k == KIND_CLAMP); }
 
 /* A field's width: a fixed number of reals (1: a scalar), or one that follows the dimension d. */
 enum { WIDTH_VECTOR = -1 /* d */, WIDTH_SYM = -2 /* d (d + 1) / 2: a symmetric tensor's xx, xy, yy (3D: six) */, WIDTH_TENSOR = -3 /* d x d, row-major */ };

@@ -1,6 +1,6 @@
 #include "run/sim.h"
 #include "base/options_used.h"
-#include "scenes/scene.h"
+#include "run/scene_registry.h"
 #include "fluid/wcsph.h"
 #include "fluid/isph.h"
 #include "solid/solid.h"

@@ -5,11 +5,10 @@
 #include "physics/physics.h"
 #include "base/refdata.h"
 #include "io/output.h"
+#include <sphfsi/scene.h> /* Sim, SceneOps: the scene's view of the run (its accessors: sim_scene.c) */
 
 typedef enum { STAGE_NEIGHBOUR, STAGE_HALO, STAGE_PHYSICS, STAGE_PPE_ASSEMBLY, STAGE_PPE_SOLVE, STAGE_SOLID, STAGE_OUTPUT, STAGE_GUARD, STAGE_COUNT } SimStage;
 
-typedef struct _p_Sim *Sim;
-typedef struct _SceneOps SceneOps;
 typedef struct _p_Guard *Guard;     /* guard.h */
 typedef struct _n_SizeGuard *SizeGuard; /* size_guard.h */
 #define SIM_MAX_KEEP OUTPUT_MAX_KEPT /* scene histories and scalars a checkpoint carries (SceneKeep*; output.h) */

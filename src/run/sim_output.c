@@ -3,7 +3,6 @@
  * knows none of the run, the scene or the guard; this file is where they meet it. */
 #include "run/sim.h"
 #include "run/guard.h"
-#include "scenes/scene.h"
 #include "io/io.h"
 
 PetscErrorCode SimWireOutput(Sim s)

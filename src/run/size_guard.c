@@ -1,6 +1,5 @@
 #include "run/size_guard.h"
 #include "base/options_used.h"
-#include "scenes/scene.h"
 #include "solid/solid.h"
 #include <ctype.h>
 #include <stdio.h>

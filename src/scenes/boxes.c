@@ -21,14 +21,11 @@
  * x0,x1,y0,y1,z0,z1[,s[,rows]] has its floor at z0 and walls on all four sides up to z1; obstacle
  * faces left,right,front,back,bottom,top (x-, x+, y-, y+, z-, z+); -domain six numbers; a level
  * gauge x,y; a pressure gauge x,y,z; a solid gauge x0,y0,z0,x1,y1,z1 (probes solid_dx, _dy, _dz).
- * Shapes (scenes/shapes.c, docs/geometry.md): -cylinder_K x,y,r (3D -sphere_K x,y,z,r), -polygon_K
+ * Shapes (<sphfsi/shapes.h>, docs/geometry.md): -cylinder_K x,y,r (3D -sphere_K x,y,z,r), -polygon_K
  * x0,y0,x1,y1,... (2D), each -..._kind wall|fluid|solid|clamp, made after the wall boxes; water of
  * the boxes is cut where an obstacle, solid or clamp shape is.  -periodic x[,y[,z]] with -domain;
  * -confined (no free surface; default when every direction is periodic); -flow_probe. */
-#include "scenes/scene.h"
-#include "scenes/shapes.h"
-#include "base/dim.h"
-#include "base/options_used.h"
+#include <sphfsi.h>
 
 #define NBOX 8
 #define NTANK 4
@@ -53,13 +50,13 @@ extern SceneOps SceneBoxes; /* not const: Create fills in its probe names */
 /* n numbers read into b: 2 D (or up to nmax) and a box whose high corner exceeds its low one. */
 static PetscErrorCode CheckBox(Sim sim, const char *name, const PetscReal b[], PetscInt n, PetscInt nmax)
 {
-  const PetscInt D = sim->phys.dim;
+  const PetscInt D = SimDim(sim);
   PetscBool      empty = PETSC_FALSE;
   PetscFunctionBeginUser;
-  PetscCheck(n >= 2 * D && n <= nmax, sim->comm, PETSC_ERR_USER_INPUT, "%s takes %d%s numbers, not %d", name, (int)(2 * D), nmax == 2 * D ? "" : nmax == 2 * D + 1 ? (D == 3 ? " or 7" : " or 5") : (D == 3 ? " to 8" : " to 6"), (int)n);
+  PetscCheck(n >= 2 * D && n <= nmax, SimComm(sim), PETSC_ERR_USER_INPUT, "%s takes %d%s numbers, not %d", name, (int)(2 * D), nmax == 2 * D ? "" : nmax == 2 * D + 1 ? (D == 3 ? " or 7" : " or 5") : (D == 3 ? " to 8" : " to 6"), (int)n);
   for (PetscInt d = 0; d < D; d++) empty = (PetscBool)(empty || !(b[D + d] > b[d]));
-  if (D == 3) PetscCheck(!empty, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "%s %g,%g,%g,%g,%g,%g: x1, y1, z1 must exceed x0, y0, z0", name, (double)b[0], (double)b[1], (double)b[2], (double)b[3], (double)b[4], (double)b[5]);
-  else PetscCheck(!empty, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "%s %g,%g,%g,%g: x1 must exceed x0 and y1 y0", name, (double)b[0], (double)b[1], (double)b[2], (double)b[3]);
+  if (D == 3) PetscCheck(!empty, SimComm(sim), PETSC_ERR_ARG_OUTOFRANGE, "%s %g,%g,%g,%g,%g,%g: x1, y1, z1 must exceed x0, y0, z0", name, (double)b[0], (double)b[1], (double)b[2], (double)b[3], (double)b[4], (double)b[5]);
+  else PetscCheck(!empty, SimComm(sim), PETSC_ERR_ARG_OUTOFRANGE, "%s %g,%g,%g,%g: x1 must exceed x0 and y1 y0", name, (double)b[0], (double)b[1], (double)b[2], (double)b[3]);
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -127,7 +124,7 @@ static PetscErrorCode BodyBoxes(const Boxes *c, PetscInt D, ShapesBoxes *B)
  * faces: -PREFIX_K_faces, the faces that meet water (default all). */
 static PetscErrorCode ReadBoxes(Sim sim, PetscOptionItems *PetscOptionsObject, const char *prefix, const char *text, Box *list, PetscInt *count, PetscBool spacing, PetscBool faces)
 {
-  const PetscInt D = sim->phys.dim, nb = 2 * D;
+  const PetscInt D = SimDim(sim), nb = 2 * D;
   char           name[40];
   PetscFunctionBeginUser;
   for (PetscInt k = 1; k <= NBOX; k++) {
@@ -141,8 +138,8 @@ static PetscErrorCode ReadBoxes(Sim sim, PetscOptionItems *PetscOptionsObject, c
     PetscCall(CheckBox(sim, name, v, n, spacing ? nb + 1 : nb));
     B = &list[(*count)++];
     for (PetscInt i = 0; i < nb; i++) B->b[i] = v[i];
-    B->s = n == nb + 1 ? v[nb] : sim->phys.dx;
-    PetscCheck(B->s > 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "%s: the spacing %g must be > 0", name, (double)B->s);
+    B->s = n == nb + 1 ? v[nb] : SimSpacing(sim);
+    PetscCheck(B->s > 0, SimComm(sim), PETSC_ERR_ARG_OUTOFRANGE, "%s: the spacing %g must be > 0", name, (double)B->s);
     for (PetscInt i = 0; i < nb; i++) B->face[i] = PETSC_TRUE;
     if (faces) {
       char list[64] = "";
@@ -176,21 +173,25 @@ static PetscErrorCode Create(Sim sim)
   const char *sides[] = {"both", "left", "right", "none", "TankSides", "", NULL};
   PetscReal   dom[6] = {0, 0, 0, 0, 0, 0}, top = -PETSC_MAX_REAL, low = PETSC_MAX_REAL;
   PetscInt    n, rows, D, up;
-  PetscBool   set, dom_set;
+  PetscBool   set, dom_set, outflow;
   char        name[40];
   PetscFunctionBeginUser;
   PetscCall(PetscNew(&c));
-  sim->scene_ctx = c;
-  PetscCheck(sim->phys.dx > 0, sim->comm, PETSC_ERR_USER_INPUT, "Scene boxes needs -dx (the particle spacing, m)");
-  PetscOptionsBegin(sim->comm, NULL, "Scene boxes: water, tanks, obstacles and solids as boxes given in the options", "");
-  PetscCall(OptInt("-dim", "Dimension: 2, or 3 (z up; every box then has six numbers)", "", sim->phys.dim, &sim->phys.dim, NULL));
-  PetscCheck(sim->phys.dim == 2 || sim->phys.dim == 3, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dim %" PetscInt_FMT " must be 2 or 3", sim->phys.dim);
-  D = sim->phys.dim; up = D - 1;
-  if (D == 3) { sim->phys.g[1] = 0; sim->phys.g[2] = -9.81; }
+  PetscCall(SimSetSceneContext(sim, c));
+  PetscCheck(SimSpacing(sim) > 0, SimComm(sim), PETSC_ERR_USER_INPUT, "Scene boxes needs -dx (the particle spacing, m)");
+  PetscOptionsBegin(SimComm(sim), NULL, "Scene boxes: water, tanks, obstacles and solids as boxes given in the options", "");
+  {
+    PetscInt dim = SimDim(sim);
+    PetscCall(OptInt("-dim", "Dimension: 2, or 3 (z up; every box then has six numbers)", "", dim, &dim, NULL));
+    PetscCall(SimSetDim(sim, dim));
+  }
+  PetscCheck(SimDim(sim) == 2 || SimDim(sim) == 3, SimComm(sim), PETSC_ERR_ARG_OUTOFRANGE, "-dim %" PetscInt_FMT " must be 2 or 3", SimDim(sim));
+  D = SimDim(sim); up = D - 1;
+  if (D == 3) PetscCall(SimSetGravity(sim, SimGravity(sim)[0], 0, -9.81));
   PetscCall(ReadBoxes(sim, PetscOptionsObject, "fluid_box", "Water at rest x0,y0,x1,y1[,spacing] (3D: x0,y0,z0,x1,y1,z1[,spacing]) (m)", c->fluid, &c->nfluid, PETSC_TRUE, PETSC_FALSE));
-  rows = KernelSupportRows(&sim->phys.kernel);
+  rows = SimKernelRows(sim);
   PetscCall(OptInt("-wall_rows", "Rows of wall + dummy particles of a tank that does not give its own", "", rows, &rows, NULL));
-  PetscCheck(rows >= 1, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-wall_rows %" PetscInt_FMT " must be >= 1", rows);
+  PetscCheck(rows >= 1, SimComm(sim), PETSC_ERR_ARG_OUTOFRANGE, "-wall_rows %" PetscInt_FMT " must be >= 1", rows);
   for (PetscInt k = 1; k <= NTANK; k++) {
     const PetscInt nb = 2 * D; /* x0,x1,y0,y1 (3D: ,z0,z1): each direction's range */
     PetscReal      v[8];
@@ -201,23 +202,26 @@ static PetscErrorCode Create(Sim sim)
     PetscCall(PetscOptionsRealArray(name, "Tank x0,x1,y0,y1[,spacing[,rows]]: floor at y0 from x0 to x1, side walls up to y1 (m); 3D x0,x1,y0,y1,z0,z1[,spacing[,rows]]: floor at z0, walls on four sides up to z1", "", v, &n, &set));
     if (!set) continue;
     T = &c->tank[c->ntank++];
-    PetscCheck(n >= nb && n <= nb + 2, sim->comm, PETSC_ERR_USER_INPUT, "%s takes %s[,spacing[,rows]], not %d numbers", name, D == 3 ? "x0,x1,y0,y1,z0,z1" : "x0,x1,y0,y1", (int)n);
+    PetscCheck(n >= nb && n <= nb + 2, SimComm(sim), PETSC_ERR_USER_INPUT, "%s takes %s[,spacing[,rows]], not %d numbers", name, D == 3 ? "x0,x1,y0,y1,z0,z1" : "x0,x1,y0,y1", (int)n);
     for (PetscInt d = 0; d < D; d++) { T->b[d] = v[2 * d]; T->b[D + d] = v[2 * d + 1]; }
     PetscCall(CheckBox(sim, name, T->b, nb, nb));
-    T->s    = n >= nb + 1 ? v[nb] : sim->phys.dx;
+    T->s    = n >= nb + 1 ? v[nb] : SimSpacing(sim);
     T->rows = n >= nb + 2 ? (PetscInt)v[nb + 1] : rows;
-    PetscCheck(T->s > 0 && T->rows >= 1 && (n < nb + 2 || v[nb + 1] == (PetscReal)T->rows), sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "%s: the spacing must be > 0 and the rows a whole number >= 1", name);
+    PetscCheck(T->s > 0 && T->rows >= 1 && (n < nb + 2 || v[nb + 1] == (PetscReal)T->rows), SimComm(sim), PETSC_ERR_ARG_OUTOFRANGE, "%s: the spacing must be > 0 and the rows a whole number >= 1", name);
     PetscCall(PetscSNPrintf(name, sizeof(name), "-tank_%d_sides", (int)k));
     PetscCall(OptEList(name, "Side walls of the tank (2D)", "", sides, 4, sides[0], &side, NULL));
-    PetscCheck(D == 2 || side == 0, sim->comm, PETSC_ERR_ARG_INCOMP, "%s: a 3D tank has walls on all four sides (both)", name);
+    PetscCheck(D == 2 || side == 0, SimComm(sim), PETSC_ERR_ARG_INCOMP, "%s: a 3D tank has walls on all four sides (both)", name);
     T->left  = (PetscBool)(side == 0 || side == 1);
     T->right = (PetscBool)(side == 0 || side == 2);
   }
   PetscCall(ReadBoxes(sim, PetscOptionsObject, "solid_box", "Elastic solid x0,y0,x1,y1 (m), at -dx", c->solid, &c->nsolid, PETSC_FALSE, PETSC_FALSE));
   PetscCall(ReadBoxes(sim, PetscOptionsObject, "clamp_box", "Rigid clamp of a solid x0,y0,x1,y1 (m), at -dx", c->clamp, &c->nclamp, PETSC_FALSE, PETSC_FALSE));
   PetscCall(ReadBoxes(sim, PetscOptionsObject, "wall_box", "Obstacle of wall particles x0,y0,x1,y1 (m), at -dx", c->wall, &c->nwall, PETSC_FALSE, PETSC_TRUE));
-  PetscCall(ShapesRead(sim, PetscOptionsObject, &c->shapes, rows));
-  PetscCall(OptBool("-outflow", "Water that leaves the domain is removed (an open boundary)", "", sim->outflow, &sim->outflow, NULL));
+  PetscCall(ShapesCreate(&c->shapes));
+  PetscCall(ShapesRead(sim, PetscOptionsObject, c->shapes, rows));
+  outflow = SimOutflow(sim);
+  PetscCall(OptBool("-outflow", "Water that leaves the domain is removed (an open boundary)", "", outflow, &outflow, NULL));
+  PetscCall(SimSetOutflow(sim, outflow));
   n = 2 * D;
   PetscCall(PetscOptionsRealArray("-domain", "Computational box x0,y0,x1,y1 (3D: x0,y0,z0,x1,y1,z1) (m); default: the tanks with their walls, open to twice their height", "", dom, &n, &dom_set));
   if (dom_set) PetscCall(CheckBox(sim, "-domain", dom, n, 2 * D));
@@ -226,27 +230,27 @@ static PetscErrorCode Create(Sim sim)
     PetscBool all = PETSC_TRUE;
     PetscCall(PetscOptionsString("-periodic", "Directions in which the domain is periodic: x, x,y, ... (needs -domain; the water should fill those directions exactly, in whole spacings)", "", per, per, sizeof(per), &set));
     if (set) {
-      PetscCheck(dom_set, sim->comm, PETSC_ERR_ARG_INCOMP, "-periodic %s needs -domain: the periodic box", per);
+      PetscCheck(dom_set, SimComm(sim), PETSC_ERR_ARG_INCOMP, "-periodic %s needs -domain: the periodic box", per);
       for (char *q = per; *q; q++) {
         PetscInt d = *q == 'x' ? 0 : *q == 'y' ? 1 : *q == 'z' ? 2 : -1;
         if (*q == ',' || *q == ' ') continue;
-        PetscCheck(d >= 0 && d < D, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-periodic %s: the directions are %s, separated by commas", per, D == 3 ? "x, y, z" : "x, y");
-        sim->periodic[d] = PETSC_TRUE;
+        PetscCheck(d >= 0 && d < D, SimComm(sim), PETSC_ERR_ARG_OUTOFRANGE, "-periodic %s: the directions are %s, separated by commas", per, D == 3 ? "x, y, z" : "x, y");
+        PetscCall(SimSetPeriodic(sim, d, PETSC_TRUE));
       }
     }
-    for (PetscInt d = 0; d < D; d++) all = (PetscBool)(all && sim->periodic[d]);
-    sim->phys.confined = all;
-    PetscCall(OptBool("-confined", "The water fills the domain: no free surface (ISPH pins the pressure's constant); default when every direction is periodic", "", sim->phys.confined, &sim->phys.confined, NULL));
+    for (PetscInt d = 0; d < D; d++) all = (PetscBool)(all && SimPeriodic(sim, d));
+    PetscCall(OptBool("-confined", "The water fills the domain: no free surface (ISPH pins the pressure's constant); default when every direction is periodic", "", all, &all, NULL));
+    PetscCall(SimSetConfined(sim, all));
   }
   for (PetscInt k = 1; k <= NGAUGE; k++) {
     PetscInt nl = D - 1, np = D, nbox = 2 * D;
     PetscCall(PetscSNPrintf(name, sizeof(name), "-gauge_level_%d", (int)k));
     PetscCall(PetscOptionsRealArray(name, "Water level gauge at this x (m) (3D: x,y)", "", c->level[c->nlevel], &nl, &set));
-    PetscCheck(!set || nl == D - 1, sim->comm, PETSC_ERR_USER_INPUT, "%s takes %s", name, D == 3 ? "2 numbers x,y" : "1 number x");
+    PetscCheck(!set || nl == D - 1, SimComm(sim), PETSC_ERR_USER_INPUT, "%s takes %s", name, D == 3 ? "2 numbers x,y" : "1 number x");
     c->nlevel += set;
     PetscCall(PetscSNPrintf(name, sizeof(name), "-gauge_pressure_%d", (int)k));
     PetscCall(PetscOptionsRealArray(name, "Pressure gauge at x,y (3D: x,y,z) (m)", "", c->press[c->npress], &np, &set));
-    PetscCheck(!set || np == D, sim->comm, PETSC_ERR_USER_INPUT, "%s takes %s", name, D == 3 ? "3 numbers x,y,z" : "2 numbers x,y");
+    PetscCheck(!set || np == D, SimComm(sim), PETSC_ERR_USER_INPUT, "%s takes %s", name, D == 3 ? "3 numbers x,y,z" : "2 numbers x,y");
     c->npress += set;
     PetscCall(PetscSNPrintf(name, sizeof(name), "-gauge_solid_%d", (int)k));
     PetscCall(PetscOptionsRealArray(name, "Mean displacement of the solid particles whose reference position is in x0,y0,x1,y1 (3D: x0,y0,z0,x1,y1,z1) (m)", "", c->sgauge[c->nsgauge], &nbox, &set));
@@ -255,73 +259,74 @@ static PetscErrorCode Create(Sim sim)
   PetscOptionsEnd();
   {
     PetscInt nfs = 0, nss = 0, ncs = 0;
-    for (PetscInt i = 0; i < c->shapes.n; i++) {
-      nfs += c->shapes.s[i].kind == SHAPE_FLUID;
-      nss += c->shapes.s[i].kind == SHAPE_SOLID;
-      ncs += c->shapes.s[i].kind == SHAPE_CLAMP;
-      if (c->shapes.s[i].kind == SHAPE_FLUID) {
-        top = PetscMax(top, c->shapes.s[i].g.hi[up]);
-        low = PetscMin(low, c->shapes.s[i].g.lo[up]);
+    for (PetscInt i = 0; i < ShapesCount(c->shapes); i++) {
+      ShapeKind kind;
+      PetscReal lo[3], hi[3];
+      PetscCall(ShapesGetShape(c->shapes, i, &kind, lo, hi));
+      nfs += kind == SHAPE_FLUID;
+      nss += kind == SHAPE_SOLID;
+      ncs += kind == SHAPE_CLAMP;
+      if (kind == SHAPE_FLUID) {
+        top = PetscMax(top, hi[up]);
+        low = PetscMin(low, lo[up]);
       }
     }
-    PetscCheck(c->nfluid + nfs > 0 || c->nsolid + nss > 0, sim->comm, PETSC_ERR_USER_INPUT, "Scene boxes has no water and no solid: give -fluid_box_1 x0,y0,x1,y1");
-    PetscCheck(!nss || c->nclamp + ncs > 0, sim->comm, PETSC_ERR_ARG_INCOMP, "A solid shape needs a clamp (-clamp_box_K, or a shape of kind clamp next to it): a free solid is not supported");
-    sim->phys.has_fluid = (PetscBool)(c->nfluid + nfs > 0);
-    sim->phys.has_solid = (PetscBool)(c->nsolid + nss > 0);
+    PetscCheck(c->nfluid + nfs > 0 || c->nsolid + nss > 0, SimComm(sim), PETSC_ERR_USER_INPUT, "Scene boxes has no water and no solid: give -fluid_box_1 x0,y0,x1,y1");
+    PetscCheck(!nss || c->nclamp + ncs > 0, SimComm(sim), PETSC_ERR_ARG_INCOMP, "A solid shape needs a clamp (-clamp_box_K, or a shape of kind clamp next to it): a free solid is not supported");
+    PetscCall(SimSetMedia(sim, (PetscBool)(c->nfluid + nfs > 0), (PetscBool)(c->nsolid + nss > 0)));
   }
-  if (sim->t_end < 0) sim->t_end = 1.0;
+  if (SimEndTime(sim) < 0) PetscCall(SimSetEndTime(sim, 1.0));
   for (PetscInt i = 0; i < c->nsolid; i++) {
     PetscBool held = PETSC_FALSE;
-    for (PetscInt j = 0; j < c->nclamp; j++) held = (PetscBool)(held || Touch(c->solid[i].b, c->clamp[j].b, 1e-9 * sim->phys.dx, D));
-    PetscCheck(held, sim->comm, PETSC_ERR_ARG_INCOMP, "-solid_box_%d touches no -clamp_box: a free solid is not supported; clamp it (a -clamp_box_K sharing an edge with it)", (int)i + 1);
+    for (PetscInt j = 0; j < c->nclamp; j++) held = (PetscBool)(held || Touch(c->solid[i].b, c->clamp[j].b, 1e-9 * SimSpacing(sim), D));
+    PetscCheck(held, SimComm(sim), PETSC_ERR_ARG_INCOMP, "-solid_box_%d touches no -clamp_box: a free solid is not supported; clamp it (a -clamp_box_K sharing an edge with it)", (int)i + 1);
   }
   for (PetscInt i = 0; i < c->nfluid; i++) {
     const Box *F    = &c->fluid[i];
     PetscBool  thin = PETSC_FALSE;
     for (PetscInt d = 0; d < D; d++) thin = (PetscBool)(thin || F->b[D + d] - F->b[d] < F->s);
-    PetscCheck(!thin, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-fluid_box_%d is thinner than its spacing %g: choose a smaller spacing", (int)i + 1, (double)F->s);
-    for (PetscInt j = 0; j < i; j++) PetscCheck(!Overlap(F->b, c->fluid[j].b, D), sim->comm, PETSC_ERR_ARG_INCOMP, "-fluid_box_%d overlaps -fluid_box_%d", (int)i + 1, (int)j + 1);
-    for (PetscInt j = 0; j < c->nwall; j++) PetscCheck(!Overlap(F->b, c->wall[j].b, D), sim->comm, PETSC_ERR_ARG_INCOMP, "-fluid_box_%d overlaps -wall_box_%d: water and wall cannot share space", (int)i + 1, (int)j + 1);
-    for (PetscInt j = 0; j < c->nsolid; j++) PetscCheck(!Overlap(F->b, c->solid[j].b, D), sim->comm, PETSC_ERR_ARG_INCOMP, "-fluid_box_%d overlaps -solid_box_%d", (int)i + 1, (int)j + 1);
-    for (PetscInt j = 0; j < c->nclamp; j++) PetscCheck(!Overlap(F->b, c->clamp[j].b, D), sim->comm, PETSC_ERR_ARG_INCOMP, "-fluid_box_%d overlaps -clamp_box_%d", (int)i + 1, (int)j + 1);
+    PetscCheck(!thin, SimComm(sim), PETSC_ERR_ARG_OUTOFRANGE, "-fluid_box_%d is thinner than its spacing %g: choose a smaller spacing", (int)i + 1, (double)F->s);
+    for (PetscInt j = 0; j < i; j++) PetscCheck(!Overlap(F->b, c->fluid[j].b, D), SimComm(sim), PETSC_ERR_ARG_INCOMP, "-fluid_box_%d overlaps -fluid_box_%d", (int)i + 1, (int)j + 1);
+    for (PetscInt j = 0; j < c->nwall; j++) PetscCheck(!Overlap(F->b, c->wall[j].b, D), SimComm(sim), PETSC_ERR_ARG_INCOMP, "-fluid_box_%d overlaps -wall_box_%d: water and wall cannot share space", (int)i + 1, (int)j + 1);
+    for (PetscInt j = 0; j < c->nsolid; j++) PetscCheck(!Overlap(F->b, c->solid[j].b, D), SimComm(sim), PETSC_ERR_ARG_INCOMP, "-fluid_box_%d overlaps -solid_box_%d", (int)i + 1, (int)j + 1);
+    for (PetscInt j = 0; j < c->nclamp; j++) PetscCheck(!Overlap(F->b, c->clamp[j].b, D), SimComm(sim), PETSC_ERR_ARG_INCOMP, "-fluid_box_%d overlaps -clamp_box_%d", (int)i + 1, (int)j + 1);
     for (PetscInt j = 0; j < c->ntank; j++) {
       PetscReal r[5][6];
       PetscInt  nr = TankWalls(&c->tank[j], D, r);
-      for (PetscInt q = 0; q < nr; q++) PetscCheck(!Overlap(F->b, r[q], D), sim->comm, PETSC_ERR_ARG_INCOMP, "-fluid_box_%d overlaps the walls of -tank_%d: water and wall cannot share space", (int)i + 1, (int)j + 1);
+      for (PetscInt q = 0; q < nr; q++) PetscCheck(!Overlap(F->b, r[q], D), SimComm(sim), PETSC_ERR_ARG_INCOMP, "-fluid_box_%d overlaps the walls of -tank_%d: water and wall cannot share space", (int)i + 1, (int)j + 1);
     }
     top = PetscMax(top, F->b[D + up]);
     low = PetscMin(low, F->b[up]);
   }
   if (dom_set) {
-    for (PetscInt d = 0; d < D; d++) { sim->dom_lo[d] = dom[d]; sim->dom_hi[d] = dom[D + d]; }
+    for (PetscInt d = 0; d < D; d++) PetscCall(SimSetDomain(sim, d, dom[d], dom[D + d]));
   } else {
-    PetscCheck(c->ntank > 0, sim->comm, PETSC_ERR_USER_INPUT, "Scene boxes without a -tank_1 needs -domain %s", D == 3 ? "x0,y0,z0,x1,y1,z1" : "x0,y0,x1,y1");
-    for (PetscInt d = 0; d < D; d++) { sim->dom_lo[d] = PETSC_MAX_REAL; sim->dom_hi[d] = -PETSC_MAX_REAL; }
+    PetscCheck(c->ntank > 0, SimComm(sim), PETSC_ERR_USER_INPUT, "Scene boxes without a -tank_1 needs -domain %s", D == 3 ? "x0,y0,z0,x1,y1,z1" : "x0,y0,x1,y1");
+    for (PetscInt d = 0; d < D; d++) PetscCall(SimSetDomain(sim, d, PETSC_MAX_REAL, -PETSC_MAX_REAL));
     for (PetscInt j = 0; j < c->ntank; j++) { /* the tank with its walls, open to twice its height */
       const Box      *T = &c->tank[j];
       const PetscReal d = (T->rows + 0.5) * T->s;
       for (PetscInt q = 0; q < D; q++) {
-        sim->dom_lo[q] = PetscMin(sim->dom_lo[q], T->b[q] - d);
-        sim->dom_hi[q] = PetscMax(sim->dom_hi[q], q == up ? T->b[up] + 2 * (T->b[D + up] - T->b[up]) : T->b[D + q] + d);
+        PetscCall(SimSetDomain(sim, q, PetscMin(SimDomainLo(sim)[q], T->b[q] - d), PetscMax(SimDomainHi(sim)[q], q == up ? T->b[up] + 2 * (T->b[D + up] - T->b[up]) : T->b[D + q] + d)));
       }
     }
   }
   for (PetscInt i = 0; i < c->nfluid; i++) {
     const PetscReal *b = c->fluid[i].b;
     PetscBool        in = PETSC_TRUE;
-    for (PetscInt d = 0; d < D; d++) in = (PetscBool)(in && b[d] >= sim->dom_lo[d] && b[D + d] <= sim->dom_hi[d]);
-    if (D == 3) PetscCheck(in, sim->comm, PETSC_ERR_ARG_INCOMP, "-fluid_box_%d reaches outside the domain [%g, %g] x [%g, %g] x [%g, %g]", (int)i + 1, (double)sim->dom_lo[0], (double)sim->dom_hi[0], (double)sim->dom_lo[1], (double)sim->dom_hi[1], (double)sim->dom_lo[2], (double)sim->dom_hi[2]);
-    else PetscCheck(in, sim->comm, PETSC_ERR_ARG_INCOMP, "-fluid_box_%d reaches outside the domain [%g, %g] x [%g, %g]", (int)i + 1, (double)sim->dom_lo[0], (double)sim->dom_hi[0], (double)sim->dom_lo[1], (double)sim->dom_hi[1]);
+    for (PetscInt d = 0; d < D; d++) in = (PetscBool)(in && b[d] >= SimDomainLo(sim)[d] && b[D + d] <= SimDomainHi(sim)[d]);
+    if (D == 3) PetscCheck(in, SimComm(sim), PETSC_ERR_ARG_INCOMP, "-fluid_box_%d reaches outside the domain [%g, %g] x [%g, %g] x [%g, %g]", (int)i + 1, (double)SimDomainLo(sim)[0], (double)SimDomainHi(sim)[0], (double)SimDomainLo(sim)[1], (double)SimDomainHi(sim)[1], (double)SimDomainLo(sim)[2], (double)SimDomainHi(sim)[2]);
+    else PetscCheck(in, SimComm(sim), PETSC_ERR_ARG_INCOMP, "-fluid_box_%d reaches outside the domain [%g, %g] x [%g, %g]", (int)i + 1, (double)SimDomainLo(sim)[0], (double)SimDomainHi(sim)[0], (double)SimDomainLo(sim)[1], (double)SimDomainHi(sim)[1]);
   }
   for (PetscInt k = 0; k < c->nlevel; k++) {
     PetscBool in = PETSC_TRUE;
-    for (PetscInt d = 0; d < D - 1; d++) in = (PetscBool)(in && c->level[k][d] > sim->dom_lo[d] && c->level[k][d] < sim->dom_hi[d]);
-    PetscCheck(in, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-gauge_level_%d %g is outside the domain [%g, %g]", (int)k + 1, (double)c->level[k][0], (double)sim->dom_lo[0], (double)sim->dom_hi[0]);
+    for (PetscInt d = 0; d < D - 1; d++) in = (PetscBool)(in && c->level[k][d] > SimDomainLo(sim)[d] && c->level[k][d] < SimDomainHi(sim)[d]);
+    PetscCheck(in, SimComm(sim), PETSC_ERR_ARG_OUTOFRANGE, "-gauge_level_%d %g is outside the domain [%g, %g]", (int)k + 1, (double)c->level[k][0], (double)SimDomainLo(sim)[0], (double)SimDomainHi(sim)[0]);
   }
   for (PetscInt k = 0; k < c->npress; k++) {
     PetscBool in = PETSC_TRUE;
-    for (PetscInt d = 0; d < D; d++) in = (PetscBool)(in && c->press[k][d] > sim->dom_lo[d] && c->press[k][d] < sim->dom_hi[d]);
-    PetscCheck(in, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-gauge_pressure_%d %g,%g%s is outside the domain", (int)k + 1, (double)c->press[k][0], (double)c->press[k][1], D == 3 ? ",..." : "");
+    for (PetscInt d = 0; d < D; d++) in = (PetscBool)(in && c->press[k][d] > SimDomainLo(sim)[d] && c->press[k][d] < SimDomainHi(sim)[d]);
+    PetscCheck(in, SimComm(sim), PETSC_ERR_ARG_OUTOFRANGE, "-gauge_pressure_%d %g,%g%s is outside the domain", (int)k + 1, (double)c->press[k][0], (double)c->press[k][1], D == 3 ? ",..." : "");
   }
   {
     PetscReal   box[NBOX][6], sp[NBOX];
@@ -331,11 +336,11 @@ static PetscErrorCode Create(Sim sim)
       sp[i] = c->fluid[i].s;
     }
     PetscCall(BodyBoxes(c, D, &bodies));
-    PetscCall(ShapesSetUp(sim, &c->shapes, c->nfluid, (const PetscReal(*)[6])box, sp, &bodies));
+    PetscCall(ShapesSetUp(sim, c->shapes, c->nfluid, (const PetscReal(*)[6])box, sp, &bodies));
   }
-  PetscCheck(!c->nsgauge || c->nsolid, sim->comm, PETSC_ERR_ARG_INCOMP, "-gauge_solid_1 needs a -solid_box_1");
+  PetscCheck(!c->nsgauge || c->nsolid, SimComm(sim), PETSC_ERR_ARG_INCOMP, "-gauge_solid_1 needs a -solid_box_1");
   /* c0 = 10 x the speed of a fall from the highest water surface to the lowest water */
-  if (sim->phys.has_fluid) sim->phys.v_ref = PetscSqrtReal(2 * PetscSqrtReal(VDot(sim->phys.g, sim->phys.g, D)) * (top - low));
+  if (SimHasFluid(sim)) PetscCall(SimSetReferenceSpeed(sim, PetscSqrtReal(2 * SimGravityNorm(sim) * (top - low))));
   /* probes: front_x, v_max, then the gauges */
   n = 0;
   PetscCall(ProbeName(c, &n, "front_x", 0));
@@ -347,26 +352,27 @@ static PetscErrorCode Create(Sim sim)
     PetscCall(ProbeName(c, &n, "solid_dy", k));
     if (D == 3) PetscCall(ProbeName(c, &n, "solid_dz", k));
   }
-  if (ShapesFlowColumns(&c->shapes)) {
+  if (ShapesFlowColumns(c->shapes)) {
     PetscCall(ProbeName(c, &n, "u_mean", 0));
     PetscCall(ProbeName(c, &n, "drag", 0));
   }
-  PetscCheck(n <= SCENE_MAX_PROBES, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "Scene boxes has %d probe columns (front_x, v_max and the gauges; a solid gauge counts one per dimension): at most %d", (int)n, SCENE_MAX_PROBES);
+  PetscCheck(n <= SCENE_MAX_PROBES, SimComm(sim), PETSC_ERR_ARG_OUTOFRANGE, "Scene boxes has %d probe columns (front_x, v_max and the gauges; a solid gauge counts one per dimension): at most %d", (int)n, SCENE_MAX_PROBES);
   SceneBoxes.nprobes = n;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
 static PetscErrorCode Populate(Sim sim)
 {
-  Boxes *c = (Boxes *)sim->scene_ctx;
+  Boxes *c = (Boxes *)SimSceneContext(sim);
   PetscFunctionBeginUser;
-  const PetscInt D = sim->phys.dim, up = D - 1;
+  const PetscInt D = SimDim(sim), up = D - 1;
   for (PetscInt i = 0; i < c->nfluid; i++) { /* at rest: hydrostatic below the lattice's top */
     const Box *F     = &c->fluid[i];
-    PetscInt   first = sim->P->n, n;
+    PetscInt   first, n;
     PetscReal  s     = SceneFitSpacing(F->b[D + up] - F->b[up], F->s, &n);
-    PetscCall(SceneAddBox(sim, KIND_FLUID, F->b, F->s, sim->phys.fl.rho0));
-    if (c->shapes.n) PetscCall(ShapesCutWater(sim, &c->shapes, first, F->b, F->b + D, F->s));
+    PetscCall(SimGetLocalSize(sim, &first));
+    PetscCall(SceneAddBox(sim, KIND_FLUID, F->b, F->s, SimFluidMaterial(sim)->rho0));
+    if (ShapesCount(c->shapes)) PetscCall(ShapesCutWater(sim, c->shapes, first, F->b, F->b + D, F->s));
     PetscCall(SceneHydrostaticDensity(sim, first, F->b[up] + n * s));
   }
   for (PetscInt i = 0; i < c->ntank; i++) {
@@ -374,39 +380,46 @@ static PetscErrorCode Populate(Sim sim)
     if (D == 3) PetscCall(SceneAddTankBox(sim, T->b, T->b + 3, T->b[5], T->s, T->rows));
     else PetscCall(SceneAddTank(sim, T->b[0], T->b[2], T->b[1], T->b[3], T->s, T->rows, T->left, T->right));
   }
-  for (PetscInt i = 0; i < c->nsolid; i++) PetscCall(SceneAddBox(sim, KIND_SOLID, c->solid[i].b, sim->phys.dx, sim->phys.sl.rho0));
-  for (PetscInt i = 0; i < c->nclamp; i++) PetscCall(SceneAddBox(sim, KIND_CLAMP, c->clamp[i].b, sim->phys.dx, sim->phys.sl.rho0));
-  for (PetscInt i = 0; i < c->nwall; i++) PetscCall(SceneAddWallBox(sim, c->wall[i].b, sim->phys.dx, c->wall[i].face));
-  if (D == 3 && c->shapes.n) { /* an STL obstacle's faces resting on these walls are dry */
+  for (PetscInt i = 0; i < c->nsolid; i++) PetscCall(SceneAddBox(sim, KIND_SOLID, c->solid[i].b, SimSpacing(sim), SimSolidMaterial(sim)->rho0));
+  for (PetscInt i = 0; i < c->nclamp; i++) PetscCall(SceneAddBox(sim, KIND_CLAMP, c->clamp[i].b, SimSpacing(sim), SimSolidMaterial(sim)->rho0));
+  for (PetscInt i = 0; i < c->nwall; i++) PetscCall(SceneAddWallBox(sim, c->wall[i].b, SimSpacing(sim), c->wall[i].face));
+  if (D == 3 && ShapesCount(c->shapes)) { /* an STL obstacle's faces resting on these walls are dry */
     PetscReal dry[6 * SHAPES_MAX][6];
     PetscInt  n = 0;
     for (PetscInt i = 0; i < c->ntank && n + 5 <= 6 * SHAPES_MAX; i++) n += TankWalls(&c->tank[i], D, dry + n);
     for (PetscInt i = 0; i < c->nwall && n < 6 * SHAPES_MAX; i++, n++)
       for (PetscInt k = 0; k < 6; k++) dry[n][k] = c->wall[i].b[k];
-    PetscCall(ShapesSetDry(sim, &c->shapes, n, (const PetscReal(*)[6])dry));
+    PetscCall(ShapesSetDry(sim, c->shapes, n, (const PetscReal(*)[6])dry));
   }
-  PetscCall(ShapesPopulate(sim, &c->shapes));
+  PetscCall(ShapesPopulate(sim, c->shapes));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
 static PetscErrorCode Probe(Sim sim, PetscReal *vals)
 {
-  Boxes     *c = (Boxes *)sim->scene_ctx;
-  Particles  P = sim->P;
-  PetscReal *x = PField(P, FIELD_X), *x0 = P->f[FIELD_X0].on ? PField(P, FIELD_X0) : NULL, m[1 + NGAUGE], s[4 * NGAUGE];
-  PetscInt   n = 2, D = P->dim;
+  Boxes     *c = (Boxes *)SimSceneContext(sim);
+  const PetscReal *x, *x0 = NULL;
+  const PetscInt  *kind;
+  PetscReal        m[1 + NGAUGE], s[4 * NGAUGE];
+  PetscInt         n = 2, D = SimDim(sim), np;
+  PetscBool        has_x0;
   PetscFunctionBeginUser;
+  PetscCall(SimGetLocalSize(sim, &np));
+  PetscCall(SimGetField(sim, "kind", NULL, &kind));
+  PetscCall(SimGetField(sim, "x", NULL, &x));
+  PetscCall(SimHasField(sim, "x0", &has_x0));
+  if (has_x0) PetscCall(SimGetField(sim, "x0", NULL, &x0));
   for (PetscInt k = 0; k <= c->nlevel; k++) m[k] = -PETSC_MAX_REAL;
   for (PetscInt k = 0; k < (D + 1) * c->nsgauge; k++) s[k] = 0;
-  for (PetscInt a = 0; a < P->n; a++) {
-    if (KindIsFluid(P->kind[a])) {
+  for (PetscInt a = 0; a < np; a++) {
+    if (KindIsFluid(kind[a])) {
       m[0] = PetscMax(m[0], x[D * a]);
       for (PetscInt k = 0; k < c->nlevel; k++) { /* the highest water within 1.5 dx of the gauge's vertical */
         PetscBool near = PETSC_TRUE;
-        for (PetscInt d = 0; d < D - 1; d++) near = (PetscBool)(near && PetscAbsReal(x[D * a + d] - c->level[k][d]) < 1.5 * sim->phys.dx);
+        for (PetscInt d = 0; d < D - 1; d++) near = (PetscBool)(near && PetscAbsReal(x[D * a + d] - c->level[k][d]) < 1.5 * SimSpacing(sim));
         if (near) m[1 + k] = PetscMax(m[1 + k], x[D * a + D - 1]);
       }
-    } else if (P->kind[a] == KIND_SOLID && x0)
+    } else if (kind[a] == KIND_SOLID && x0)
       for (PetscInt k = 0; k < c->nsgauge; k++) {
         const PetscReal *g = c->sgauge[k];
         PetscBool        in = PETSC_TRUE;
@@ -416,31 +429,36 @@ static PetscErrorCode Probe(Sim sim, PetscReal *vals)
         s[(D + 1) * k + D] += 1;
       }
   }
-  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, m, 1 + c->nlevel, MPIU_REAL, MPIU_MAX, sim->comm));
-  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, s, (D + 1) * c->nsgauge, MPIU_REAL, MPIU_SUM, sim->comm));
-  vals[0] = m[0] > -PETSC_MAX_REAL ? m[0] + 0.5 * sim->phys.dx : 0;
+  PetscCall(SimRestoreField(sim, "kind", NULL, &kind));
+  PetscCall(SimRestoreField(sim, "x", NULL, &x));
+  if (has_x0) PetscCall(SimRestoreField(sim, "x0", NULL, &x0));
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, m, 1 + c->nlevel, MPIU_REAL, MPIU_MAX, SimComm(sim)));
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, s, (D + 1) * c->nsgauge, MPIU_REAL, MPIU_SUM, SimComm(sim)));
+  vals[0] = m[0] > -PETSC_MAX_REAL ? m[0] + 0.5 * SimSpacing(sim) : 0;
   PetscCall(SceneMaxSpeed(sim, &vals[1]));
-  for (PetscInt k = 0; k < c->nlevel; k++) vals[n++] = m[1 + k] > -PETSC_MAX_REAL ? m[1 + k] + 0.5 * sim->phys.dx : 0; /* 0: no water there */
+  for (PetscInt k = 0; k < c->nlevel; k++) vals[n++] = m[1 + k] > -PETSC_MAX_REAL ? m[1 + k] + 0.5 * SimSpacing(sim) : 0; /* 0: no water there */
   for (PetscInt k = 0; k < c->npress; k++) PetscCall(SceneProbePressure(sim, c->press[k], &vals[n++]));
   for (PetscInt k = 0; k < c->nsgauge; k++)
     for (PetscInt d = 0; d < D; d++) vals[n++] = s[(D + 1) * k + D] > 0 ? s[(D + 1) * k + d] / s[(D + 1) * k + D] : 0;
-  PetscCall(ShapesFlowProbe(sim, &c->shapes, vals + n));
+  PetscCall(ShapesFlowProbe(sim, c->shapes, vals + n));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
 static PetscErrorCode Errors(Sim sim, FILE *f)
 {
-  Boxes *c = (Boxes *)sim->scene_ctx;
+  Boxes *c = (Boxes *)SimSceneContext(sim);
   PetscFunctionBeginUser;
-  PetscCall(ShapesFlowErrors(sim, &c->shapes, f));
+  PetscCall(ShapesFlowErrors(sim, c->shapes, f));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
 static PetscErrorCode Destroy(Sim sim)
 {
+  Boxes *c = (Boxes *)SimSceneContext(sim);
   PetscFunctionBeginUser;
-  PetscCall(ShapesDestroy(&((Boxes *)sim->scene_ctx)->shapes));
-  PetscCall(PetscFree(sim->scene_ctx));
+  if (c) PetscCall(ShapesDestroy(&c->shapes));
+  PetscCall(PetscFree(c));
+  PetscCall(SimSetSceneContext(sim, NULL));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

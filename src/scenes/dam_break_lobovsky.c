@@ -9,9 +9,7 @@
  * over t sqrt(g/H) <= 8 (the series TNL-SPH compares: H1_2, H2_3, H3_3, H4_4); pressures as the
  * first impact peak p / (rho g H) and its time against the representative event 5, and the rms of
  * p / (rho g H) over t sqrt(g/H) in [2, t_end] (the experiment's t = 0 is the gate's release). */
-#include "scenes/scene.h"
-#include "base/options_used.h"
-#include "base/refdata.h"
+#include <sphfsi.h>
 
 #define NGAUGE  4
 #define NSENSOR 4
@@ -34,22 +32,22 @@ static PetscErrorCode Create(Sim sim)
   Lobovsky *c;
   PetscFunctionBeginUser;
   PetscCall(PetscNew(&c));
-  sim->scene_ctx = c;
+  PetscCall(SimSetSceneContext(sim, c));
   for (PetscInt k = 0; k < NGAUGE; k++) PetscCall(SceneKeepSeries(sim, &c->level[k]));
   for (PetscInt k = 0; k < NSENSOR; k++) PetscCall(SceneKeepSeries(sim, &c->pres[k]));
-  c->L = 0.6; c->H = 0.3; c->Lt = 1.61; c->top = 1.0; c->sensor = 0.0045; c->rows = KernelSupportRows(&sim->phys.kernel);
-  PetscOptionsBegin(sim->comm, NULL, "Scene dam_break_lobovsky: Lobovsky et al. 2014 dam break, H = 0.3 m, with level gauges and wall pressure sensors", "");
+  c->L = 0.6; c->H = 0.3; c->Lt = 1.61; c->top = 1.0; c->sensor = 0.0045; c->rows = SimKernelRows(sim);
+  PetscOptionsBegin(SimComm(sim), NULL, "Scene dam_break_lobovsky: Lobovsky et al. 2014 dam break, H = 0.3 m, with level gauges and wall pressure sensors", "");
   PetscCall(OptReal("-tank_height", "Tank wall height (m): room for the run-up on the far wall", "", c->top, &c->top, NULL));
   PetscCall(OptReal("-sensor_size", "Height of a pressure sensor's face on the wall (m), over which its pressure is averaged", "", c->sensor, &c->sensor, NULL));
   PetscCall(OptInt("-wall_rows", "Rows of wall + dummy particles", "", c->rows, &c->rows, NULL));
   PetscOptionsEnd();
-  PetscCheck(c->top >= 2 * c->H, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-tank_height %g must be at least twice the column height %g (the run-up on the far wall)", (double)c->top, (double)c->H);
-  PetscCheck(c->sensor >= 0 && c->sensor <= 0.006, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-sensor_size %g must be in [0, 0.006] m (the lowest sensor is 3 mm above the floor)", (double)c->sensor);
-  PetscCheck(c->rows >= 1, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-wall_rows %" PetscInt_FMT " must be >= 1", c->rows);
-  if (sim->phys.dx < 0) sim->phys.dx = c->H / 40;
-  if (sim->t_end < 0) sim->t_end = 8.0 / PetscSqrtReal(9.81 / c->H); /* t sqrt(g/H) = 8 */
-  PetscCheck(sim->phys.dx <= c->H / 10, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dx %g leaves fewer than 10 particles over the column height %g: choose a smaller -dx", (double)sim->phys.dx, (double)c->H);
-  sim->phys.v_ref     = PetscSqrtReal(2 * 9.81 * c->H);
+  PetscCheck(c->top >= 2 * c->H, SimComm(sim), PETSC_ERR_ARG_OUTOFRANGE, "-tank_height %g must be at least twice the column height %g (the run-up on the far wall)", (double)c->top, (double)c->H);
+  PetscCheck(c->sensor >= 0 && c->sensor <= 0.006, SimComm(sim), PETSC_ERR_ARG_OUTOFRANGE, "-sensor_size %g must be in [0, 0.006] m (the lowest sensor is 3 mm above the floor)", (double)c->sensor);
+  PetscCheck(c->rows >= 1, SimComm(sim), PETSC_ERR_ARG_OUTOFRANGE, "-wall_rows %" PetscInt_FMT " must be >= 1", c->rows);
+  if (SimSpacing(sim) < 0) PetscCall(SimSetSpacing(sim, c->H / 40));
+  if (SimEndTime(sim) < 0) PetscCall(SimSetEndTime(sim, 8.0 / PetscSqrtReal(9.81 / c->H))); /* t sqrt(g/H) = 8 */
+  PetscCheck(SimSpacing(sim) <= c->H / 10, SimComm(sim), PETSC_ERR_ARG_OUTOFRANGE, "-dx %g leaves fewer than 10 particles over the column height %g: choose a smaller -dx", (double)SimSpacing(sim), (double)c->H);
+  PetscCall(SimSetReferenceSpeed(sim, PetscSqrtReal(2 * 9.81 * c->H)));
   /* open air above the walls, as high again (as the Martin & Moyce scene): at H/80 ISPH throws a
    * droplet of the far wall's run-up back over the tank at (-4, +4) m/s through y = 1 m at
    * t sqrt(g/H) = 3.7; it falls back into the tank */
@@ -59,7 +57,7 @@ static PetscErrorCode Create(Sim sim)
 
 static PetscErrorCode Populate(Sim sim)
 {
-  Lobovsky *c = (Lobovsky *)sim->scene_ctx;
+  Lobovsky *c = (Lobovsky *)SimSceneContext(sim);
   PetscFunctionBeginUser;
   SceneColumnKernelInit(sim, &c->col);
   PetscCall(SceneAddDamBreak(sim, c->L, c->H, c->Lt, c->top, c->rows));
@@ -69,13 +67,13 @@ static PetscErrorCode Populate(Sim sim)
 /* H1..H4 (m), then P1..P4 (Pa) */
 static PetscErrorCode Probe(Sim sim, PetscReal *vals)
 {
-  Lobovsky *c = (Lobovsky *)sim->scene_ctx;
+  Lobovsky *c = (Lobovsky *)SimSceneContext(sim);
   PetscReal lev[NGAUGE];
   PetscFunctionBeginUser;
   PetscCall(SceneWaterDepth(sim, &c->col, NGAUGE, GaugeX, lev));
   for (PetscInt g = 0; g < NGAUGE; g++) {
     vals[g] = lev[g];
-    PetscCall(SeriesAppend(&c->level[g], sim->phys.t, lev[g]));
+    PetscCall(SeriesAppend(&c->level[g], SimTime(sim), lev[g]));
   }
   for (PetscInt s = 0; s < NSENSOR; s++) {
     PetscReal sum = 0;
@@ -85,15 +83,15 @@ static PetscErrorCode Probe(Sim sim, PetscReal *vals)
       sum += p;
     }
     vals[NGAUGE + s] = sum / NFACE;
-    PetscCall(SeriesAppend(&c->pres[s], sim->phys.t, vals[NGAUGE + s]));
+    PetscCall(SeriesAppend(&c->pres[s], SimTime(sim), vals[NGAUGE + s]));
   }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
 static PetscErrorCode Errors(Sim sim, FILE *f)
 {
-  Lobovsky *c = (Lobovsky *)sim->scene_ctx;
-  PetscReal g = -sim->phys.g[1], ts = PetscSqrtReal(c->H / g), tend = sim->phys.t / ts, rg = sim->phys.fl.rho0 * g * c->H;
+  Lobovsky *c = (Lobovsky *)SimSceneContext(sim);
+  PetscReal g = -SimGravity(sim)[1], ts = PetscSqrtReal(c->H / g), tend = SimTime(sim) / ts, rg = SimFluidMaterial(sim)->rho0 * g * c->H;
   PetscReal levels2 = 0; /* the four gauges' rms errors, squared and summed */
   PetscInt  nlevels = 0;
   PetscFunctionBeginUser;
@@ -102,7 +100,7 @@ static PetscErrorCode Errors(Sim sim, FILE *f)
     PetscBool found;
     PetscReal rms, max;
     PetscInt  n;
-    PetscCall(RefDataLoad(&sim->refdata, "lobovsky2014_H0.3_water_levels.csv", "t_star", GaugeCols[k], &ref, &found));
+    PetscCall(RefDataLoad(SimRefData(sim), "lobovsky2014_H0.3_water_levels.csv", "t_star", GaugeCols[k], &ref, &found));
     if (found && f) {
       PetscCall(SeriesCompare(&c->level[k], &ref, ts, c->H, 0, PetscMin(tend, 8.0), PETSC_FALSE, &rms, &max, &n));
       fprintf(f, "\"H%d_err_rms\": %.6g, \"H%d_err_max\": %.6g, ", (int)k + 1, (double)rms, (int)k + 1, (double)max);
@@ -116,7 +114,7 @@ static PetscErrorCode Errors(Sim sim, FILE *f)
     PetscBool found;
     PetscReal rms, max, pe, te, ps, tsim;
     PetscInt  n;
-    PetscCall(RefDataLoad(&sim->refdata, "lobovsky2014_H0.3_pressure_peak_event5.csv", "t_star", SensorCols[k], &ref, &found));
+    PetscCall(RefDataLoad(SimRefData(sim), "lobovsky2014_H0.3_pressure_peak_event5.csv", "t_star", SensorCols[k], &ref, &found));
     if (found && f && tend > 2.0) {
       /* the impact: the first peak within t sqrt(g/H) in [2, 3.5] in both (sensor 4, higher up,
        * peaks later with the run-up: over the whole window) */
@@ -135,11 +133,12 @@ static PetscErrorCode Errors(Sim sim, FILE *f)
 
 static PetscErrorCode Destroy(Sim sim)
 {
-  Lobovsky *c = (Lobovsky *)sim->scene_ctx;
+  Lobovsky *c = (Lobovsky *)SimSceneContext(sim);
   PetscFunctionBeginUser;
   for (PetscInt k = 0; k < NGAUGE; k++) PetscCall(SeriesDestroy(&c->level[k]));
   for (PetscInt k = 0; k < NSENSOR; k++) PetscCall(SeriesDestroy(&c->pres[k]));
-  PetscCall(PetscFree(sim->scene_ctx));
+  PetscCall(PetscFree(c));
+  PetscCall(SimSetSceneContext(sim, NULL));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

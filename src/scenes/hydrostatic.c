@@ -1,8 +1,6 @@
 /* Water at rest in a tank: the floor pressure must be rho g H and nothing must move.  In 2D or 3D
  * (-dim 3: a square tank W x W, the water H deep, gravity along -z). */
-#include "scenes/scene.h"
-#include "base/options_used.h"
-#include "base/refdata.h"
+#include <sphfsi.h>
 
 typedef struct {
   PetscReal W, H;
@@ -15,41 +13,45 @@ static PetscErrorCode Create(Sim sim)
   Hydro *c;
   PetscFunctionBeginUser;
   PetscCall(PetscNew(&c));
-  sim->scene_ctx = c;
+  PetscCall(SimSetSceneContext(sim, c));
   PetscCall(SceneKeepSeries(sim, &c->pb));
-  c->W = 0.1; c->H = 0.1; c->rows = KernelSupportRows(&sim->phys.kernel);
-  PetscOptionsBegin(sim->comm, NULL, "Scene hydrostatic: water at rest in a tank", "");
+  c->W = 0.1; c->H = 0.1; c->rows = SimKernelRows(sim);
+  PetscOptionsBegin(SimComm(sim), NULL, "Scene hydrostatic: water at rest in a tank", "");
   PetscCall(OptReal("-tank_width", "Tank (and water) width (m)", "", c->W, &c->W, NULL));
   PetscCall(OptReal("-water_depth", "Water depth H (m)", "", c->H, &c->H, NULL));
   PetscCall(OptInt("-wall_rows", "Rows of wall + dummy particles", "", c->rows, &c->rows, NULL));
-  PetscCall(OptInt("-dim", "Dimension: 2, or 3 for a square tank W x W with gravity along -z", "", sim->phys.dim, &sim->phys.dim, NULL));
+  {
+    PetscInt dim = SimDim(sim);
+    PetscCall(OptInt("-dim", "Dimension: 2, or 3 for a square tank W x W with gravity along -z", "", dim, &dim, NULL));
+    PetscCall(SimSetDim(sim, dim));
+  }
   PetscOptionsEnd();
-  PetscCheck(sim->phys.dim == 2 || sim->phys.dim == 3, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dim %" PetscInt_FMT " must be 2 or 3", sim->phys.dim);
-  if (sim->phys.dim == 3) { sim->phys.g[1] = 0; sim->phys.g[2] = -9.81; }
-  PetscCheck(c->W > 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-tank_width %g must be > 0", (double)c->W);
-  PetscCheck(c->H > 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-water_depth %g must be > 0", (double)c->H);
-  PetscCheck(c->rows >= 1, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-wall_rows %" PetscInt_FMT " must be >= 1", c->rows);
-  if (sim->phys.dx < 0) sim->phys.dx = c->H / 40;
-  if (sim->t_end < 0) sim->t_end = 1.0;
-  PetscCheck(sim->phys.dx <= 0.5 * PetscMin(c->W, c->H), sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dx %g is larger than half the water region (%g x %g m): choose a smaller -dx", (double)sim->phys.dx, (double)c->W, (double)c->H);
-  sim->phys.v_ref     = PetscSqrtReal(2 * 9.81 * c->H);
+  PetscCheck(SimDim(sim) == 2 || SimDim(sim) == 3, SimComm(sim), PETSC_ERR_ARG_OUTOFRANGE, "-dim %" PetscInt_FMT " must be 2 or 3", SimDim(sim));
+  if (SimDim(sim) == 3) PetscCall(SimSetGravity(sim, SimGravity(sim)[0], 0, -9.81));
+  PetscCheck(c->W > 0, SimComm(sim), PETSC_ERR_ARG_OUTOFRANGE, "-tank_width %g must be > 0", (double)c->W);
+  PetscCheck(c->H > 0, SimComm(sim), PETSC_ERR_ARG_OUTOFRANGE, "-water_depth %g must be > 0", (double)c->H);
+  PetscCheck(c->rows >= 1, SimComm(sim), PETSC_ERR_ARG_OUTOFRANGE, "-wall_rows %" PetscInt_FMT " must be >= 1", c->rows);
+  if (SimSpacing(sim) < 0) PetscCall(SimSetSpacing(sim, c->H / 40));
+  if (SimEndTime(sim) < 0) PetscCall(SimSetEndTime(sim, 1.0));
+  PetscCheck(SimSpacing(sim) <= 0.5 * PetscMin(c->W, c->H), SimComm(sim), PETSC_ERR_ARG_OUTOFRANGE, "-dx %g is larger than half the water region (%g x %g m): choose a smaller -dx", (double)SimSpacing(sim), (double)c->W, (double)c->H);
+  PetscCall(SimSetReferenceSpeed(sim, PetscSqrtReal(2 * 9.81 * c->H)));
   SceneTankDomain(sim, c->W, 1.5 * c->H, c->rows);
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
 static PetscErrorCode Populate(Sim sim)
 {
-  Hydro   *c = (Hydro *)sim->scene_ctx;
-  PetscReal dx = sim->phys.dx;
+  Hydro   *c = (Hydro *)SimSceneContext(sim);
+  PetscReal dx = SimSpacing(sim);
   PetscInt nx = RoundToInt(c->W / dx), ny = RoundToInt(c->H / dx);
   PetscFunctionBeginUser;
   c->W = nx * dx; c->H = ny * dx; /* the lattice's own extent */
-  if (sim->phys.dim == 3) {
+  if (SimDim(sim) == 3) {
     const PetscReal lo[3] = {0, 0, 0}, hi[3] = {c->W, c->W, c->H}, first[3] = {0.5 * dx, 0.5 * dx, 0.5 * dx};
-    PetscCall(SceneAddBlock(sim, KIND_FLUID, first, (PetscInt[]){nx, nx, ny}, dx, sim->phys.fl.rho0));
+    PetscCall(SceneAddBlock(sim, KIND_FLUID, first, (PetscInt[]){nx, nx, ny}, dx, SimFluidMaterial(sim)->rho0));
     PetscCall(SceneAddTankBox(sim, lo, hi, 1.2 * c->H, dx, c->rows));
   } else {
-    PetscCall(SceneAddLattice(sim, KIND_FLUID, 0.5 * dx, 0.5 * dx, nx, ny, dx, sim->phys.fl.rho0));
+    PetscCall(SceneAddLattice(sim, KIND_FLUID, 0.5 * dx, 0.5 * dx, nx, ny, dx, SimFluidMaterial(sim)->rho0));
     PetscCall(SceneAddTank(sim, 0, c->W, 0, 1.2 * c->H, dx, c->rows, PETSC_TRUE, PETSC_TRUE));
   }
   PetscCall(SceneHydrostaticDensity(sim, 0, c->H));
@@ -58,35 +60,36 @@ static PetscErrorCode Populate(Sim sim)
 
 static PetscErrorCode Probe(Sim sim, PetscReal *vals)
 {
-  Hydro    *c = (Hydro *)sim->scene_ctx;
-  PetscReal x0[3] = {0.5 * c->W, sim->phys.dim == 3 ? 0.5 * c->W : 0, 0}; /* the middle of the floor */
+  Hydro    *c = (Hydro *)SimSceneContext(sim);
+  PetscReal x0[3] = {0.5 * c->W, SimDim(sim) == 3 ? 0.5 * c->W : 0, 0}; /* the middle of the floor */
   PetscFunctionBeginUser;
   PetscCall(SceneProbePressure(sim, x0, &vals[0]));
   PetscCall(SceneMaxSpeed(sim, &vals[1]));
-  PetscCall(SeriesAppend(&c->pb, sim->phys.t, vals[0]));
+  PetscCall(SeriesAppend(&c->pb, SimTime(sim), vals[0]));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
 /* Mean floor pressure over the last quarter of the run against rho g H. */
 static PetscErrorCode Errors(Sim sim, FILE *f)
 {
-  Hydro    *c = (Hydro *)sim->scene_ctx;
-  PetscReal ref = sim->phys.fl.rho0 * (-sim->phys.g[sim->phys.dim - 1]) * c->H, s = 0, vmax;
+  Hydro    *c = (Hydro *)SimSceneContext(sim);
+  PetscReal ref = SimFluidMaterial(sim)->rho0 * (-SimGravity(sim)[SimDim(sim) - 1]) * c->H, s = 0, vmax;
   PetscInt  n = 0;
   PetscFunctionBeginUser;
   PetscCall(SceneMaxSpeed(sim, &vmax));
   for (PetscInt k = 0; k < c->pb.n; k++)
-    if (c->pb.t[k] >= 0.75 * sim->phys.t) { s += c->pb.y[k]; n++; }
+    if (c->pb.t[k] >= 0.75 * SimTime(sim)) { s += c->pb.y[k]; n++; }
   if (f) fprintf(f, "\"p_bottom_rel_err\": %.6g, \"p_bottom_ref\": %.6g, \"v_max_final\": %.6g", (double)(n ? PetscAbsReal(s / n - ref) / ref : -1), (double)ref, (double)vmax);
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
 static PetscErrorCode Destroy(Sim sim)
 {
-  Hydro *c = (Hydro *)sim->scene_ctx;
+  Hydro *c = (Hydro *)SimSceneContext(sim);
   PetscFunctionBeginUser;
   PetscCall(SeriesDestroy(&c->pb));
-  PetscCall(PetscFree(sim->scene_ctx));
+  PetscCall(PetscFree(c));
+  PetscCall(SimSetSceneContext(sim, NULL));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

@@ -7,10 +7,7 @@
  * Euler-Bernoulli with E' = E.  The clamp's face (x = 0, the root of the beam theory) is where the
  * total-Lagrangian solid's clamp face points sit; the beam's own correction, Timoshenko's shear
  * and rotary inertia (+0.6 % on the period at L = 10 H), is reported beside it. */
-#include "scenes/scene.h"
-#include "base/options_used.h"
-#include "solid/solid.h"
-#include "base/refdata.h"
+#include <sphfsi.h>
 
 typedef struct {
   PetscReal L, H, W, vf, kL; /* W: the width in z (3D) */
@@ -24,59 +21,56 @@ static PetscErrorCode Create(Sim sim)
 {
   Plate    *c;
   PetscBool ny_set;
+  PetscReal ymax;
   PetscFunctionBeginUser;
   PetscCall(PetscNew(&c));
-  sim->scene_ctx = c;
+  PetscCall(SimSetSceneContext(sim, c));
   PetscCall(SceneKeepSeries(sim, &c->tip));
   PetscCall(SceneKeepReal(sim, &c->e0));
   PetscCall(SceneKeepReal(sim, &c->de_max));
   c->L = 0.2; c->H = 0.02; c->vf = 0.01; c->kL = 1.875104069; c->ny = 10; c->nclamp = 4;
-  sim->phys.sl.rho0 = 1000; sim->phys.sl.K = 3.25e6; sim->phys.sl.G = 7.15e5; /* Gray et al. 2001; G = 7.15e5 (the paper's 7.15e6 is a misprint) */
-  PetscOptionsBegin(sim->comm, NULL, "Scene oscillating_plate: clamped elastic plate in its first bending mode (Gray et al. 2001)", "");
+  SimSolidMaterial(sim)->rho0 = 1000; SimSolidMaterial(sim)->K = 3.25e6; SimSolidMaterial(sim)->G = 7.15e5; /* Gray et al. 2001; G = 7.15e5 (the paper's 7.15e6 is a misprint) */
+  PetscOptionsBegin(SimComm(sim), NULL, "Scene oscillating_plate: clamped elastic plate in its first bending mode (Gray et al. 2001)", "");
   PetscCall(OptReal("-plate_length", "Plate length L outside the clamp (m)", "", c->L, &c->L, NULL));
   PetscCall(OptReal("-plate_thickness", "Plate thickness H (m)", "", c->H, &c->H, NULL));
   PetscCall(OptReal("-plate_vf", "Initial tip speed over the sound speed, V_f = v0L of Eq. 52", "", c->vf, &c->vf, NULL));
   PetscCall(OptInt("-plate_ny", "Particles across the thickness (sets dx = H / ny unless -dx is given)", "", c->ny, &c->ny, &ny_set));
   PetscCall(OptInt("-clamp_columns", "Columns of clamp particles at x < 0", "", c->nclamp, &c->nclamp, NULL));
-  PetscCall(OptInt("-dim", "Dimension: 2 (a plate in plane strain), or 3 for a beam of section H x -plate_width", "", sim->phys.dim, &sim->phys.dim, NULL));
+  {
+    PetscInt dim = SimDim(sim);
+    PetscCall(OptInt("-dim", "Dimension: 2 (a plate in plane strain), or 3 for a beam of section H x -plate_width", "", dim, &dim, NULL));
+    PetscCall(SimSetDim(sim, dim));
+  }
   c->W = c->H;
-  if (sim->phys.dim == 3) PetscCall(OptReal("-plate_width", "3D: the beam's width in z (m; default: its thickness, a square section)", "", c->W, &c->W, NULL));
-  if (sim->phys.dim == 3) PetscCall(OptBool("-plate_periodic", "3D: periodic across the width (a slab of the plate in plane strain, the 2D case's reference)", "", c->periodic, &c->periodic, NULL));
+  if (SimDim(sim) == 3) PetscCall(OptReal("-plate_width", "3D: the beam's width in z (m; default: its thickness, a square section)", "", c->W, &c->W, NULL));
+  if (SimDim(sim) == 3) PetscCall(OptBool("-plate_periodic", "3D: periodic across the width (a slab of the plate in plane strain, the 2D case's reference)", "", c->periodic, &c->periodic, NULL));
   PetscOptionsEnd();
-  PetscCheck(sim->phys.dim == 2 || sim->phys.dim == 3, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dim %" PetscInt_FMT " must be 2 or 3", sim->phys.dim);
-  PetscCheck(c->L > 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-plate_length %g must be > 0", (double)c->L);
-  PetscCheck(c->H > 0 && c->H < c->L, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-plate_thickness %g must be > 0 and less than the length %g", (double)c->H, (double)c->L);
-  PetscCheck(c->vf >= 0 && c->vf < 0.1, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-plate_vf %g must be in [0, 0.1) (small deflections)", (double)c->vf);
-  PetscCheck(c->nclamp >= 3, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-clamp_columns %" PetscInt_FMT " must be >= 3 (the clamp must fill the kernel support)", c->nclamp);
-  PetscCheck(!(ny_set && sim->phys.dx > 0), sim->comm, PETSC_ERR_ARG_INCOMP, "Give -plate_ny or -dx, not both");
-  if (sim->phys.dx > 0) c->ny = RoundToInt(c->H / sim->phys.dx);
-  PetscCheck(c->ny >= 3, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "The plate needs >= 3 particles across its thickness (-plate_ny %" PetscInt_FMT " or -dx <= %g)", c->ny, (double)(c->H / 3));
-  sim->phys.dx        = c->H / c->ny;
-  c->nx          = RoundToInt(c->L / sim->phys.dx);
-  sim->phys.has_fluid = PETSC_FALSE;
-  sim->phys.has_solid = PETSC_TRUE;
-  sim->phys.g[0] = sim->phys.g[1] = sim->phys.g[2] = 0;
-  if (sim->t_end < 0) sim->t_end = 0.8; /* about 3 analytic periods */
+  PetscCheck(SimDim(sim) == 2 || SimDim(sim) == 3, SimComm(sim), PETSC_ERR_ARG_OUTOFRANGE, "-dim %" PetscInt_FMT " must be 2 or 3", SimDim(sim));
+  PetscCheck(c->L > 0, SimComm(sim), PETSC_ERR_ARG_OUTOFRANGE, "-plate_length %g must be > 0", (double)c->L);
+  PetscCheck(c->H > 0 && c->H < c->L, SimComm(sim), PETSC_ERR_ARG_OUTOFRANGE, "-plate_thickness %g must be > 0 and less than the length %g", (double)c->H, (double)c->L);
+  PetscCheck(c->vf >= 0 && c->vf < 0.1, SimComm(sim), PETSC_ERR_ARG_OUTOFRANGE, "-plate_vf %g must be in [0, 0.1) (small deflections)", (double)c->vf);
+  PetscCheck(c->nclamp >= 3, SimComm(sim), PETSC_ERR_ARG_OUTOFRANGE, "-clamp_columns %" PetscInt_FMT " must be >= 3 (the clamp must fill the kernel support)", c->nclamp);
+  PetscCheck(!(ny_set && SimSpacing(sim) > 0), SimComm(sim), PETSC_ERR_ARG_INCOMP, "Give -plate_ny or -dx, not both");
+  if (SimSpacing(sim) > 0) c->ny = RoundToInt(c->H / SimSpacing(sim));
+  PetscCheck(c->ny >= 3, SimComm(sim), PETSC_ERR_ARG_OUTOFRANGE, "The plate needs >= 3 particles across its thickness (-plate_ny %" PetscInt_FMT " or -dx <= %g)", c->ny, (double)(c->H / 3));
+  PetscCall(SimSetSpacing(sim, c->H / c->ny));
+  c->nx          = RoundToInt(c->L / SimSpacing(sim));
+  PetscCall(SimSetMedia(sim, PETSC_FALSE, PETSC_TRUE));
+  PetscCall(SimSetGravity(sim, 0, 0, 0));
+  if (SimEndTime(sim) < 0) PetscCall(SimSetEndTime(sim, 0.8)); /* about 3 analytic periods */
   /* the tip sweeps |y| < ~A = V_f L c0 / (omega L) ~ 0.12 L at V_f = 0.01 */
-  sim->dom_lo[0] = -(c->nclamp + 2) * sim->phys.dx;
-  sim->dom_hi[0] = c->L + 0.1 * c->L;
-  sim->dom_hi[1] = 0.5 * c->H + 0.15 * c->L + 50 * c->vf * c->L;
-  sim->dom_lo[1] = -sim->dom_hi[1];
-  if (c->vf == 0) { /* a static load (-gravity) may bend it far: room for any bend of the plate */
-    sim->dom_hi[1] = c->L + c->H;
-    sim->dom_lo[1] = -sim->dom_hi[1];
+  PetscCall(SimSetDomain(sim, 0, -(c->nclamp + 2) * SimSpacing(sim), c->L + 0.1 * c->L));
+  ymax = 0.5 * c->H + 0.15 * c->L + 50 * c->vf * c->L;
+  if (c->vf == 0) ymax = c->L + c->H; /* a static load (-gravity) may bend it far: room for any bend of the plate */
+  PetscCall(SimSetDomain(sim, 1, -ymax, ymax));
+  if (SimDim(sim) == 3) {
+    PetscCheck(c->W >= 3 * SimSpacing(sim) * (1 - 1e-9), SimComm(sim), PETSC_ERR_ARG_OUTOFRANGE, "-plate_width %g must hold >= 3 particles (dx %g)", (double)c->W, (double)SimSpacing(sim));
+    PetscReal zmax = 0.5 * c->W + 0.1 * c->L; /* bending is in y: z moves only by Poisson's ratio */
+    if (c->periodic) zmax = 0.5 * RoundToInt(c->W / SimSpacing(sim)) * SimSpacing(sim);
+    PetscCall(SimSetDomain(sim, 2, -zmax, zmax));
+    if (c->periodic) PetscCall(SimSetPeriodic(sim, 2, PETSC_TRUE));
   }
-  if (sim->phys.dim == 3) {
-    PetscCheck(c->W >= 3 * sim->phys.dx * (1 - 1e-9), sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-plate_width %g must hold >= 3 particles (dx %g)", (double)c->W, (double)sim->phys.dx);
-    sim->dom_hi[2] = 0.5 * c->W + 0.1 * c->L; /* bending is in y: z moves only by Poisson's ratio */
-    sim->dom_lo[2] = -sim->dom_hi[2];
-    if (c->periodic) {
-      sim->dom_hi[2]   = 0.5 * RoundToInt(c->W / sim->phys.dx) * sim->phys.dx;
-      sim->dom_lo[2]   = -sim->dom_hi[2];
-      sim->periodic[2] = PETSC_TRUE;
-    }
-  }
-  PetscCall(ParticlesEnableField(sim->P, FIELD_X0, PETSC_FALSE));
+  PetscCall(SimEnableField(sim, "x0"));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -89,37 +83,48 @@ static PetscReal Mode(PetscReal k, PetscReal L, PetscReal x)
 
 static PetscErrorCode Populate(Sim sim)
 {
-  Plate     *c  = (Plate *)sim->scene_ctx;
-  PetscReal  dx = sim->phys.dx, y0 = -0.5 * c->H + 0.5 * dx, k = c->kL / c->L, fL = Mode(k, c->L, c->L);
-  Particles  P  = sim->P;
-  PetscInt   n0, D = sim->phys.dim, nz = RoundToInt(c->W / dx);
+  Plate     *c  = (Plate *)SimSceneContext(sim);
+  PetscReal  dx = SimSpacing(sim), y0 = -0.5 * c->H + 0.5 * dx, k = c->kL / c->L, fL = Mode(k, c->L, c->L);
+  PetscInt   n0, n1, D = SimDim(sim), nz = RoundToInt(c->W / dx);
   PetscReal *x, *v, z0 = -0.5 * nz * dx + 0.5 * dx;
   PetscFunctionBeginUser;
-  PetscCall(SceneAddBlock(sim, KIND_CLAMP, (PetscReal[]){-(c->nclamp - 0.5) * dx, y0, z0}, (PetscInt[]){c->nclamp, c->ny, nz}, dx, sim->phys.sl.rho0));
-  n0 = P->n;
-  PetscCall(SceneAddBlock(sim, KIND_SOLID, (PetscReal[]){0.5 * dx, y0, z0}, (PetscInt[]){c->nx, c->ny, nz}, dx, sim->phys.sl.rho0));
-  x = PField(P, FIELD_X); v = PField(P, FIELD_V);
-  for (PetscInt a = n0; a < P->n; a++) v[D * a + 1] = c->vf * sim->phys.sl.c0 * Mode(k, c->L, x[D * a]) / fL; /* Eq. 52 */
+  PetscCall(SceneAddBlock(sim, KIND_CLAMP, (PetscReal[]){-(c->nclamp - 0.5) * dx, y0, z0}, (PetscInt[]){c->nclamp, c->ny, nz}, dx, SimSolidMaterial(sim)->rho0));
+  PetscCall(SimGetLocalSize(sim, &n0));
+  PetscCall(SceneAddBlock(sim, KIND_SOLID, (PetscReal[]){0.5 * dx, y0, z0}, (PetscInt[]){c->nx, c->ny, nz}, dx, SimSolidMaterial(sim)->rho0));
+  PetscCall(SimGetLocalSize(sim, &n1));
+  PetscCall(SimGetField(sim, "x", NULL, &x));
+  PetscCall(SimGetField(sim, "v", NULL, &v));
+  for (PetscInt a = n0; a < n1; a++) v[D * a + 1] = c->vf * SimSolidMaterial(sim)->c0 * Mode(k, c->L, x[D * a]) / fL; /* Eq. 52 */
+  PetscCall(SimRestoreField(sim, "x", NULL, &x));
+  PetscCall(SimRestoreField(sim, "v", NULL, &v));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
 /* tip_y: mean vertical displacement of the last column (its mid-point by symmetry); energies. */
 static PetscErrorCode Probe(Sim sim, PetscReal *vals)
 {
-  Plate     *c = (Plate *)sim->scene_ctx;
-  Particles  P = sim->P;
-  PetscReal *x = PField(P, FIELD_X), *x0 = PField(P, FIELD_X0), s[2] = {0, 0}, e;
-  PetscInt   D = sim->phys.dim;
+  Plate     *c = (Plate *)SimSceneContext(sim);
+  const PetscReal *x, *x0;
+  const PetscInt  *kind;
+  PetscReal        s[2] = {0, 0}, e;
+  PetscInt         D = SimDim(sim), n;
   PetscFunctionBeginUser;
-  for (PetscInt a = 0; a < P->n; a++)
-    if (P->kind[a] == KIND_SOLID && x0[D * a] > (c->nx - 1) * sim->phys.dx) { s[0] += x[D * a + 1] - x0[D * a + 1]; s[1] += 1; }
-  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, s, 2, MPIU_REAL, MPI_SUM, sim->comm));
+  PetscCall(SimGetLocalSize(sim, &n));
+  PetscCall(SimGetField(sim, "kind", NULL, &kind));
+  PetscCall(SimGetField(sim, "x", NULL, &x));
+  PetscCall(SimGetField(sim, "x0", NULL, &x0));
+  for (PetscInt a = 0; a < n; a++)
+    if (kind[a] == KIND_SOLID && x0[D * a] > (c->nx - 1) * SimSpacing(sim)) { s[0] += x[D * a + 1] - x0[D * a + 1]; s[1] += 1; }
+  PetscCall(SimRestoreField(sim, "kind", NULL, &kind));
+  PetscCall(SimRestoreField(sim, "x", NULL, &x));
+  PetscCall(SimRestoreField(sim, "x0", NULL, &x0));
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, s, 2, MPIU_REAL, MPI_SUM, SimComm(sim)));
   vals[0] = s[1] > 0 ? s[0] / s[1] : 0;
-  PetscCall(SolidEnergy(&sim->phys, &vals[1], &vals[2]));
+  PetscCall(SimSolidEnergy(sim, &vals[1], &vals[2]));
   e = vals[1] + vals[2];
-  if (sim->phys.step == 0) c->e0 = e;
+  if (SimStep(sim) == 0) c->e0 = e;
   else if (c->e0 > 0) c->de_max = PetscMax(c->de_max, PetscAbsReal(e - c->e0) / c->e0);
-  PetscCall(SeriesAppend(&c->tip, sim->phys.t, vals[0]));
+  PetscCall(SeriesAppend(&c->tip, SimTime(sim), vals[0]));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -148,10 +153,10 @@ static void Analyse(const Series *s, PetscReal *T, PetscReal *A, PetscReal *A_la
 
 static PetscErrorCode Errors(Sim sim, FILE *f)
 {
-  Plate          *c = (Plate *)sim->scene_ctx;
-  const SolidMaterial *m = &sim->phys.sl;
+  Plate          *c = (Plate *)SimSceneContext(sim);
+  const SolidMaterial *m = SimSolidMaterial(sim);
   PetscReal       E = 9 * m->K * m->G / (3 * m->K + m->G), nu = (3 * m->K - 2 * m->G) / (2 * (3 * m->K + m->G)), k = c->kL / c->L;
-  PetscReal       Ep = sim->phys.dim == 3 && !c->periodic ? E : E / (1 - nu * nu); /* a beam with free sides; a plate in plane strain */
+  PetscReal       Ep = SimDim(sim) == 3 && !c->periodic ? E : E / (1 - nu * nu); /* a beam with free sides; a plate in plane strain */
   PetscReal       omega = PetscSqrtReal(Ep * c->H * c->H * PetscPowReal(k, 4) / (12 * m->rho0));
   PetscReal       Ta = 2 * PETSC_PI / omega, Aa = c->vf * m->c0 / omega, T, A, A_last, ek, es;
   /* Timoshenko's first-order correction for shear (kappa_s = 5/6) and rotary inertia of a slender
@@ -160,10 +165,10 @@ static PetscErrorCode Errors(Sim sim, FILE *f)
   PetscReal       Tt = Ta / (1 - 0.5 * c->kL * c->kL * c->H * c->H / (12 * c->L * c->L) * (1 + Ep / (5.0 / 6.0 * m->G)));
   PetscInt        ncross;
   PetscFunctionBeginUser;
-  PetscCall(SolidEnergy(&sim->phys, &ek, &es));
+  PetscCall(SimSolidEnergy(sim, &ek, &es));
   Analyse(&c->tip, &T, &A, &A_last, &ncross);
   if (f && c->vf == 0) { /* a static load (-gravity) instead of the mode: the end's sag against beam theory */
-    PetscReal g = PetscSqrtReal(sim->phys.g[0] * sim->phys.g[0] + sim->phys.g[1] * sim->phys.g[1] + sim->phys.g[2] * sim->phys.g[2]), L = c->L, H = c->H;
+    PetscReal g = PetscSqrtReal(SimGravity(sim)[0] * SimGravity(sim)[0] + SimGravity(sim)[1] * SimGravity(sim)[1] + SimGravity(sim)[2] * SimGravity(sim)[2]), L = c->L, H = c->H;
     PetscReal eb = 1.5 * m->rho0 * g * PetscPowReal(L, 4) / (Ep * H * H), shear = m->rho0 * g * L * L / (2 * (5.0 / 6.0) * m->G), sag = c->tip.n ? -c->tip.y[c->tip.n - 1] : 0;
     fprintf(f, "\"g\": %.6g, \"sag\": %.6g, \"sag_beam\": %.6g, \"sag_rel_err\": %.6g, \"sag_euler_bernoulli\": %.6g, \"sag_eb_rel_err\": %.6g, \"plate_ny\": %d, \"kinetic_over_strain_energy\": %.6g, ", (double)g, (double)sag, (double)(eb + shear), (double)(sag / (eb + shear) - 1), (double)eb, (double)(sag / eb - 1), (int)c->ny, (double)(es > 0 ? ek / es : 0));
     fprintf(f, "\"reference\": \"sag of the end under the uniform load rho g H: Euler-Bernoulli q L^4 / (8 E' I), E' = E / (1 - nu^2), plus Timoshenko shear q L^2 / (2 (5/6) G H); the end at rest when kinetic_over_strain_energy is small (-solid_damping)\"");
@@ -173,8 +178,8 @@ static PetscErrorCode Errors(Sim sim, FILE *f)
     fprintf(f, "\"period_c0_over_L\": %.6g, \"period_c0_over_L_analytic\": %.6g, \"period_rel_err\": %.6g, ", (double)(T * m->c0 / c->L), (double)(Ta * m->c0 / c->L), (double)(T > 0 ? (T - Ta) / Ta : 1));
     fprintf(f, "\"amplitude_over_L\": %.6g, \"amplitude_over_L_analytic\": %.6g, \"amplitude_rel_err\": %.6g, \"amplitude_last_over_first\": %.6g, ", (double)(A / c->L), (double)(Aa / c->L), (double)(Aa > 0 ? (A - Aa) / Aa : 0), (double)(A > 0 ? A_last / A : 0));
     fprintf(f, "\"zero_crossings\": %d, \"energy_rel_drift_final\": %.6g, \"energy_rel_drift_max\": %.6g, \"period_s\": %.6g, \"period_s_analytic\": %.6g, ", (int)ncross, (double)(c->e0 > 0 ? (ek + es - c->e0) / c->e0 : 0), (double)c->de_max, (double)T, (double)Ta);
-    fprintf(f, "\"period_c0_over_L_timoshenko\": %.6g, \"period_rel_err_timoshenko\": %.6g, \"dim\": %d, ", (double)(Tt * m->c0 / c->L), (double)(T > 0 ? (T - Tt) / Tt : 1), (int)sim->phys.dim);
-    if (sim->phys.dim == 3) fprintf(f, "\"plate_ny\": %d, \"E\": %.6g, \"nu\": %.6g, \"reference\": \"Euler-Bernoulli cantilever of square section (E, free sides), root at the clamp face x = 0; Timoshenko-corrected period beside it\"", (int)c->ny, (double)E, (double)nu);
+    fprintf(f, "\"period_c0_over_L_timoshenko\": %.6g, \"period_rel_err_timoshenko\": %.6g, \"dim\": %d, ", (double)(Tt * m->c0 / c->L), (double)(T > 0 ? (T - Tt) / Tt : 1), (int)SimDim(sim));
+    if (SimDim(sim) == 3) fprintf(f, "\"plate_ny\": %d, \"E\": %.6g, \"nu\": %.6g, \"reference\": \"Euler-Bernoulli cantilever of square section (E, free sides), root at the clamp face x = 0; Timoshenko-corrected period beside it\"", (int)c->ny, (double)E, (double)nu);
     else fprintf(f, "\"plate_ny\": %d, \"E\": %.6g, \"nu\": %.6g, \"reference\": \"thin-plate analytic (Gray et al. 2001); published SPH T c0/L 81-82, A/L 0.124-0.125 (paper Table 1)\"", (int)c->ny, (double)E, (double)nu);
   }
   PetscFunctionReturn(PETSC_SUCCESS);
@@ -182,10 +187,11 @@ static PetscErrorCode Errors(Sim sim, FILE *f)
 
 static PetscErrorCode Destroy(Sim sim)
 {
-  Plate *c = (Plate *)sim->scene_ctx;
+  Plate *c = (Plate *)SimSceneContext(sim);
   PetscFunctionBeginUser;
   PetscCall(SeriesDestroy(&c->tip));
-  PetscCall(PetscFree(sim->scene_ctx));
+  PetscCall(PetscFree(c));
+  PetscCall(SimSetSceneContext(sim, NULL));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

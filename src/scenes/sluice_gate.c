@@ -18,9 +18,7 @@
  *   q = Cd a sqrt(2 g h_up),  Cd = Cc / sqrt(1 + Cc a / h_up),  vena contracta depth Cc a,
  * with Cc read from the reference data's sluice_gate_reference_coefficients.csv.  The reservoir drains,
  * so the relation is applied quasi-steadily to q(t) and h_up(t) in a window after the start-up. */
-#include "scenes/scene.h"
-#include "base/options_used.h"
-#include "base/refdata.h"
+#include <sphfsi.h>
 
 typedef struct {
   PetscReal W, H, a, Lc, top;  /* water width, depth, gate opening, channel length, wall height */
@@ -51,15 +49,15 @@ static PetscErrorCode Create(Sim sim)
   PetscBool win_set;
   PetscFunctionBeginUser;
   PetscCall(PetscNew(&c));
-  sim->scene_ctx = c;
+  PetscCall(SimSetSceneContext(sim, c));
   PetscCall(SceneKeepSeries(sim, &c->q));
   PetscCall(SceneKeepSeries(sim, &c->hup));
   PetscCall(SceneKeepSeries(sim, &c->hdown));
   PetscCall(SceneKeepSeries(sim, &c->vup));
-  c->W = 0.1; c->H = 0.14; c->a = 0.03; c->Lc = -1; c->top = -1; c->rows = KernelSupportRows(&sim->phys.kernel); c->gate_rows = 4; c->bevel = 45;
+  c->W = 0.1; c->H = 0.14; c->a = 0.03; c->Lc = -1; c->top = -1; c->rows = SimKernelRows(sim); c->gate_rows = 4; c->bevel = 45;
   c->dxc = -1; c->fine = 0.02;
   c->win[0] = -1; c->win[1] = -1;
-  PetscOptionsBegin(sim->comm, NULL, "Scene sluice_gate: a reservoir drains under a vertical gate", "");
+  PetscOptionsBegin(SimComm(sim), NULL, "Scene sluice_gate: a reservoir drains under a vertical gate", "");
   PetscCall(OptReal("-water_width", "Reservoir (water) width W between the left wall and the gate (m)", "", c->W, &c->W, NULL));
   PetscCall(OptReal("-water_depth", "Initial water depth H (m)", "", c->H, &c->H, NULL));
   PetscCall(OptReal("-gate_opening", "Opening a between the gate's bottom edge and the floor (m)", "", c->a, &c->a, NULL));
@@ -72,58 +70,56 @@ static PetscErrorCode Create(Sim sim)
   PetscCall(OptReal("-fine_width", "Width of the fine zone of water before the gate (m), with -dx_coarse", "", c->fine, &c->fine, NULL));
   PetscCall(PetscOptionsRealArray("-q_window", "t0,t1: quasi-steady window (s) of the errors against the sluice relation; default 2 W / sqrt(g H) (the drawdown wave's round trip across the reservoir), t_end", "", c->win, &nwin, &win_set));
   PetscOptionsEnd();
-  PetscCheck(c->W > 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-water_width %g must be > 0", (double)c->W);
-  PetscCheck(c->H > 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-water_depth %g must be > 0", (double)c->H);
-  PetscCheck(c->a > 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-gate_opening %g must be > 0", (double)c->a);
-  PetscCheck(c->a < c->H, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-gate_opening %g must be smaller than -water_depth %g: otherwise the gate holds no water back", (double)c->a, (double)c->H);
-  PetscCheck(c->rows >= 1, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-wall_rows %" PetscInt_FMT " must be >= 1", c->rows);
-  PetscCheck(c->gate_rows >= 3, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-gate_rows %" PetscInt_FMT " must be >= 3 (water on both sides of the gate needs wall particles under its kernel)", c->gate_rows);
-  PetscCheck(c->bevel >= 0 && c->bevel < 90, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-gate_bevel %g must be in [0, 90) degrees", (double)c->bevel);
-  PetscCheck(!win_set || (nwin == 2 && c->win[0] >= 0 && c->win[1] > c->win[0]), sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-q_window needs two times t0,t1 with 0 <= t0 < t1");
-  if (sim->phys.dx < 0) sim->phys.dx = c->H / 56;
-  if (sim->t_end < 0) sim->t_end = DrainTime(c->W, c->H, c->a, g);
+  PetscCheck(c->W > 0, SimComm(sim), PETSC_ERR_ARG_OUTOFRANGE, "-water_width %g must be > 0", (double)c->W);
+  PetscCheck(c->H > 0, SimComm(sim), PETSC_ERR_ARG_OUTOFRANGE, "-water_depth %g must be > 0", (double)c->H);
+  PetscCheck(c->a > 0, SimComm(sim), PETSC_ERR_ARG_OUTOFRANGE, "-gate_opening %g must be > 0", (double)c->a);
+  PetscCheck(c->a < c->H, SimComm(sim), PETSC_ERR_ARG_OUTOFRANGE, "-gate_opening %g must be smaller than -water_depth %g: otherwise the gate holds no water back", (double)c->a, (double)c->H);
+  PetscCheck(c->rows >= 1, SimComm(sim), PETSC_ERR_ARG_OUTOFRANGE, "-wall_rows %" PetscInt_FMT " must be >= 1", c->rows);
+  PetscCheck(c->gate_rows >= 3, SimComm(sim), PETSC_ERR_ARG_OUTOFRANGE, "-gate_rows %" PetscInt_FMT " must be >= 3 (water on both sides of the gate needs wall particles under its kernel)", c->gate_rows);
+  PetscCheck(c->bevel >= 0 && c->bevel < 90, SimComm(sim), PETSC_ERR_ARG_OUTOFRANGE, "-gate_bevel %g must be in [0, 90) degrees", (double)c->bevel);
+  PetscCheck(!win_set || (nwin == 2 && c->win[0] >= 0 && c->win[1] > c->win[0]), SimComm(sim), PETSC_ERR_ARG_OUTOFRANGE, "-q_window needs two times t0,t1 with 0 <= t0 < t1");
+  if (SimSpacing(sim) < 0) PetscCall(SimSetSpacing(sim, c->H / 56));
+  if (SimEndTime(sim) < 0) PetscCall(SimSetEndTime(sim, DrainTime(c->W, c->H, c->a, g)));
   if (c->top < 0) c->top = 1.25 * c->H;
   /* jet speed <= sqrt(2 g H) (Bernoulli from the initial surface): the front must not reach the far end */
   vmax = PetscSqrtReal(2 * g * c->H);
-  if (c->Lc < 0) c->Lc = 1.3 * vmax * sim->t_end + 4 * c->a;
+  if (c->Lc < 0) c->Lc = 1.3 * vmax * SimEndTime(sim) + 4 * c->a;
   /* start-up: the drawdown wave crosses the reservoir and comes back, 2 W / sqrt(g H) */
-  if (!win_set) { c->win[0] = 2 * c->W / PetscSqrtReal(g * c->H); c->win[1] = sim->t_end; }
-  PetscCheck(c->a >= 4 * sim->phys.dx * (1 - 1e-9), sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dx %g leaves %.2g particles across the gate opening %g m; at least 4 are needed: choose -dx <= %g", (double)sim->phys.dx, (double)(c->a / sim->phys.dx), (double)c->a, (double)(c->a / 4));
-  PetscCheck(sim->phys.dx <= 0.25 * c->W, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dx %g leaves fewer than 4 particles across -water_width %g: choose -dx <= %g", (double)sim->phys.dx, (double)c->W, (double)(0.25 * c->W));
-  PetscCheck(c->Lc >= 2 * c->a, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-channel_length %g must be at least twice the gate opening (%g m) so that the jet's vena contracta lies in the channel", (double)c->Lc, (double)(2 * c->a));
-  PetscCheck(c->top >= c->H + 2 * sim->phys.dx, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-tank_height %g must exceed -water_depth %g by at least 2 dx", (double)c->top, (double)c->H);
+  if (!win_set) { c->win[0] = 2 * c->W / PetscSqrtReal(g * c->H); c->win[1] = SimEndTime(sim); }
+  PetscCheck(c->a >= 4 * SimSpacing(sim) * (1 - 1e-9), SimComm(sim), PETSC_ERR_ARG_OUTOFRANGE, "-dx %g leaves %.2g particles across the gate opening %g m; at least 4 are needed: choose -dx <= %g", (double)SimSpacing(sim), (double)(c->a / SimSpacing(sim)), (double)c->a, (double)(c->a / 4));
+  PetscCheck(SimSpacing(sim) <= 0.25 * c->W, SimComm(sim), PETSC_ERR_ARG_OUTOFRANGE, "-dx %g leaves fewer than 4 particles across -water_width %g: choose -dx <= %g", (double)SimSpacing(sim), (double)c->W, (double)(0.25 * c->W));
+  PetscCheck(c->Lc >= 2 * c->a, SimComm(sim), PETSC_ERR_ARG_OUTOFRANGE, "-channel_length %g must be at least twice the gate opening (%g m) so that the jet's vena contracta lies in the channel", (double)c->Lc, (double)(2 * c->a));
+  PetscCheck(c->top >= c->H + 2 * SimSpacing(sim), SimComm(sim), PETSC_ERR_ARG_OUTOFRANGE, "-tank_height %g must exceed -water_depth %g by at least 2 dx", (double)c->top, (double)c->H);
   /* the lattice's own extents: the gate edge and the water sit on lattice lines */
-  c->W   = RoundToInt(c->W / sim->phys.dx) * sim->phys.dx;
-  c->H   = RoundToInt(c->H / sim->phys.dx) * sim->phys.dx;
-  c->a   = RoundToInt(c->a / sim->phys.dx) * sim->phys.dx;
-  c->Lc  = RoundToInt(c->Lc / sim->phys.dx) * sim->phys.dx;
-  c->top = RoundToInt(c->top / sim->phys.dx) * sim->phys.dx;
-  if (c->dxc < 0) c->dxc = sim->phys.dx;
+  c->W   = RoundToInt(c->W / SimSpacing(sim)) * SimSpacing(sim);
+  c->H   = RoundToInt(c->H / SimSpacing(sim)) * SimSpacing(sim);
+  c->a   = RoundToInt(c->a / SimSpacing(sim)) * SimSpacing(sim);
+  c->Lc  = RoundToInt(c->Lc / SimSpacing(sim)) * SimSpacing(sim);
+  c->top = RoundToInt(c->top / SimSpacing(sim)) * SimSpacing(sim);
+  if (c->dxc < 0) c->dxc = SimSpacing(sim);
   PetscCall(SceneZonesSetUp(sim, c->dxc, &c->W, &c->fine, &c->H));
   c->xg0 = c->W;
-  c->xg1 = c->W + c->gate_rows * sim->phys.dx;
+  c->xg1 = c->W + c->gate_rows * SimSpacing(sim);
   /* h_up mid-reservoir; h_down two openings past the gate's sharp upstream edge, beyond the vena
    * contracta (at ~ a / Cc = 1.6 a; the frictionless supercritical jet keeps its depth after it) */
   c->x_up   = 0.5 * c->W;
   c->x_down = c->xg0 + 2 * c->a;
-  PetscCheck(c->x_down + 2 * sim->phys.dx < c->xg1 + c->Lc, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "The h_down station x = %g lies outside the channel: increase -channel_length", (double)c->x_down);
-  sim->phys.v_ref     = vmax;
+  PetscCheck(c->x_down + 2 * SimSpacing(sim) < c->xg1 + c->Lc, SimComm(sim), PETSC_ERR_ARG_OUTOFRANGE, "The h_down station x = %g lies outside the channel: increase -channel_length", (double)c->x_down);
+  PetscCall(SimSetReferenceSpeed(sim, vmax));
   /* walls: rows at the coarse spacing, or the fine rows as deep (< rows dc + dx) */
-  sim->dom_lo[0] = -(c->rows + 0.5) * c->dxc;
-  sim->dom_hi[0] = c->xg1 + c->Lc + c->rows * c->dxc + 1.5 * sim->phys.dx;
-  sim->dom_lo[1] = -(c->rows * c->dxc + 1.5 * sim->phys.dx);
-  sim->dom_hi[1] = c->top + c->H; /* room for splashes above the walls */
+  PetscCall(SimSetDomain(sim, 0, -(c->rows + 0.5) * c->dxc, c->xg1 + c->Lc + c->rows * c->dxc + 1.5 * SimSpacing(sim)));
+  PetscCall(SimSetDomain(sim, 1, -(c->rows * c->dxc + 1.5 * SimSpacing(sim)), c->top + c->H)); /* room for splashes above the walls */
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
 static PetscErrorCode Populate(Sim sim)
 {
-  Sluice   *c  = (Sluice *)sim->scene_ctx;
-  PetscReal dx = sim->phys.dx, rho0 = sim->phys.fl.rho0;
+  Sluice   *c  = (Sluice *)SimSceneContext(sim);
+  PetscReal dx = SimSpacing(sim), rho0 = SimFluidMaterial(sim)->rho0;
   PetscInt  ng = c->gate_rows, nj = RoundToInt((c->top - c->a) / dx);
   PetscReal tb = PetscTanReal(c->bevel * PETSC_PI / 180);
   PetscFunctionBeginUser;
-  PetscCheck(RoundToInt((ng - 1) * tb) < nj - ng, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-gate_bevel %g is too steep for a %" PetscInt_FMT "-row gate below -tank_height %g: the chamfer would cut the gate through", (double)c->bevel, ng, (double)c->top);
+  PetscCheck(RoundToInt((ng - 1) * tb) < nj - ng, SimComm(sim), PETSC_ERR_ARG_OUTOFRANGE, "-gate_bevel %g is too steep for a %" PetscInt_FMT "-row gate below -tank_height %g: the chamfer would cut the gate through", (double)c->bevel, ng, (double)c->top);
   /* the water (coarse and fine zones) and the floor from the left wall to the channel's far end,
    * closed at both ends */
   PetscCall(SceneAddZonedWater(sim, c->dxc, c->W, c->fine, c->H, c->top, c->rows, c->xg1 + c->Lc, PETSC_TRUE));
@@ -159,26 +155,38 @@ static inline PetscReal BSpline1(PetscReal r, PetscReal s)
  * Also the fluid volume upstream of x_c, whose rate of decrease is q by mass conservation. */
 static PetscErrorCode Probe(Sim sim, PetscReal *vals)
 {
-  Sluice    *c = (Sluice *)sim->scene_ctx;
-  Particles  P = sim->P;
-  PetscReal *x = PField(P, FIELD_X), *v = PField(P, FIELD_V), *m = PField(P, FIELD_M), *rho = PField(P, FIELD_RHO);
-  PetscReal  s[4] = {0, 0, 0, 0}, dx = sim->phys.dx, xc = 0.5 * (c->xg0 + c->xg1);
+  Sluice    *c = (Sluice *)SimSceneContext(sim);
+  const PetscReal *x, *v, *m, *rho;
+  const PetscInt  *kind;
+  PetscReal        s[4] = {0, 0, 0, 0}, dx = SimSpacing(sim), xc = 0.5 * (c->xg0 + c->xg1);
+  PetscInt         n;
   PetscFunctionBeginUser;
-  for (PetscInt a = 0; a < P->n; a++) {
+  PetscCall(SimGetLocalSize(sim, &n));
+  PetscCall(SimGetField(sim, "kind", NULL, &kind));
+  PetscCall(SimGetField(sim, "x", NULL, &x));
+  PetscCall(SimGetField(sim, "v", NULL, &v));
+  PetscCall(SimGetField(sim, "m", NULL, &m));
+  PetscCall(SimGetField(sim, "rho", NULL, &rho));
+  for (PetscInt a = 0; a < n; a++) {
     PetscReal V, xa = x[2 * a];
-    if (!KindIsFluid(P->kind[a])) continue;
+    if (!KindIsFluid(kind[a])) continue;
     V = SceneFluidVolume(sim, m[a], rho[a]);
     s[0] += V * v[2 * a] * BSpline1(xa - xc, dx);
     s[1] += V * BSpline1(xa - c->x_up, 2 * c->dxc);
     s[2] += V * BSpline1(xa - c->x_down, dx);
     if (xa < xc) s[3] += V;
   }
-  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, s, 4, MPIU_REAL, MPI_SUM, sim->comm));
+  PetscCall(SimRestoreField(sim, "kind", NULL, &kind));
+  PetscCall(SimRestoreField(sim, "x", NULL, &x));
+  PetscCall(SimRestoreField(sim, "v", NULL, &v));
+  PetscCall(SimRestoreField(sim, "m", NULL, &m));
+  PetscCall(SimRestoreField(sim, "rho", NULL, &rho));
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, s, 4, MPIU_REAL, MPI_SUM, SimComm(sim)));
   vals[0] = s[0]; vals[1] = s[1]; vals[2] = s[2];
-  PetscCall(SeriesAppend(&c->q, sim->phys.t, s[0]));
-  PetscCall(SeriesAppend(&c->hup, sim->phys.t, s[1]));
-  PetscCall(SeriesAppend(&c->hdown, sim->phys.t, s[2]));
-  PetscCall(SeriesAppend(&c->vup, sim->phys.t, s[3]));
+  PetscCall(SeriesAppend(&c->q, SimTime(sim), s[0]));
+  PetscCall(SeriesAppend(&c->hup, SimTime(sim), s[1]));
+  PetscCall(SeriesAppend(&c->hdown, SimTime(sim), s[2]));
+  PetscCall(SeriesAppend(&c->vup, SimTime(sim), s[3]));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -192,7 +200,7 @@ static PetscErrorCode LoadCc(Sim sim, PetscReal *Cc, PetscBool *found)
   PetscReal   buf[2] = {0, 0};
   FILE       *f;
   PetscFunctionBeginUser;
-  PetscCall(RefDataOpen(&sim->refdata, file, &f)); /* a missing file is reported there */
+  PetscCall(RefDataOpen(SimRefData(sim), file, &f)); /* a missing file is reported there */
   if (f) {
     while (fgets(line, sizeof(line), f)) {
       size_t n = strlen(key);
@@ -204,7 +212,7 @@ static PetscErrorCode LoadCc(Sim sim, PetscReal *Cc, PetscBool *found)
       buf[1] = 0;
     }
   }
-  PetscCallMPI(MPI_Bcast(buf, 2, MPIU_REAL, 0, sim->comm));
+  PetscCallMPI(MPI_Bcast(buf, 2, MPIU_REAL, 0, SimComm(sim)));
   *found = (PetscBool)(buf[1] > 0);
   if (*found) *Cc = buf[0];
   PetscFunctionReturn(PETSC_SUCCESS);
@@ -227,8 +235,8 @@ static inline PetscReal ImpliedCc(PetscReal q, PetscReal a, PetscReal h, PetscRe
  *   Cc_from_h_down = <h_down> / a;  Cc_from_q = <Cc implied by q and h_up>. */
 static PetscErrorCode Errors(Sim sim, FILE *f)
 {
-  Sluice   *c = (Sluice *)sim->scene_ctx;
-  PetscReal Cc = 0.611, g = -sim->phys.g[1], t0 = c->win[0], t1 = PetscMin(c->win[1], sim->phys.t);
+  Sluice   *c = (Sluice *)SimSceneContext(sim);
+  PetscReal Cc = 0.611, g = -SimGravity(sim)[1], t0 = c->win[0], t1 = PetscMin(c->win[1], SimTime(sim));
   PetscReal T = 0, Eabs = 0, Ebias = 0, Qs = 0, Qr = 0, Hd = 0, Ccq = 0, hmin = PETSC_MAX_REAL, hmax = 0;
   PetscBool found;
   PetscFunctionBeginUser;
@@ -263,13 +271,14 @@ static PetscErrorCode Errors(Sim sim, FILE *f)
 
 static PetscErrorCode Destroy(Sim sim)
 {
-  Sluice *c = (Sluice *)sim->scene_ctx;
+  Sluice *c = (Sluice *)SimSceneContext(sim);
   PetscFunctionBeginUser;
   PetscCall(SeriesDestroy(&c->q));
   PetscCall(SeriesDestroy(&c->hup));
   PetscCall(SeriesDestroy(&c->hdown));
   PetscCall(SeriesDestroy(&c->vup));
-  PetscCall(PetscFree(sim->scene_ctx));
+  PetscCall(PetscFree(c));
+  PetscCall(SimSetSceneContext(sim, NULL));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

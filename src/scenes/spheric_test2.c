@@ -14,9 +14,7 @@
  * |p - p_exp| / (rho g H) over [0, t_end], the peak (largest value over the run) and the first peak
  * (largest before t = 1 s: the front's impact, which the issue's target names; a run's later spikes
  * do not hide it) against the experiment's; levels as the rms and max of |h - h_exp| / H. */
-#include "scenes/scene.h"
-#include "base/options_used.h"
-#include "base/refdata.h"
+#include <sphfsi.h>
 
 #define NLEVEL  4
 #define NSENSOR 8
@@ -46,53 +44,49 @@ static PetscErrorCode Create(Sim sim)
   Spheric2 *c;
   PetscFunctionBeginUser;
   PetscCall(PetscNew(&c));
-  sim->scene_ctx = c;
+  PetscCall(SimSetSceneContext(sim, c));
   for (PetscInt k = 0; k < NLEVEL; k++) PetscCall(SceneKeepSeries(sim, &c->level[k]));
   for (PetscInt k = 0; k < NSENSOR; k++) PetscCall(SceneKeepSeries(sim, &c->pres[k]));
-  c->L = 3.22; c->W = 1.0; c->top = 1.0; c->H = 0.55; c->Lw = 1.228; c->sensor = 0.009; c->rows = KernelSupportRows(&sim->phys.kernel);
-  PetscOptionsBegin(sim->comm, NULL, "Scene spheric_test2: SPHERIC Benchmark Test 2, a 3D dam break onto a box (Kleefsman et al. 2005)", "");
+  c->L = 3.22; c->W = 1.0; c->top = 1.0; c->H = 0.55; c->Lw = 1.228; c->sensor = 0.009; c->rows = SimKernelRows(sim);
+  PetscOptionsBegin(SimComm(sim), NULL, "Scene spheric_test2: SPHERIC Benchmark Test 2, a 3D dam break onto a box (Kleefsman et al. 2005)", "");
   PetscCall(OptReal("-sensor_size", "Side of a pressure sensor's square face (m), over which its pressure is averaged", "", c->sensor, &c->sensor, NULL));
   PetscCall(OptInt("-wall_rows", "Rows of wall + dummy particles", "", c->rows, &c->rows, NULL));
   PetscOptionsEnd();
-  PetscCheck(c->sensor >= 0 && c->sensor <= 0.04, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-sensor_size %g must be in [0, 0.04] m (the sensors are 0.04 m apart)", (double)c->sensor);
-  PetscCheck(c->rows >= 1, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-wall_rows %" PetscInt_FMT " must be >= 1", c->rows);
-  sim->phys.dim = 3;
-  sim->phys.g[1] = 0; sim->phys.g[2] = -9.81;
-  if (sim->phys.dx < 0) sim->phys.dx = 0.02;
-  if (sim->t_end < 0) sim->t_end = 6.0;
-  PetscCheck(sim->phys.dx <= 0.161 / 3, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dx %g leaves fewer than 3 particles across the box (0.161 m): choose a smaller -dx", (double)sim->phys.dx);
-  sim->phys.v_ref   = PetscSqrtReal(2 * 9.81 * c->H);
-  sim->outflow = PETSC_TRUE;
-  for (PetscInt d = 0; d < 2; d++) {
-    sim->dom_lo[d] = -(c->rows + 0.5) * sim->phys.dx;
-    sim->dom_hi[d] = (d ? c->W : c->L) + (c->rows + 0.5) * sim->phys.dx;
-  }
-  sim->dom_lo[2] = -(c->rows + 0.5) * sim->phys.dx;
-  sim->dom_hi[2] = 1.6 * c->top;
+  PetscCheck(c->sensor >= 0 && c->sensor <= 0.04, SimComm(sim), PETSC_ERR_ARG_OUTOFRANGE, "-sensor_size %g must be in [0, 0.04] m (the sensors are 0.04 m apart)", (double)c->sensor);
+  PetscCheck(c->rows >= 1, SimComm(sim), PETSC_ERR_ARG_OUTOFRANGE, "-wall_rows %" PetscInt_FMT " must be >= 1", c->rows);
+  PetscCall(SimSetDim(sim, 3));
+  PetscCall(SimSetGravity(sim, SimGravity(sim)[0], 0, -9.81));
+  if (SimSpacing(sim) < 0) PetscCall(SimSetSpacing(sim, 0.02));
+  if (SimEndTime(sim) < 0) PetscCall(SimSetEndTime(sim, 6.0));
+  PetscCheck(SimSpacing(sim) <= 0.161 / 3, SimComm(sim), PETSC_ERR_ARG_OUTOFRANGE, "-dx %g leaves fewer than 3 particles across the box (0.161 m): choose a smaller -dx", (double)SimSpacing(sim));
+  PetscCall(SimSetReferenceSpeed(sim, PetscSqrtReal(2 * 9.81 * c->H)));
+  PetscCall(SimSetOutflow(sim, PETSC_TRUE));
+  for (PetscInt d = 0; d < 2; d++) PetscCall(SimSetDomain(sim, d, -(c->rows + 0.5) * SimSpacing(sim), (d ? c->W : c->L) + (c->rows + 0.5) * SimSpacing(sim)));
+  PetscCall(SimSetDomain(sim, 2, -(c->rows + 0.5) * SimSpacing(sim), 1.6 * c->top));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
 static PetscErrorCode Populate(Sim sim)
 {
-  Spheric2       *c = (Spheric2 *)sim->scene_ctx;
+  Spheric2       *c = (Spheric2 *)SimSceneContext(sim);
   const PetscReal lo[3] = {0, 0, 0}, hi[3] = {c->L, c->W, c->H}, water[6] = {c->L - c->Lw, 0, 0, c->L, c->W, c->H};
   const PetscBool faces[6] = {PETSC_TRUE, PETSC_TRUE, PETSC_FALSE, PETSC_TRUE, PETSC_TRUE, PETSC_TRUE}; /* all but the floor's */
   PetscFunctionBeginUser;
   SceneColumnKernelInit(sim, &c->col);
-  PetscCall(SceneAddBox(sim, KIND_FLUID, water, sim->phys.dx, sim->phys.fl.rho0));
+  PetscCall(SceneAddBox(sim, KIND_FLUID, water, SimSpacing(sim), SimFluidMaterial(sim)->rho0));
   PetscCall(SceneHydrostaticDensity(sim, 0, c->H));
-  PetscCall(SceneAddTankBox(sim, lo, hi, c->top, sim->phys.dx, c->rows));
-  PetscCall(SceneAddWallBox(sim, Box, sim->phys.dx, faces));
+  PetscCall(SceneAddTankBox(sim, lo, hi, c->top, SimSpacing(sim), c->rows));
+  PetscCall(SceneAddWallBox(sim, Box, SimSpacing(sim), faces));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
 /* H1..H4 (m), then P1..P8 (Pa) */
 static PetscErrorCode Probe(Sim sim, PetscReal *vals)
 {
-  Spheric2 *c = (Spheric2 *)sim->scene_ctx;
+  Spheric2 *c = (Spheric2 *)SimSceneContext(sim);
   PetscFunctionBeginUser;
   PetscCall(SceneWaterDepth(sim, &c->col, NLEVEL, &LevelXY[0][0], vals));
-  for (PetscInt g = 0; g < NLEVEL; g++) PetscCall(SeriesAppend(&c->level[g], sim->phys.t, vals[g]));
+  for (PetscInt g = 0; g < NLEVEL; g++) PetscCall(SeriesAppend(&c->level[g], SimTime(sim), vals[g]));
   for (PetscInt s = 0; s < NSENSOR; s++) {
     PetscReal sum = 0;
     PetscInt  t1 = SensorNormal[s] == 0 ? 1 : 0, t2 = 1 + (SensorNormal[s] == 0); /* the face's two tangent directions */
@@ -105,25 +99,25 @@ static PetscErrorCode Probe(Sim sim, PetscReal *vals)
         sum += p;
       }
     vals[NLEVEL + s] = sum / (NFACE * NFACE);
-    PetscCall(SeriesAppend(&c->pres[s], sim->phys.t, vals[NLEVEL + s]));
+    PetscCall(SeriesAppend(&c->pres[s], SimTime(sim), vals[NLEVEL + s]));
   }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
 static PetscErrorCode Errors(Sim sim, FILE *f)
 {
-  Spheric2       *c    = (Spheric2 *)sim->scene_ctx;
+  Spheric2       *c    = (Spheric2 *)SimSceneContext(sim);
   const char     *file = "spheric_test2_kleefsman2005_3D_pressure_waterlevel.csv";
-  const PetscReal rg   = sim->phys.fl.rho0 * (-sim->phys.g[2]) * c->H;
+  const PetscReal rg   = SimFluidMaterial(sim)->rho0 * (-SimGravity(sim)[2]) * c->H;
   PetscFunctionBeginUser;
   for (PetscInt k = 0; k < NLEVEL; k++) {
     Series    ref = {0};
     PetscBool found;
     PetscReal rms, max;
     PetscInt  n;
-    PetscCall(RefDataLoad(&sim->refdata, file, "time_s", HCols[k], &ref, &found));
+    PetscCall(RefDataLoad(SimRefData(sim), file, "time_s", HCols[k], &ref, &found));
     if (found && f) {
-      PetscCall(SeriesCompare(&c->level[k], &ref, 1.0, 1.0, 0, sim->phys.t, PETSC_FALSE, &rms, &max, &n)); /* in m */
+      PetscCall(SeriesCompare(&c->level[k], &ref, 1.0, 1.0, 0, SimTime(sim), PETSC_FALSE, &rms, &max, &n)); /* in m */
       fprintf(f, "\"H%d_err_rms\": %.6g, \"H%d_err_max\": %.6g, ", (int)k + 1, (double)(rms / c->H), (int)k + 1, (double)(max / c->H));
     }
     PetscCall(SeriesDestroy(&ref));
@@ -133,13 +127,13 @@ static PetscErrorCode Errors(Sim sim, FILE *f)
     PetscBool found;
     PetscReal rms, max, pe, te, ps, ts, fe, tfe, fs, tfs;
     PetscInt  n;
-    PetscCall(RefDataLoad(&sim->refdata, file, "time_s", PCols[k], &ref, &found));
+    PetscCall(RefDataLoad(SimRefData(sim), file, "time_s", PCols[k], &ref, &found));
     if (found && f) {
-      SeriesPeak(&ref, 0, sim->phys.t, &pe, &te);
-      SeriesPeak(&c->pres[k], 0, sim->phys.t, &ps, &ts);
-      SeriesPeak(&ref, 0, PetscMin(1.0, sim->phys.t), &fe, &tfe);
-      SeriesPeak(&c->pres[k], 0, PetscMin(1.0, sim->phys.t), &fs, &tfs);
-      PetscCall(SeriesCompare(&c->pres[k], &ref, 1.0, 1.0, 0, sim->phys.t, PETSC_FALSE, &rms, &max, &n)); /* in Pa */
+      SeriesPeak(&ref, 0, SimTime(sim), &pe, &te);
+      SeriesPeak(&c->pres[k], 0, SimTime(sim), &ps, &ts);
+      SeriesPeak(&ref, 0, PetscMin(1.0, SimTime(sim)), &fe, &tfe);
+      SeriesPeak(&c->pres[k], 0, PetscMin(1.0, SimTime(sim)), &fs, &tfs);
+      PetscCall(SeriesCompare(&c->pres[k], &ref, 1.0, 1.0, 0, SimTime(sim), PETSC_FALSE, &rms, &max, &n)); /* in Pa */
       fprintf(f, "\"P%d_err_rms\": %.6g, \"P%d_peak\": %.6g, \"P%d_peak_exp\": %.6g, \"P%d_peak_t\": %.6g, \"P%d_peak_t_exp\": %.6g, ", (int)k + 1, (double)(rms / rg), (int)k + 1, (double)ps, (int)k + 1, (double)pe, (int)k + 1, (double)ts, (int)k + 1, (double)te);
       fprintf(f, "\"P%d_first_peak\": %.6g, \"P%d_first_peak_exp\": %.6g, \"P%d_first_peak_t\": %.6g, \"P%d_first_peak_t_exp\": %.6g, ", (int)k + 1, (double)fs, (int)k + 1, (double)fe, (int)k + 1, (double)tfs, (int)k + 1, (double)tfe);
     }
@@ -151,11 +145,12 @@ static PetscErrorCode Errors(Sim sim, FILE *f)
 
 static PetscErrorCode Destroy(Sim sim)
 {
-  Spheric2 *c = (Spheric2 *)sim->scene_ctx;
+  Spheric2 *c = (Spheric2 *)SimSceneContext(sim);
   PetscFunctionBeginUser;
   for (PetscInt k = 0; k < NLEVEL; k++) PetscCall(SeriesDestroy(&c->level[k]));
   for (PetscInt k = 0; k < NSENSOR; k++) PetscCall(SeriesDestroy(&c->pres[k]));
-  PetscCall(PetscFree(sim->scene_ctx));
+  PetscCall(PetscFree(c));
+  PetscCall(SimSetSceneContext(sim, NULL));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

@@ -6,8 +6,7 @@
  * v = U sin(kx) cos(ky) is this field shifted by L/4 in x and y; its pressure has the opposite sign.)
  * With -dim 3 the same field fills a triply periodic cube of side L, uniform in z (w = 0): still an
  * exact solution, which checks the 3D operators and the periodic images in every direction. */
-#include "scenes/scene.h"
-#include "base/options_used.h"
+#include <sphfsi.h>
 
 typedef struct {
   PetscReal L, U, Re;
@@ -22,33 +21,36 @@ static PetscErrorCode Create(Sim sim)
   PetscInt     n;
   PetscFunctionBeginUser;
   PetscCall(PetscNew(&c));
-  sim->scene_ctx = c;
+  PetscCall(SimSetSceneContext(sim, c));
   PetscCall(SceneKeepReal(sim, &c->e_last));
   PetscCall(SceneKeepReal(sim, &c->l2_last));
   PetscCall(SceneKeepReal(sim, &c->t_last));
   c->L = 1.0; c->U = 1.0; c->Re = 100;
-  PetscOptionsBegin(sim->comm, NULL, "Scene taylor_green: decaying vortices in a periodic unit square (L = 1 m, U = 1 m/s)", "");
+  PetscOptionsBegin(SimComm(sim), NULL, "Scene taylor_green: decaying vortices in a periodic unit square (L = 1 m, U = 1 m/s)", "");
   PetscCall(OptReal("-re", "Reynolds number U L / nu; sets mu = rho0 U L / Re (a later -fluid_mu overrides)", "", c->Re, &c->Re, NULL));
-  PetscCall(OptInt("-dim", "Dimension: 2, or 3 for the same vortices in a periodic cube (uniform in z)", "", sim->phys.dim, &sim->phys.dim, NULL));
-  PetscOptionsEnd();
-  PetscCheck(sim->phys.dim == 2 || sim->phys.dim == 3, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dim %" PetscInt_FMT " must be 2 or 3", sim->phys.dim);
-  PetscCheck(c->Re > 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-re %g must be > 0", (double)c->Re);
-  if (sim->phys.dx < 0) sim->phys.dx = c->L / 50;
-  if (sim->t_end < 0) sim->t_end = 1.0;
-  /* the lattice must tile the period exactly: dx = L / n */
-  n = RoundToInt(c->L / sim->phys.dx);
-  PetscCheck(n >= 8, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dx %g leaves fewer than 8 particles across the %g m period: choose -dx <= %g", (double)sim->phys.dx, (double)c->L, (double)(c->L / 8));
-  if (PetscAbsReal(sim->phys.dx - c->L / n) > 1e-12 * c->L) PetscCall(PetscInfo(NULL, "taylor_green: -dx %g rounded to %g = L / %" PetscInt_FMT "\n", (double)sim->phys.dx, (double)(c->L / n), n));
-  sim->phys.dx          = c->L / n;
-  sim->phys.confined    = PETSC_TRUE; /* no free surface */
-  for (PetscInt d = 0; d < sim->phys.dim; d++) {
-    sim->periodic[d] = PETSC_TRUE;
-    sim->dom_lo[d]   = 0;
-    sim->dom_hi[d]   = c->L;
-    sim->phys.g[d]        = 0;
+  {
+    PetscInt dim = SimDim(sim);
+    PetscCall(OptInt("-dim", "Dimension: 2, or 3 for the same vortices in a periodic cube (uniform in z)", "", dim, &dim, NULL));
+    PetscCall(SimSetDim(sim, dim));
   }
-  sim->phys.fl.mu = sim->phys.fl.rho0 * c->U * c->L / c->Re;
-  sim->phys.v_ref = c->U;
+  PetscOptionsEnd();
+  PetscCheck(SimDim(sim) == 2 || SimDim(sim) == 3, SimComm(sim), PETSC_ERR_ARG_OUTOFRANGE, "-dim %" PetscInt_FMT " must be 2 or 3", SimDim(sim));
+  PetscCheck(c->Re > 0, SimComm(sim), PETSC_ERR_ARG_OUTOFRANGE, "-re %g must be > 0", (double)c->Re);
+  if (SimSpacing(sim) < 0) PetscCall(SimSetSpacing(sim, c->L / 50));
+  if (SimEndTime(sim) < 0) PetscCall(SimSetEndTime(sim, 1.0));
+  /* the lattice must tile the period exactly: dx = L / n */
+  n = RoundToInt(c->L / SimSpacing(sim));
+  PetscCheck(n >= 8, SimComm(sim), PETSC_ERR_ARG_OUTOFRANGE, "-dx %g leaves fewer than 8 particles across the %g m period: choose -dx <= %g", (double)SimSpacing(sim), (double)c->L, (double)(c->L / 8));
+  if (PetscAbsReal(SimSpacing(sim) - c->L / n) > 1e-12 * c->L) PetscCall(PetscInfo(NULL, "taylor_green: -dx %g rounded to %g = L / %" PetscInt_FMT "\n", (double)SimSpacing(sim), (double)(c->L / n), n));
+  PetscCall(SimSetSpacing(sim, c->L / n));
+  PetscCall(SimSetConfined(sim, PETSC_TRUE)); /* no free surface */
+  for (PetscInt d = 0; d < SimDim(sim); d++) {
+    PetscCall(SimSetPeriodic(sim, d, PETSC_TRUE));
+    PetscCall(SimSetDomain(sim, d, 0, c->L));
+  }
+  PetscCall(SimSetGravity(sim, 0, 0, SimDim(sim) == 3 ? 0 : SimGravity(sim)[2]));
+  SimFluidMaterial(sim)->mu = SimFluidMaterial(sim)->rho0 * c->U * c->L / c->Re;
+  PetscCall(SimSetReferenceSpeed(sim, c->U));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -62,23 +64,31 @@ static inline void Exact(const TaylorGreen *c, PetscReal nu, PetscReal t, const 
 
 static PetscErrorCode Populate(Sim sim)
 {
-  TaylorGreen *c = (TaylorGreen *)sim->scene_ctx;
-  Particles    P;
-  PetscReal   *x, *v, *p, *rho, *m, dx = sim->phys.dx, k = 2 * PETSC_PI / c->L, E = 0;
-  PetscInt     n = RoundToInt(c->L / dx), D = sim->phys.dim;
+  TaylorGreen *c = (TaylorGreen *)SimSceneContext(sim);
+  PetscReal   *x, *v, *p, *rho, *m, dx = SimSpacing(sim), k = 2 * PETSC_PI / c->L, E = 0;
+  PetscInt     n = RoundToInt(c->L / dx), D = SimDim(sim), np;
   PetscFunctionBeginUser;
-  if (D == 3) PetscCall(SceneAddBlock(sim, KIND_FLUID, (PetscReal[]){0.5 * dx, 0.5 * dx, 0.5 * dx}, (PetscInt[]){n, n, n}, dx, sim->phys.fl.rho0));
-  else PetscCall(SceneAddLattice(sim, KIND_FLUID, 0.5 * dx, 0.5 * dx, n, n, dx, sim->phys.fl.rho0));
-  P = sim->P;
-  x = PField(P, FIELD_X); v = PField(P, FIELD_V); p = PField(P, FIELD_P); rho = PField(P, FIELD_RHO); m = PField(P, FIELD_M);
-  for (PetscInt a = 0; a < P->n; a++) {
+  if (D == 3) PetscCall(SceneAddBlock(sim, KIND_FLUID, (PetscReal[]){0.5 * dx, 0.5 * dx, 0.5 * dx}, (PetscInt[]){n, n, n}, dx, SimFluidMaterial(sim)->rho0));
+  else PetscCall(SceneAddLattice(sim, KIND_FLUID, 0.5 * dx, 0.5 * dx, n, n, dx, SimFluidMaterial(sim)->rho0));
+  PetscCall(SimGetLocalSize(sim, &np));
+  PetscCall(SimGetField(sim, "x", NULL, &x));
+  PetscCall(SimGetField(sim, "v", NULL, &v));
+  PetscCall(SimGetField(sim, "p", NULL, &p));
+  PetscCall(SimGetField(sim, "rho", NULL, &rho));
+  PetscCall(SimGetField(sim, "m", NULL, &m));
+  for (PetscInt a = 0; a < np; a++) {
     Exact(c, 0, 0, &x[D * a], &v[D * a]); /* w = 0 in 3D */
     /* exact pressure at t = 0, density through the EOS (Eq. 20) */
-    p[a]   = 0.25 * sim->phys.fl.rho0 * c->U * c->U * (PetscCosReal(2 * k * x[D * a]) + PetscCosReal(2 * k * x[D * a + 1]));
-    rho[a] = EOSDensity(&sim->phys.fl, p[a]);
+    p[a]   = 0.25 * SimFluidMaterial(sim)->rho0 * c->U * c->U * (PetscCosReal(2 * k * x[D * a]) + PetscCosReal(2 * k * x[D * a + 1]));
+    rho[a] = EOSDensity(SimFluidMaterial(sim), p[a]);
     E += 0.5 * m[a] * (v[D * a] * v[D * a] + v[D * a + 1] * v[D * a + 1]);
   }
-  PetscCall(MPIU_Allreduce(&E, &c->E0, 1, MPIU_REAL, MPI_SUM, sim->comm));
+  PetscCall(SimRestoreField(sim, "x", NULL, &x));
+  PetscCall(SimRestoreField(sim, "v", NULL, &v));
+  PetscCall(SimRestoreField(sim, "p", NULL, &p));
+  PetscCall(SimRestoreField(sim, "rho", NULL, &rho));
+  PetscCall(SimRestoreField(sim, "m", NULL, &m));
+  PetscCall(MPIU_Allreduce(&E, &c->E0, 1, MPIU_REAL, MPI_SUM, SimComm(sim)));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -86,16 +96,21 @@ static PetscErrorCode Populate(Sim sim)
  * v_exact at the particles' current positions and time. */
 static PetscErrorCode Probe(Sim sim, PetscReal *vals)
 {
-  TaylorGreen *c = (TaylorGreen *)sim->scene_ctx;
-  Particles    P = sim->P;
-  PetscReal   *x = PField(P, FIELD_X), *v = PField(P, FIELD_V), *m = PField(P, FIELD_M);
-  PetscReal    s[3] = {0, 0, 0}, nu = sim->phys.fl.mu / sim->phys.fl.rho0;
-  PetscInt     D = P->dim;
+  TaylorGreen *c = (TaylorGreen *)SimSceneContext(sim);
+  const PetscReal *x, *v, *m;
+  const PetscInt  *kind;
+  PetscReal        s[3] = {0, 0, 0}, nu = SimFluidMaterial(sim)->mu / SimFluidMaterial(sim)->rho0;
+  PetscInt         D = SimDim(sim), n;
   PetscFunctionBeginUser;
-  for (PetscInt a = 0; a < P->n; a++) {
+  PetscCall(SimGetLocalSize(sim, &n));
+  PetscCall(SimGetField(sim, "kind", NULL, &kind));
+  PetscCall(SimGetField(sim, "x", NULL, &x));
+  PetscCall(SimGetField(sim, "v", NULL, &v));
+  PetscCall(SimGetField(sim, "m", NULL, &m));
+  for (PetscInt a = 0; a < n; a++) {
     PetscReal ve[2], ex, ey;
-    if (!KindIsFluid(P->kind[a])) continue;
-    Exact(c, nu, sim->phys.t, &x[D * a], ve);
+    if (!KindIsFluid(kind[a])) continue;
+    Exact(c, nu, SimTime(sim), &x[D * a], ve);
     ex = v[D * a] - ve[0]; ey = v[D * a + 1] - ve[1];
     s[0] += 0.5 * m[a] * (v[D * a] * v[D * a] + v[D * a + 1] * v[D * a + 1]);
     s[1] += ex * ex + ey * ey;
@@ -105,34 +120,40 @@ static PetscErrorCode Probe(Sim sim, PetscReal *vals)
     }
     s[2] += ve[0] * ve[0] + ve[1] * ve[1];
   }
-  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, s, 3, MPIU_REAL, MPI_SUM, sim->comm));
+  PetscCall(SimRestoreField(sim, "kind", NULL, &kind));
+  PetscCall(SimRestoreField(sim, "x", NULL, &x));
+  PetscCall(SimRestoreField(sim, "v", NULL, &v));
+  PetscCall(SimRestoreField(sim, "m", NULL, &m));
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, s, 3, MPIU_REAL, MPI_SUM, SimComm(sim)));
   vals[0]    = s[0];
   vals[1]    = s[2] > 0 ? PetscSqrtReal(s[1] / s[2]) : 0;
   c->e_last  = vals[0];
   c->l2_last = vals[1];
-  c->t_last  = sim->phys.t;
+  c->t_last  = SimTime(sim);
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
 /* At the final time: E(t)/E(0) against e^{-16 pi^2 nu t / L^2}, and the velocity error. */
 static PetscErrorCode Errors(Sim sim, FILE *f)
 {
-  TaylorGreen *c = (TaylorGreen *)sim->scene_ctx;
-  PetscReal    vals[2], nu = sim->phys.fl.mu / sim->phys.fl.rho0, ratio, exact;
+  TaylorGreen *c = (TaylorGreen *)SimSceneContext(sim);
+  PetscReal    vals[2], nu = SimFluidMaterial(sim)->mu / SimFluidMaterial(sim)->rho0, ratio, exact;
   PetscFunctionBeginUser;
-  if (c->t_last != sim->phys.t) PetscCall(Probe(sim, vals)); /* the last probe row may predate t_end */
+  if (c->t_last != SimTime(sim)) PetscCall(Probe(sim, vals)); /* the last probe row may predate t_end */
   ratio = c->e_last / c->E0;
-  exact = PetscExpReal(-16 * PETSC_PI * PETSC_PI * nu * sim->phys.t / (c->L * c->L));
+  exact = PetscExpReal(-16 * PETSC_PI * PETSC_PI * nu * SimTime(sim) / (c->L * c->L));
   if (f)
     fprintf(f, "\"e_kin_rel_err_final\": %.6g, \"e_kin_ratio_final\": %.9g, \"e_kin_ratio_exact\": %.9g, \"l2_vel_err_final\": %.6g, \"t_final\": %.9g, \"re\": %.6g, \"reference\": \"Taylor-Green analytic decay\"",
-            (double)(PetscAbsReal(ratio - exact) / exact), (double)ratio, (double)exact, (double)c->l2_last, (double)sim->phys.t, (double)(c->U * c->L / nu));
+            (double)(PetscAbsReal(ratio - exact) / exact), (double)ratio, (double)exact, (double)c->l2_last, (double)SimTime(sim), (double)(c->U * c->L / nu));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
 static PetscErrorCode Destroy(Sim sim)
 {
+  void *c = SimSceneContext(sim);
   PetscFunctionBeginUser;
-  PetscCall(PetscFree(sim->scene_ctx));
+  PetscCall(PetscFree(c));
+  PetscCall(SimSetSceneContext(sim, NULL));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

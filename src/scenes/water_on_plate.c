@@ -4,11 +4,7 @@
  * takes must equal the weight of the water plus the plate's own.  Checks that the fluid's
  * pressure reaches the solid whole (Newton's third law of the fluid-solid pair forces) in both
  * fluid schemes. */
-#include "scenes/scene.h"
-#include "base/options_used.h"
-#include "solid/solid.h"
-#include "base/refdata.h"
-#include "base/kernel.h"
+#include <sphfsi.h>
 
 typedef struct {
   PetscReal W, H, T;       /* periodic width, water depth, plate thickness */
@@ -22,53 +18,57 @@ static PetscErrorCode Create(Sim sim)
   Plate *c;
   PetscFunctionBeginUser;
   PetscCall(PetscNew(&c));
-  sim->scene_ctx = c;
+  PetscCall(SimSetSceneContext(sim, c));
   PetscCall(SceneKeepSeries(sim, &c->ratio));
   c->W = 0.05; c->H = 0.05; c->T = 0.01; c->nclamp = 2;
-  sim->phys.sl.rho0 = 1100; sim->phys.sl.K = 2.0e7; sim->phys.sl.G = 4.27e6; /* the elastic gate's rubber */
-  PetscOptionsBegin(sim->comm, NULL, "Scene water_on_plate: water at rest on a clamped elastic plate", "");
+  SimSolidMaterial(sim)->rho0 = 1100; SimSolidMaterial(sim)->K = 2.0e7; SimSolidMaterial(sim)->G = 4.27e6; /* the elastic gate's rubber */
+  PetscOptionsBegin(SimComm(sim), NULL, "Scene water_on_plate: water at rest on a clamped elastic plate", "");
   PetscCall(OptReal("-tank_width", "Periodic width of the water and the plate (m)", "", c->W, &c->W, NULL));
   PetscCall(OptReal("-water_depth", "Water depth (m)", "", c->H, &c->H, NULL));
   PetscCall(OptReal("-plate_thickness", "Plate thickness (m), clamp rows included", "", c->T, &c->T, NULL));
   PetscCall(OptInt("-clamp_rows", "Rows of clamped particles at the plate's bottom", "", c->nclamp, &c->nclamp, NULL));
   PetscOptionsEnd();
-  PetscCheck(c->W > 0 && c->H > 0 && c->T > 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-tank_width %g, -water_depth %g and -plate_thickness %g must be > 0", (double)c->W, (double)c->H, (double)c->T);
-  if (sim->phys.dx < 0) sim->phys.dx = c->H / 20;
-  if (sim->t_end < 0) sim->t_end = 0.3;
-  PetscCheck(sim->phys.dx <= 0.5 * PetscMin(c->W, c->H), sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-dx %g is larger than half the water region (%g x %g m): choose a smaller -dx", (double)sim->phys.dx, (double)c->W, (double)c->H);
-  PetscCheck(c->nclamp >= 1 && c->T / sim->phys.dx > c->nclamp + 0.999, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-plate_thickness %g must leave at least one free row above -clamp_rows %" PetscInt_FMT " >= 1 at -dx %g", (double)c->T, c->nclamp, (double)sim->phys.dx);
-  c->W = RoundToInt(c->W / sim->phys.dx) * sim->phys.dx; /* whole lattice columns in the period */
-  PetscCheck(c->W >= 3 * (2 * sim->phys.kernel.h_factor + 0.5) * sim->phys.dx, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-tank_width %g: the periodic grid needs at least 3 cells of 2 h + skin; choose a smaller -dx", (double)c->W);
-  sim->phys.has_solid   = PETSC_TRUE;
-  sim->phys.v_ref       = PetscSqrtReal(2 * 9.81 * c->H);
-  sim->periodic[0] = PETSC_TRUE;
-  sim->dom_lo[0]   = 0;
-  sim->dom_hi[0]   = c->W;
-  sim->dom_lo[1]   = -c->T - sim->phys.dx;
-  sim->dom_hi[1]   = 1.5 * c->H;
+  PetscCheck(c->W > 0 && c->H > 0 && c->T > 0, SimComm(sim), PETSC_ERR_ARG_OUTOFRANGE, "-tank_width %g, -water_depth %g and -plate_thickness %g must be > 0", (double)c->W, (double)c->H, (double)c->T);
+  if (SimSpacing(sim) < 0) PetscCall(SimSetSpacing(sim, c->H / 20));
+  if (SimEndTime(sim) < 0) PetscCall(SimSetEndTime(sim, 0.3));
+  PetscCheck(SimSpacing(sim) <= 0.5 * PetscMin(c->W, c->H), SimComm(sim), PETSC_ERR_ARG_OUTOFRANGE, "-dx %g is larger than half the water region (%g x %g m): choose a smaller -dx", (double)SimSpacing(sim), (double)c->W, (double)c->H);
+  PetscCheck(c->nclamp >= 1 && c->T / SimSpacing(sim) > c->nclamp + 0.999, SimComm(sim), PETSC_ERR_ARG_OUTOFRANGE, "-plate_thickness %g must leave at least one free row above -clamp_rows %" PetscInt_FMT " >= 1 at -dx %g", (double)c->T, c->nclamp, (double)SimSpacing(sim));
+  c->W = RoundToInt(c->W / SimSpacing(sim)) * SimSpacing(sim); /* whole lattice columns in the period */
+  PetscCheck(c->W >= 3 * (2 * SimKernelHFactor(sim) + 0.5) * SimSpacing(sim), SimComm(sim), PETSC_ERR_ARG_OUTOFRANGE, "-tank_width %g: the periodic grid needs at least 3 cells of 2 h + skin; choose a smaller -dx", (double)c->W);
+  PetscCall(SimSetMedia(sim, SimHasFluid(sim), PETSC_TRUE));
+  PetscCall(SimSetReferenceSpeed(sim, PetscSqrtReal(2 * 9.81 * c->H)));
+  PetscCall(SimSetPeriodic(sim, 0, PETSC_TRUE));
+  PetscCall(SimSetDomain(sim, 0, 0, c->W));
+  PetscCall(SimSetDomain(sim, 1, -c->T - SimSpacing(sim), 1.5 * c->H));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
 static PetscErrorCode Populate(Sim sim)
 {
-  Plate    *c  = (Plate *)sim->scene_ctx;
-  PetscReal dx = sim->phys.dx;
+  Plate    *c  = (Plate *)SimSceneContext(sim);
+  PetscReal dx = SimSpacing(sim);
   PetscInt  nx = RoundToInt(c->W / dx), ny = RoundToInt(c->H / dx), nt = RoundToInt(c->T / dx);
   PetscFunctionBeginUser;
   c->W = nx * dx; c->H = ny * dx; c->T = nt * dx;
-  PetscCall(SceneAddLattice(sim, KIND_FLUID, 0.5 * dx, 0.5 * dx, nx, ny, dx, sim->phys.fl.rho0));
-  PetscCall(SceneAddLattice(sim, KIND_CLAMP, 0.5 * dx, 0.5 * dx - c->T, nx, c->nclamp, dx, sim->phys.sl.rho0));
-  PetscCall(SceneAddLattice(sim, KIND_SOLID, 0.5 * dx, (c->nclamp + 0.5) * dx - c->T, nx, nt - c->nclamp, dx, sim->phys.sl.rho0));
+  PetscCall(SceneAddLattice(sim, KIND_FLUID, 0.5 * dx, 0.5 * dx, nx, ny, dx, SimFluidMaterial(sim)->rho0));
+  PetscCall(SceneAddLattice(sim, KIND_CLAMP, 0.5 * dx, 0.5 * dx - c->T, nx, c->nclamp, dx, SimSolidMaterial(sim)->rho0));
+  PetscCall(SceneAddLattice(sim, KIND_SOLID, 0.5 * dx, (c->nclamp + 0.5) * dx - c->T, nx, nt - c->nclamp, dx, SimSolidMaterial(sim)->rho0));
   PetscCall(SceneHydrostaticDensity(sim, 0, c->H));
   { /* weights from the masses the particles carry */
-    Particles        P = sim->P;
-    const PetscReal *m = PField(P, FIELD_M);
-    PetscReal        w[2] = {0, 0}, g = -sim->phys.g[1];
-    for (PetscInt a = 0; a < P->n; a++) {
-      if (KindIsFluid(P->kind[a])) w[0] += m[a] * g;
-      if (KindIsSolid(P->kind[a])) w[1] += m[a] * g;
+    const PetscReal *m;
+    const PetscInt  *kind;
+    PetscReal        w[2] = {0, 0}, g = -SimGravity(sim)[1];
+    PetscInt         n;
+    PetscCall(SimGetLocalSize(sim, &n));
+    PetscCall(SimGetField(sim, "kind", NULL, &kind));
+    PetscCall(SimGetField(sim, "m", NULL, &m));
+    for (PetscInt a = 0; a < n; a++) {
+      if (KindIsFluid(kind[a])) w[0] += m[a] * g;
+      if (KindIsSolid(kind[a])) w[1] += m[a] * g;
     }
-    PetscCall(MPIU_Allreduce(MPI_IN_PLACE, w, 2, MPIU_REAL, MPI_SUM, sim->comm));
+    PetscCall(SimRestoreField(sim, "kind", NULL, &kind));
+    PetscCall(SimRestoreField(sim, "m", NULL, &m));
+    PetscCall(MPIU_Allreduce(MPI_IN_PLACE, w, 2, MPIU_REAL, MPI_SUM, SimComm(sim)));
     c->w_water = w[0]; c->w_plate = w[1];
   }
   PetscFunctionReturn(PETSC_SUCCESS);
@@ -79,14 +79,14 @@ static PetscErrorCode Populate(Sim sim)
  * water weight, 1 when the plate carries the water; v_max. */
 static PetscErrorCode Probe(Sim sim, PetscReal *vals)
 {
-  Plate    *c = (Plate *)sim->scene_ctx;
-  PetscReal f = sim->phys.solid->support_mean[1];
+  Plate    *c = (Plate *)SimSceneContext(sim);
+  PetscReal f = SimSolidSupport(sim)[1];
   PetscFunctionBeginUser;
-  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &f, 1, MPIU_REAL, MPI_SUM, sim->comm));
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &f, 1, MPIU_REAL, MPI_SUM, SimComm(sim)));
   vals[0] = f;
   vals[1] = (f - c->w_plate) / c->w_water;
   PetscCall(SceneMaxSpeed(sim, &vals[2]));
-  if (sim->phys.step > 0) PetscCall(SeriesAppend(&c->ratio, sim->phys.t, vals[1]));
+  if (SimStep(sim) > 0) PetscCall(SeriesAppend(&c->ratio, SimTime(sim), vals[1]));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -94,22 +94,23 @@ static PetscErrorCode Probe(Sim sim, PetscReal *vals)
  * average out) against 1. */
 static PetscErrorCode Errors(Sim sim, FILE *f)
 {
-  Plate    *c = (Plate *)sim->scene_ctx;
+  Plate    *c = (Plate *)SimSceneContext(sim);
   PetscReal s = 0;
   PetscInt  n = 0;
   PetscFunctionBeginUser;
   for (PetscInt k = 0; k < c->ratio.n; k++)
-    if (c->ratio.t[k] >= 0.5 * sim->phys.t) { s += c->ratio.y[k]; n++; }
+    if (c->ratio.t[k] >= 0.5 * SimTime(sim)) { s += c->ratio.y[k]; n++; }
   if (f) fprintf(f, "\"load_ratio_mean\": %.6g, \"load_rel_err\": %.6g, \"water_weight\": %.6g, \"plate_weight\": %.6g, \"reference\": \"support = water + plate weight\"", (double)(n ? s / n : -1), (double)(n ? PetscAbsReal(s / n - 1) : -1), (double)c->w_water, (double)c->w_plate);
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
 static PetscErrorCode Destroy(Sim sim)
 {
-  Plate *c = (Plate *)sim->scene_ctx;
+  Plate *c = (Plate *)SimSceneContext(sim);
   PetscFunctionBeginUser;
   PetscCall(SeriesDestroy(&c->ratio));
-  PetscCall(PetscFree(sim->scene_ctx));
+  PetscCall(PetscFree(c));
+  PetscCall(SimSetSceneContext(sim, NULL));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

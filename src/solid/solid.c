@@ -7,6 +7,8 @@
 #include "fluid/boundary.h"
 #include "fluid/isph.h"
 #include "solid/solid_impl.h"
+#include "solid/solid_total.h"
+#include "solid/solid_updated.h"
 #include "base/dim.h"
 #include "particles/pair_loop.h"
 
@@ -194,8 +196,6 @@ SPH_INLINE PetscErrorCode NormalsD(Physics *ph, const PetscInt D)
 }
 
 static PetscErrorCode Normals(Physics *ph) { return SPH_DIM_DISPATCH(ph->dim, NormalsD, ph); }
-
-PetscBool SolidKeep(PetscInt kind) { return KindIsSolid(kind); }
 
 PetscErrorCode SolidPrepare(Physics *ph)
 {

@@ -1,5 +1,6 @@
-/* What both solid formulations (solid.c, solid_total.c) share: the fluid's load on a solid
- * particle and the last step of its acceleration.  Private to the solid module. */
+/* What the solid formulations (solid_total.c, solid_updated.c) and the solid's driver (solid.c)
+ * share, below all three: the fluid's load on a solid particle, the last step of its acceleration,
+ * the kinds of a body.  Private to the solid module. */
 #pragma once
 #include "solid/solid.h"
 #include "fluid/fluid_terms.h"
@@ -54,17 +55,5 @@ SPH_INLINE void SolidAccelerate(Physics *ph, PetscInt a, const PetscReal *ai, co
   }
 }
 
-/* Total-Lagrangian formulation (solid_total.c).  Prepare: after each rebuild of the solid's list,
- * the pairs' reference kernel values and each owned particle's correction; Rates: deformation
- * gradient, stress and accelerations at the current positions; StrainEnergy: owned, not reduced. */
-PetscErrorCode SolidTotalPrepare(Physics *ph);
-PetscErrorCode SolidTotalRates(Physics *ph);
-PetscReal      SolidTotalStrainEnergy(Physics *ph);
-
-/* The seed's hypo-elastic formulation (solid_updated.c).  Rates: pressure, artificial stress and
- * accelerations at the current state; Deform: density and deviatoric stress over dt. */
-PetscErrorCode SolidUpdatedRates(Physics *ph);
-PetscErrorCode SolidUpdatedDeform(Physics *ph, PetscReal dt);
-
 /* The kinds of a body (solid and clamp): the solid's neighbour list and its ghost refreshes. */
-PetscBool SolidKeep(PetscInt kind);
+static inline PetscBool SolidKeep(PetscInt kind) { return KindIsSolid(kind); }

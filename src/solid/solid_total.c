@@ -18,6 +18,7 @@
  * (Eq. 24) acts on the current pairs as in the updated scheme.  Density, pressure and deviatoric
  * stress are derived from F for the output and the fluid. */
 #include "solid/solid_impl.h"
+#include "solid/solid_total.h"
 #include "solid/solid_terms.h"
 #include "base/kernel.h"
 #include "particles/halo.h"

@@ -3,6 +3,7 @@
  * viscosity Eq. 24, and the deviatoric stress by the Jaumann rate Eqs. 35-40, all in the current
  * configuration, in 2D (plane strain) or 3D. */
 #include "solid/solid_impl.h"
+#include "solid/solid_updated.h"
 #include "solid/solid_terms.h"
 #include "base/kernel.h"
 #include "fluid/operators.h"

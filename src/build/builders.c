@@ -1,23 +1,7 @@
-#include "scenes/scene.h"
+/* The builders and helpers of <sphfsi/scene.h>: lattices, boxes, tanks, zoned water, the hydrostatic
+ * start, pressure probes and level gauges; the scenes' kept state and particle counts. */
+#include "run/sim.h"
 #include "base/kernel.h"
-
-extern const SceneOps SceneHydrostatic, SceneDamBreak, SceneDamBreakLobovsky, SceneSluiceGate, SceneTaylorGreen, ScenePoiseuille, SceneOscillatingPlate, SceneSolidBlock, SceneElasticGate, SceneWaterOnPlate, SceneSphericTest2;
-extern const SceneOps SceneParticlesFile;
-extern SceneOps       SceneBoxes; /* its probes come from the options */
-static const SceneOps *const Scenes[] = {&SceneHydrostatic, &SceneDamBreak, &SceneDamBreakLobovsky, &SceneSluiceGate, &SceneTaylorGreen, &ScenePoiseuille, &SceneOscillatingPlate, &SceneSolidBlock, &SceneElasticGate, &SceneWaterOnPlate, &SceneSphericTest2, &SceneBoxes, &SceneParticlesFile};
-#define NSCENES ((PetscInt)(sizeof(Scenes) / sizeof(Scenes[0])))
-
-PetscErrorCode SceneFind(const char *name, const SceneOps **ops)
-{
-  PetscFunctionBeginUser;
-  *ops = NULL;
-  for (PetscInt k = 0; k < NSCENES; k++) {
-    PetscBool eq;
-    PetscCall(PetscStrcmp(name, Scenes[k]->name, &eq));
-    if (eq) *ops = Scenes[k];
-  }
-  PetscFunctionReturn(PETSC_SUCCESS);
-}
 
 PetscErrorCode SceneKeepSeries(Sim sim, Series *s)
 {
@@ -32,17 +16,6 @@ PetscErrorCode SceneKeepReal(Sim sim, PetscReal *r)
   PetscFunctionBeginUser;
   PetscCheck(sim->nkeep_reals < SIM_MAX_KEEP, sim->comm, PETSC_ERR_PLIB, "More than %d kept values: raise SIM_MAX_KEEP", SIM_MAX_KEEP);
   sim->keep_reals[sim->nkeep_reals++] = r;
-  PetscFunctionReturn(PETSC_SUCCESS);
-}
-
-PetscErrorCode SceneListNames(char *buf, size_t len)
-{
-  PetscFunctionBeginUser;
-  buf[0] = 0;
-  for (PetscInt k = 0; k < NSCENES; k++) {
-    PetscCall(PetscStrlcat(buf, Scenes[k]->name, len));
-    if (k < NSCENES - 1) PetscCall(PetscStrlcat(buf, ", ", len));
-  }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

@@ -1,5 +1,5 @@
 /* Circles, spheres, polygons and STL surfaces of -case boxes (shapes.h; docs/geometry.md). */
-#include "scenes/shapes.h"
+#include "build/shapes.h"
 #include "base/options_used.h"
 #include "base/refdata.h"
 #include <stdint.h>
@@ -76,7 +76,7 @@ static PetscErrorCode ReadShapeOptions(Sim sim, PetscOptionItems *PetscOptionsOb
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode ShapesRead(Sim sim, PetscOptionItems *PetscOptionsObject, Shapes *S, PetscInt rows)
+PetscErrorCode ShapesRead(Sim sim, PetscOptionItems *PetscOptionsObject, Shapes S, PetscInt rows)
 {
   const PetscInt D = sim->phys.dim;
   PetscReal     *xy;
@@ -153,7 +153,7 @@ PetscErrorCode ShapesRead(Sim sim, PetscOptionItems *PetscOptionsObject, Shapes 
 }
 
 /* The lattice points that may lie in shape s: index ranges lo..hi (inclusive) per direction. */
-static void LatticeRange(const Shapes *S, const GeomShape *g, PetscInt D, PetscInt lo[], PetscInt hi[])
+static void LatticeRange(const struct _n_Shapes *S, const GeomShape *g, PetscInt D, PetscInt lo[], PetscInt hi[])
 {
   for (PetscInt d = 0; d < 3; d++) { lo[d] = 0; hi[d] = 0; }
   for (PetscInt d = 0; d < D; d++) {
@@ -162,7 +162,7 @@ static void LatticeRange(const Shapes *S, const GeomShape *g, PetscInt D, PetscI
   }
 }
 
-static void LatticePoint(const Shapes *S, const PetscInt i[], PetscInt D, PetscReal p[])
+static void LatticePoint(const struct _n_Shapes *S, const PetscInt i[], PetscInt D, PetscReal p[])
 {
   for (PetscInt d = 0; d < D; d++) p[d] = S->origin[d] + (i[d] + 0.5) * S->h[d];
 }
@@ -195,7 +195,7 @@ static PetscReal ShapeDistance(const Shape *s, const PetscReal p[], PetscReal dm
 }
 
 /* A point of a shape across a periodic boundary, brought into the domain. */
-static void Wrap(const Shapes *S, const Shape *s, PetscReal p[], PetscInt D)
+static void Wrap(const struct _n_Shapes *S, const Shape *s, PetscReal p[], PetscInt D)
 {
   for (PetscInt d = 0; d < D && s->wraps; d++) {
     if (s->period[d] == 0) continue;
@@ -219,13 +219,13 @@ static void OwnLattice(Sim sim, const GeomShape *g, PetscInt D, PetscReal first[
 
 static PetscBool InDryBox(const PetscReal p[], void *ctx)
 {
-  const Shapes *S = (const Shapes *)ctx;
+  const struct _n_Shapes *S = (const struct _n_Shapes *)ctx;
   for (PetscInt b = 0; b < S->ndry; b++)
     if (InsideBox(p, S->dry[b], 3)) return PETSC_TRUE;
   return PETSC_FALSE;
 }
 
-PetscErrorCode ShapesSetDry(Sim sim, Shapes *S, PetscInt n, const PetscReal (*box)[6])
+PetscErrorCode ShapesSetDry(Sim sim, Shapes S, PetscInt n, const PetscReal (*box)[6])
 {
   PetscFunctionBeginUser;
   PetscCheck(n <= 6 * SHAPES_MAX, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "At most %d wall boxes", 6 * SHAPES_MAX);
@@ -245,7 +245,7 @@ static PetscBool IsBody(ShapeKind k) { return (PetscBool)(k != SHAPE_FLUID); }
 
 /* Whether the lattice point p is in or on another shape of the solid kinds that takes it from s: a
  * clamp takes the points it shares with a solid. */
-static PetscBool TakenByClamp(const Shapes *S, PetscInt si, const PetscReal p[], PetscInt D)
+static PetscBool TakenByClamp(const struct _n_Shapes *S, PetscInt si, const PetscReal p[], PetscInt D)
 {
   if (S->s[si].kind != SHAPE_SOLID) return PETSC_FALSE;
   for (PetscInt j = 0; j < S->n; j++)
@@ -271,7 +271,7 @@ static void WalkCount(ShapeWalk *w)
   for (PetscInt d = 0; d < 3; d++) w->n *= PetscMax(0, w->hi[d] - w->lo[d] + 1);
 }
 
-static void WalkSetUp(Sim sim, const Shapes *S, const Shape *s, ShapeWalk *w)
+static void WalkSetUp(Sim sim, const struct _n_Shapes *S, const Shape *s, ShapeWalk *w)
 {
   const PetscInt D = sim->phys.dim;
   w->hw   = s->own ? sim->phys.dx : (D == 3 ? PetscMin(S->h[0], PetscMin(S->h[1], S->h[2])) : PetscMin(S->h[0], S->h[1])); /* a wall box's rows are -dx deep */
@@ -284,7 +284,7 @@ static void WalkSetUp(Sim sim, const Shapes *S, const Shape *s, ShapeWalk *w)
 }
 
 /* The l-th point of the walk (x fastest, then y, then z) */
-static void WalkPoint(const Shapes *S, const ShapeWalk *w, PetscInt64 l, PetscInt D, PetscReal p[])
+static void WalkPoint(const struct _n_Shapes *S, const ShapeWalk *w, PetscInt64 l, PetscInt D, PetscReal p[])
 {
   const PetscInt64 n0 = w->hi[0] - w->lo[0] + 1, n1 = w->hi[1] - w->lo[1] + 1;
   const PetscInt   idx[3] = {w->lo[0] + (PetscInt)(l % n0), w->lo[1] + (PetscInt)(l / n0 % n1), w->lo[2] + (PetscInt)(l / n0 / n1)};
@@ -295,7 +295,7 @@ static void WalkPoint(const Shapes *S, const ShapeWalk *w, PetscInt64 l, PetscIn
 }
 
 /* What shape si puts at the l-th point of its walk: nothing (0) or a particle of kind code - 1. */
-static unsigned char PointCode(const Shapes *S, PetscInt si, const ShapeWalk *w, PetscInt64 l, PetscInt D)
+static unsigned char PointCode(const struct _n_Shapes *S, PetscInt si, const ShapeWalk *w, PetscInt64 l, PetscInt D)
 {
   const Shape *s = &S->s[si];
   PetscReal    p[3], pu[3], sd;
@@ -326,7 +326,7 @@ static PetscBool WalkMine(Sim sim, PetscInt64 l) { return (PetscBool)((l / WALK_
 
 /* Whether the l-th point of shape i's walk (the shared lattice) lies in shape i and in space that
  * another shape or box of the scene holds: then msg says which (ShapesSetUp). */
-static PetscBool Overlap(const Shapes *S, PetscInt i, const ShapeWalk *w, PetscInt64 l, PetscInt nbox, const PetscReal (*box)[6], const ShapesBoxes *bodies, PetscInt D, char *msg, size_t len)
+static PetscBool Overlap(const struct _n_Shapes *S, PetscInt i, const ShapeWalk *w, PetscInt64 l, PetscInt nbox, const PetscReal (*box)[6], const ShapesBoxes *bodies, PetscInt D, char *msg, size_t len)
 {
   const ShapeKind ki = S->s[i].kind;
   PetscReal       p[3];
@@ -355,7 +355,7 @@ static PetscBool Overlap(const Shapes *S, PetscInt i, const ShapeWalk *w, PetscI
   return PETSC_FALSE;
 }
 
-PetscErrorCode ShapesSetUp(Sim sim, Shapes *S, PetscInt nbox, const PetscReal (*box)[6], const PetscReal *spacing, const ShapesBoxes *bodies)
+PetscErrorCode ShapesSetUp(Sim sim, Shapes S, PetscInt nbox, const PetscReal (*box)[6], const PetscReal *spacing, const ShapesBoxes *bodies)
 {
   const PetscInt D = sim->phys.dim;
   PetscFunctionBeginUser;
@@ -408,7 +408,7 @@ PetscErrorCode ShapesSetUp(Sim sim, Shapes *S, PetscInt nbox, const PetscReal (*
 }
 
 /* Every point's code (PointCode) on every rank: each rank tests its share, an allreduce joins them. */
-static PetscErrorCode WalkCodes(Sim sim, const Shapes *S, PetscInt si, const ShapeWalk *w, unsigned char **code)
+static PetscErrorCode WalkCodes(Sim sim, const struct _n_Shapes *S, PetscInt si, const ShapeWalk *w, unsigned char **code)
 {
   PetscFunctionBeginUser;
   PetscCheck(w->n < PETSC_MPI_INT_MAX, sim->comm, PETSC_ERR_SUP, "%s spans %" PetscInt64_FMT " lattice points, more than %d: split it", S->s[si].name, w->n, (int)PETSC_MPI_INT_MAX);
@@ -419,7 +419,7 @@ static PetscErrorCode WalkCodes(Sim sim, const Shapes *S, PetscInt si, const Sha
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode ShapesPopulate(Sim sim, Shapes *S)
+PetscErrorCode ShapesPopulate(Sim sim, Shapes S)
 {
   const PetscInt D  = sim->phys.dim;
   const PetscInt n0 = sim->P->n;
@@ -458,7 +458,7 @@ PetscErrorCode ShapesPopulate(Sim sim, Shapes *S)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode ShapesCutWater(Sim sim, const Shapes *S, PetscInt first, const PetscReal lo[], const PetscReal hi[], PetscReal spacing)
+PetscErrorCode ShapesCutWater(Sim sim, Shapes S, PetscInt first, const PetscReal lo[], const PetscReal hi[], PetscReal spacing)
 {
   Particles  P = sim->P;
   const PetscInt D = sim->phys.dim;
@@ -488,7 +488,7 @@ PetscErrorCode ShapesCutWater(Sim sim, const Shapes *S, PetscInt first, const Pe
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscInt ShapesFlowColumns(const Shapes *S) { return S->flow ? 2 : 0; }
+PetscInt ShapesFlowColumns(Shapes S) { return S->flow ? 2 : 0; }
 
 /* u_mean = sum_f V_f v_x,f / |domain|: the superficial velocity, the flow rate through a section
  * over the width (continuity makes every section's flow rate the same, so the mean over the sections
@@ -500,7 +500,7 @@ PetscInt ShapesFlowColumns(const Shapes *S) { return S->flow ? 2 : 0; }
  * Basilisk's test src/test/cylinders.c compares the same way); the walls of the body-force flow
  * hold rho g times the water's volume only, F less the "buoyancy" of -G x on the obstacle.  At a
  * steady state, so per unit length in 2D. */
-static PetscErrorCode FlowValues(Sim sim, const Shapes *S, PetscReal *vals)
+static PetscErrorCode FlowValues(Sim sim, const struct _n_Shapes *S, PetscReal *vals)
 {
   Particles        P = sim->P;
   const PetscInt   D = P->dim;
@@ -517,7 +517,7 @@ static PetscErrorCode FlowValues(Sim sim, const Shapes *S, PetscReal *vals)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode ShapesFlowProbe(Sim sim, Shapes *S, PetscReal *vals)
+PetscErrorCode ShapesFlowProbe(Sim sim, Shapes S, PetscReal *vals)
 {
   PetscFunctionBeginUser;
   if (!S->flow) PetscFunctionReturn(PETSC_SUCCESS);
@@ -542,7 +542,7 @@ static PetscReal TableAt(const Series *tab, PetscReal phi)
   return 0;
 }
 
-PetscErrorCode ShapesFlowErrors(Sim sim, Shapes *S, FILE *f)
+PetscErrorCode ShapesFlowErrors(Sim sim, Shapes S, FILE *f)
 {
   const PetscInt D = sim->phys.dim;
   PetscReal      solid = 0, mean = 0, w = 0, phi, phil, vals[2], ref = 0, refl = 0, fac = 1, mw = 0, *m = PField(sim->P, FIELD_M);
@@ -576,11 +576,33 @@ PetscErrorCode ShapesFlowErrors(Sim sim, Shapes *S, FILE *f)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+PetscErrorCode ShapesCreate(Shapes *S)
+{
+  PetscFunctionBeginUser;
+  PetscCall(PetscNew(S));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscInt ShapesCount(Shapes S) { return S->n; }
+
+PetscErrorCode ShapesGetShape(Shapes S, PetscInt i, ShapeKind *kind, PetscReal lo[], PetscReal hi[])
+{
+  PetscFunctionBeginUser;
+  PetscCheck(i >= 0 && i < S->n, PETSC_COMM_SELF, PETSC_ERR_ARG_OUTOFRANGE, "Shape %" PetscInt_FMT " of %" PetscInt_FMT, i, S->n);
+  if (kind) *kind = S->s[i].kind;
+  for (PetscInt d = 0; d < 3; d++) {
+    if (lo) lo[d] = S->s[i].g.lo[d];
+    if (hi) hi[d] = S->s[i].g.hi[d];
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 PetscErrorCode ShapesDestroy(Shapes *S)
 {
   PetscFunctionBeginUser;
-  for (PetscInt i = 0; i < S->n; i++) PetscCall(GeomDestroy(&S->s[i].g));
-  PetscCall(SeriesDestroy(&S->drag));
-  S->n = 0;
+  if (!*S) PetscFunctionReturn(PETSC_SUCCESS);
+  for (PetscInt i = 0; i < (*S)->n; i++) PetscCall(GeomDestroy(&(*S)->s[i].g));
+  PetscCall(SeriesDestroy(&(*S)->drag));
+  PetscCall(PetscFree(*S));
   PetscFunctionReturn(PETSC_SUCCESS);
 }

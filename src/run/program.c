@@ -1,3 +1,5 @@
+/* The program sphfsi as library calls (<sphfsi.h>): start, run the case of the options, finish.  bin/sphfsi
+ * is these and the built-in scenes (src/app/main.c). */
 static const char help[] = "sphfsi: Smoothed Particle Hydrodynamics for fluid-structure interaction (ISPH/WCSPH fluid, hypo-elastic WCSPH solids).\n"
                            "Usage: mpiexec -n P bin/sphfsi -options_file cases/NAME.opts [-option value ...]   (bin/sphfsi -version: version and libraries)\n"
                            "Exit status: 0 done; 2 bad input (one line on stderr says which option or file, and what is allowed); 3 stopped by a signal or -max_wall_time (checkpoint written: -restart it); 4 numerical fault (last good state written); 5 output could not be written (disk full, quota; the last complete checkpoint is kept); other: internal error (PETSc's trace).\n\n";
@@ -7,7 +9,8 @@ static const char help[] = "sphfsi: Smoothed Particle Hydrodynamics for fluid-st
 #include "base/version.h"
 #include "base/options_used.h"
 #include "io/outdir.h"
-#include "scenes/scene.h"
+#include "run/scene_registry.h"
+#include <sphfsi.h>
 #include <stdio.h>
 #include <string.h>
 #include <stdlib.h>
@@ -172,43 +175,46 @@ static PetscErrorCode StoppedInSetUp(Sim sim)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-int main(int argc, char **argv)
+PetscBool SPHFSIInitialize(int *argc, char ***argv, const char help_text[], int *status)
+{
+  *status = 0;
+  for (int k = 1; k < *argc; k++) /* ours, not PETSc's banner; MPI and PETSc are not started */
+    if (!strcmp((*argv)[k], "-version") || !strcmp((*argv)[k], "--version")) {
+      if (LauncherRank() == 0) SphfsiVersionPrint(stdout);
+      return PETSC_TRUE;
+    }
+  if ((*status = CheckOptionsFiles(*argc, *argv))) return PETSC_TRUE;
+  for (int k = 1; k < *argc; k++) /* --help as -help (PETSc knows the one dash) */
+    if (!strcmp((*argv)[k], "--help")) (*argv)[k] = (char *)"-help";
+  if ((*status = (int)PetscInitialize(argc, argv, NULL, help_text ? help_text : help))) return PETSC_TRUE;
+  if ((*status = (int)GuardInstallSignals())) return PETSC_TRUE;
+  return PETSC_FALSE;
+}
+
+PetscErrorCode SPHFSIRun(int *status)
 {
   Sim            sim = NULL;
-  PetscInt       status;
   PetscErrorCode ierr;
-  for (int k = 1; k < argc; k++) /* ours, not PETSc's banner; MPI and PETSc are not started */
-    if (!strcmp(argv[k], "-version") || !strcmp(argv[k], "--version")) {
-      if (LauncherRank() == 0) SphfsiVersionPrint(stdout);
-      return 0;
-    }
-  if (CheckOptionsFiles(argc, argv)) return SIM_EXIT_BAD_INPUT;
-  for (int k = 1; k < argc; k++) /* --help as -help (PETSc knows the one dash) */
-    if (!strcmp(argv[k], "--help")) argv[k] = (char *)"-help";
-  PetscCall(PetscInitialize(&argc, &argv, NULL, help));
-  PetscCall(GuardInstallSignals());
-  if (HelpWithoutScene()) {
-    PetscCall(PetscFinalize());
-    return 0;
-  }
+  PetscFunctionBeginUser;
+  *status = 0;
+  if (HelpWithoutScene()) PetscFunctionReturn(PETSC_SUCCESS);
   PetscCall(PetscPushErrorHandler(SetUpErrorHandler, NULL));
   ierr = SetUp(&sim);
   PetscCall(PetscPopErrorHandler());
   if (!ierr && sim->help) { /* listed while setting up: nothing to run */
     PetscCall(SimDestroy(&sim));
     PetscCall(PetscOptionsClear(NULL));
-    PetscCall(PetscFinalize());
-    return 0;
+    PetscFunctionReturn(PETSC_SUCCESS);
   }
   if (!ierr && !sim->ready) { /* a signal during set-up */
     PetscCall(StoppedInSetUp(sim));
     PetscCall(SimDestroy(&sim));
-    PetscCall(PetscFinalize());
-    return SIM_EXIT_STOPPED;
+    *status = SIM_EXIT_STOPPED;
+    PetscFunctionReturn(PETSC_SUCCESS);
   }
   if (!ierr) { /* OUTDIR/options_used: -options_file it to repeat the run */
     char header[256], chosen[512];
-    PetscCall(PetscSNPrintf(header, sizeof(header), "sphfsi %s (commit %s): the options of this run, given, chosen and defaulted; -options_file this file repeats it (PETSc's own solver options not listed keep this PETSc version's defaults)", SphfsiVersion(), SphfsiCommit()));
+    PetscCall(PetscSNPrintf(header, sizeof(header), "sphfsi %s (commit %s): the options of this run, given, chosen and defaulted; -options_file this file repeats it (PETSc's own solver options not listed keep this PETSc version's defaults)", SPHFSIVersion(), SPHFSICommit()));
     /* the scene's values and -fluid_c0 (10x its speed) at full precision */
     PetscCall(PetscSNPrintf(chosen, sizeof(chosen), "-t_end %.17g\n-gravity %.17g,%.17g", (double)sim->t_end, (double)sim->phys.g[0], (double)sim->phys.g[1]));
     if (sim->phys.dim == 3) PetscCall(PetscSNPrintf(chosen + strlen(chosen), sizeof(chosen) - strlen(chosen), ",%.17g", (double)sim->phys.g[2]));
@@ -220,13 +226,14 @@ int main(int argc, char **argv)
     PetscCall(PetscFPrintf(PETSC_COMM_WORLD, PETSC_STDERR, "sphfsi: error: %s\n", bad_input.message));
     PetscCall(OutDirClose(sim ? &sim->out : NULL)); /* the output directory's lock, if the run got that far */
     PetscCall(PetscOptionsClear(NULL)); /* no "options left" list at PetscFinalize */
-    PetscCall(PetscFinalize());
-    return SIM_EXIT_BAD_INPUT;
+    *status = SIM_EXIT_BAD_INPUT;
+    PetscFunctionReturn(PETSC_SUCCESS);
   }
   PetscCall(ierr);
   PetscCall(SimRun(sim));
-  status = sim->exit_status;
+  *status = (int)sim->exit_status;
   PetscCall(SimDestroy(&sim));
-  PetscCall(PetscFinalize());
-  return (int)status;
+  PetscFunctionReturn(PETSC_SUCCESS);
 }
+
+PetscErrorCode SPHFSIFinalize(void) { return PetscFinalize(); }

@@ -1,17 +1,30 @@
-/* Scenes: the geometry and physics of each case.  A scene reads its options, sets the domain and
- * materials, and adds particles; sim does the rest. */
-#pragma once
-#include "run/sim.h"
+/* Writing a scene: its operations (SceneOps), the run's settings a scene reads and sets through the
+ * handle Sim, and the builders that add particles (blocks, boxes, tanks, points, zoned water, a
+ * hydrostatic start) and measure (pressure probes, level gauges).  The built-in scenes of src/scenes/
+ * use nothing else; docs/api.md has an example. */
+#ifndef SPHFSI_SCENE_H
+#define SPHFSI_SCENE_H
+#include <sphfsi/base.h>
+#include <sphfsi/material.h>
+#include <sphfsi/options.h>
+#include <sphfsi/particles.h>
+#include <sphfsi/refdata.h>
+#include <stdio.h>
+
+SPHFSI_EXTERN_C_BEGIN
 
 #define SCENE_MAX_PROBES 16
 
+/* A scene: a name for -case, its operations, and its probes (columns of probes.csv). */
+typedef struct _SceneOps SceneOps;
 struct _SceneOps {
   const char *name;
   const char *help;
-  /* Read the scene's options; set sim->phys.dx, t_end (unless given), dom_lo/hi, periodic, g,
-   * material defaults and v_ref. */
+  /* Read the scene's options; set the spacing (SimSetSpacing, unless -dx was given), the end time
+   * (unless -t_end was given), the domain, periodicity, gravity, the media and their material
+   * defaults, the reference speed. */
   PetscErrorCode (*create)(Sim sim);
-  /* Add the particles (fields are allocated by then). */
+  /* Add the particles (the fields are allocated by then). */
   PetscErrorCode (*populate)(Sim sim);
   /* Optional: overwrite the velocity of particles whose motion the scene prescribes (called in each
    * solid step after the first half kick, so the drift and the strain rate see it). */
@@ -20,19 +33,75 @@ struct _SceneOps {
   const char *probe_names[SCENE_MAX_PROBES];
   /* Probe values (collective; every rank gets them). */
   PetscErrorCode (*probe)(Sim sim, PetscReal *vals);
-  /* Errors against the scene's reference, as JSON members ("name": value, ...) (rank 0 writes). */
+  /* Errors against the scene's reference, as JSON members ("name": value, ...); f is NULL except on
+   * rank 0 (collective). */
   PetscErrorCode (*errors)(Sim sim, FILE *json);
   PetscErrorCode (*destroy)(Sim sim);
 };
 
-PetscErrorCode SceneFind(const char *name, const SceneOps **ops);
 /* In the scene's create: state of the scene that changes during a run, which checkpoints save and a
  * restart restores (in the order registered): a probe history, or one running value. */
 PetscErrorCode SceneKeepSeries(Sim sim, Series *s);
 PetscErrorCode SceneKeepReal(Sim sim, PetscReal *r);
-PetscErrorCode SceneListNames(char *buf, size_t len);
 
-/* Helpers for scenes */
+/* The run, as the scene sees it.  The getters return values (no error can occur); the setters are
+ * for the scene's create, before the run sets itself up. */
+MPI_Comm SimComm(Sim sim);
+/* The scene's own data: set in create, read in the other operations. */
+void          *SimSceneContext(Sim sim);
+PetscErrorCode SimSetSceneContext(Sim sim, void *ctx);
+/* 2 or 3: the scene's choice in create (2 by default; its -dim option, if it has one). */
+PetscInt       SimDim(Sim sim);
+PetscErrorCode SimSetDim(Sim sim, PetscInt dim);
+/* The particle spacing dx (-dx; negative until the scene chooses one). */
+PetscReal      SimSpacing(Sim sim);
+PetscErrorCode SimSetSpacing(Sim sim, PetscReal dx);
+/* The simulated time, the step number, the end time (-t_end; negative until the scene chooses). */
+PetscReal      SimTime(Sim sim);
+PetscInt       SimStep(Sim sim);
+PetscReal      SimEndTime(Sim sim);
+PetscErrorCode SimSetEndTime(Sim sim, PetscReal t_end);
+/* The domain box, its corners' 3 coordinates (the vertical is the last direction), and its periodic
+ * directions; the grid of cells covers the box. */
+const PetscReal *SimDomainLo(Sim sim);
+const PetscReal *SimDomainHi(Sim sim);
+PetscErrorCode   SimSetDomain(Sim sim, PetscInt d, PetscReal lo, PetscReal hi);
+PetscBool        SimPeriodic(Sim sim, PetscInt d);
+PetscErrorCode   SimSetPeriodic(Sim sim, PetscInt d, PetscBool periodic);
+/* Gravity, 3 components (-gravity overrides what the scene sets). */
+const PetscReal *SimGravity(Sim sim);
+PetscReal        SimGravityNorm(Sim sim);
+PetscErrorCode   SimSetGravity(Sim sim, PetscReal gx, PetscReal gy, PetscReal gz);
+/* Which media the scene has: only their fields are allocated and their physics computed. */
+PetscBool      SimHasFluid(Sim sim);
+PetscBool      SimHasSolid(Sim sim);
+PetscErrorCode SimSetMedia(Sim sim, PetscBool fluid, PetscBool solid);
+/* The materials: a scene sets its defaults in create (the options then override them). */
+FluidMaterial *SimFluidMaterial(Sim sim);
+SolidMaterial *SimSolidMaterial(Sim sim);
+/* The fluid is incompressible (-fluid isph) rather than weakly compressible (wcsph). */
+PetscBool SimFluidIncompressible(Sim sim);
+/* The largest speed the scene expects (WCSPH's sound speed is 10 times it unless -fluid_c0 is given). */
+PetscErrorCode SimSetReferenceSpeed(Sim sim, PetscReal v_ref);
+/* The fluid fills the domain: no free surface (ISPH pins the pressure's constant). */
+PetscBool      SimConfined(Sim sim);
+PetscErrorCode SimSetConfined(Sim sim, PetscBool confined);
+/* Fluid leaving the domain box is removed (an open boundary), and the mass that left. */
+PetscBool      SimOutflow(Sim sim);
+PetscErrorCode SimSetOutflow(Sim sim, PetscBool outflow);
+PetscReal      SimFluidMassOut(Sim sim);
+/* The kernel: rows of wall particles that cover its support, and h / dx (-h_factor). */
+PetscInt  SimKernelRows(Sim sim);
+PetscReal SimKernelHFactor(Sim sim);
+/* The reference data's locations (for RefDataLoad, RefDataOpen). */
+RefData *SimRefData(Sim sim);
+/* The solid: kinetic and strain energy (collective); the fluid's force on the moving solid and the
+ * clamps' force on it, dim components each, means over the sub-steps of the last fluid step. */
+PetscErrorCode   SimSolidEnergy(Sim sim, PetscReal *ekin, PetscReal *estrain);
+const PetscReal *SimSolidLoad(Sim sim);
+const PetscReal *SimSolidSupport(Sim sim);
+
+/* Builders */
 /* A scene that adds particles without the builders below: the scene's n particles of a kind (the
  * whole scene's, on every rank) for the size guard, which first runs the scene's populate only to
  * count (SceneCounting: then add nothing). */
@@ -46,12 +115,12 @@ PetscErrorCode SceneExtrudeEnd(Sim sim);
 /* The dimension of the layout the builders take: 2 while extruding, else the scene's. */
 PetscInt SceneLayoutDim(Sim sim);
 /* Add a lattice of n[0] x n[1] (x n[2] in 3D) particles of spacing dx whose first centre is lo,
- * ids from sim->next_id (x fastest); each rank keeps every size-th particle. */
+ * ids from SimNextId (x fastest); each rank keeps every size-th particle. */
 PetscErrorCode SceneAddBlock(Sim sim, ParticleKind kind, const PetscReal lo[], const PetscInt n[], PetscReal dx, PetscReal rho0);
 /* Add one particle at p (coordinates of the layout) spaced s[d] along each direction: mass rho0
  * times the spacings' product, smoothing length from dx, the next id (kept by rank id % size). */
 PetscErrorCode SceneAddPoint(Sim sim, ParticleKind kind, const PetscReal p[], const PetscReal s[], PetscReal dx, PetscReal rho0);
-/* Add an nx x ny lattice of spacing dx starting at cell centre (x0, y0), ids from sim->next_id;
+/* Add an nx x ny lattice of spacing dx starting at cell centre (x0, y0), ids from SimNextId;
  * each rank keeps every size-th particle (migration sorts them out later). */
 PetscErrorCode SceneAddLattice(Sim sim, ParticleKind kind, PetscReal x0, PetscReal y0, PetscInt nx, PetscInt ny, PetscReal dx, PetscReal rho0);
 /* Walls of `rows` rows (first row KIND_WALL, the rest KIND_DUMMY) around the rectangle
@@ -84,7 +153,7 @@ PetscErrorCode SceneAddDamBreak(Sim sim, PetscReal w, PetscReal hgt, PetscReal L
  * surface at height y_surface (y in 2D, z in 3D), for this rank's fluid particles from index `first` on (0: all of them). */
 PetscErrorCode SceneHydrostaticDensity(Sim sim, PetscInt first, PetscReal y_surface);
 /* Mixed particle sizes (section 3.3): water [0, W] x [0, H] at the coarse spacing dc on [0, W - fine]
- * and at sim->phys.dx on [W - fine, W] (next to a gate).  SceneZonesSetUp checks dc and fine (option names
+ * and at SimSpacing(sim) on [W - fine, W] (next to a gate).  SceneZonesSetUp checks dc and fine (option names
  * -dx_coarse, -fine_width in its messages) and rounds W, fine and H so that the zones tile the water
  * in whole columns and reach the same surface; dc == dx gives one zone (*fine = *W, W and H rounded
  * to dx). */
@@ -100,7 +169,7 @@ PetscErrorCode SceneProbePressure(Sim sim, const PetscReal x0[], PetscReal *p);
  * (3D) on the vertical line through it, sum_b V_b W_col(s), with W_col(s) = int W(sqrt(s^2 + t^2)) dt
  * the kernel integrated along the vertical and s the horizontal distance (a still layer of depth d
  * reads d; spray above the water counts with its volume, not as the surface).  The table is of the
- * run's kernel: initialise it after the scene's create (SimSetUp gives the kernel its dimension). */
+ * run's kernel: initialise it after the scene's create (the run gives the kernel its dimension then). */
 #define SCENE_NCOLUMN 200
 typedef struct {
   PetscReal w[SCENE_NCOLUMN + 1]; /* h^(d-1) W_col at s / h = 2 k / SCENE_NCOLUMN */
@@ -114,7 +183,7 @@ PetscErrorCode SceneWaterDepth(Sim sim, const SceneColumnKernel *ck, PetscInt n,
  * sheet), while incompressible water keeps rho0 and the volume m / rho0. */
 static inline PetscReal SceneFluidDensity(Sim sim, PetscReal rho)
 {
-  return sim->phys.fluid == FLUID_ISPH ? sim->phys.fl.rho0 : rho;
+  return SimFluidIncompressible(sim) ? SimFluidMaterial(sim)->rho0 : rho;
 }
 static inline PetscReal SceneFluidVolume(Sim sim, PetscReal m, PetscReal rho)
 {
@@ -130,3 +199,6 @@ static inline PetscReal SceneStripShare(PetscReal s, PetscReal width, PetscReal 
 }
 /* Largest fluid speed (collective). */
 PetscErrorCode SceneMaxSpeed(Sim sim, PetscReal *vmax);
+
+SPHFSI_EXTERN_C_END
+#endif

@@ -1,0 +1,41 @@
+/* The media's material constants, as a scene sets its defaults before the options are read
+ * (SimFluidMaterial, SimSolidMaterial in <sphfsi/scene.h>), and the fluid's equation of state. */
+#ifndef SPHFSI_MATERIAL_H
+#define SPHFSI_MATERIAL_H
+#include <sphfsi/base.h>
+
+SPHFSI_EXTERN_C_BEGIN
+
+/* A scene sets rho0 and mu; the rest comes from the options (-fluid_*, -wcsph_*) and the scheme. */
+typedef struct {
+  PetscReal rho0;          /* reference density */
+  PetscReal c0;            /* artificial sound speed, Eq. 20 (WCSPH) */
+  PetscReal mu;            /* dynamic viscosity, Eq. 16 */
+  PetscReal eta;           /* regularisation of Eqs. 16 and 22 over h (-fluid_eta) */
+  PetscReal lap_kappa;     /* normalisation of Eqs. 16 and 22: exact on the lattice (-fluid_lap_normalise) */
+  PetscReal alpha;         /* artificial viscosity, Eq. 24 (WCSPH) */
+  PetscReal delta;         /* density diffusion (delta-SPH), 0 = off */
+  PetscReal xsph;          /* XSPH epsilon, Eq. 44, 0 = off */
+  PetscReal shift;         /* WCSPH Fickian shifting coefficient A, 0 = off */
+  PetscBool shift_correct; /* both schemes: a shifted particle's velocity corrected to its new place */
+  PetscReal lat_divr;      /* WCSPH with shifting: bulk value of -sum V F r^2, normalises div r */
+  PetscBool wall_clip;     /* WCSPH: the Adami wall pressure clipped at 0, so that a wall never pulls fluid */
+} FluidMaterial;
+
+/* A scene sets rho0, K and G; c0 = sqrt(K / rho0) is set up by the solid. */
+typedef struct {
+  PetscReal rho0;  /* reference density */
+  PetscReal K, G;  /* bulk and shear modulus */
+  PetscReal c0;    /* sqrt(K / rho0), Eq. 20 */
+  PetscReal alpha; /* artificial viscosity, Eq. 24 */
+  PetscReal eps;   /* artificial stress e, Eqs. 25-31 (0 = off) */
+  PetscReal n;     /* exponent of f = W_ab / W(dx, h) in Eq. 23 */
+} SolidMaterial;
+
+/* The equation of state, Eq. 20 */
+static inline PetscReal EOSPressure(const FluidMaterial *m, PetscReal rho) { return m->c0 * m->c0 * (rho - m->rho0); }
+static inline PetscReal EOSDensity(const FluidMaterial *m, PetscReal p) { return m->rho0 + p / (m->c0 * m->c0); }
+static inline PetscReal SolidEOSPressure(const SolidMaterial *m, PetscReal rho) { return m->c0 * m->c0 * (rho - m->rho0); }
+
+SPHFSI_EXTERN_C_END
+#endif

@@ -141,6 +141,11 @@ check "a facet with 2 vertices, not 3" $B3 -stl_1 "$OUT/two.stl"
 check "STL surfaces are 3D"          -case boxes -dx 0.01 -domain 0,0,1,1 -fluid_box_1 0,0,1,0.5 -stl_1 "$OUT/cube.stl"
 check "-stl_1 reaches outside the domain" $B3 -stl_1 "$OUT/cube.stl" -stl_1_translate 0.5,0,0
 check "-stl_1 (wall) overlaps -wall_box_1" $B3 -stl_1 "$OUT/cube.stl" -stl_1_translate 0,0,0.35 -wall_box_1 0.5,0.5,0.5,0.8,0.8,0.8
+# open boundaries (docs/open_boundaries.md)
+check "points out of the domain"      -case open_channel -inlet_velocity -0.1
+check "is thinner than the kernel's reach" -case open_channel -wall_rows 1
+check "cannot read the profile table /nonexistent/profile.txt" -case open_channel -inlet_table /nonexistent/profile.txt
+check "not yet available with -fluid isph" -case open_channel -fluid isph
 wait
 cat "$OUT"/verdict.* 2>/dev/null
 bad=$(ls "$OUT"/verdict.* 2>/dev/null | wc -l)

@@ -60,6 +60,10 @@ run test_rank_agreement_isph $MPI "${BINDIR:-bin}"/test_rank_agreement -fluid is
 # dt); WCSPH exact
 run test_rank_agreement_isph_8 $MPI8 "${BINDIR:-bin}"/test_rank_agreement -fluid isph -ppe_ksp_rtol 1e-10 -tol 1e-8
 run test_rank_agreement_wcsph_8 $MPI8 "${BINDIR:-bin}"/test_rank_agreement
+# Open boundaries: particles made at an inlet and removed at an outlet, ids in the order of their
+# parents' ids: 1, 2 and 8 ranks exact (WCSPH)
+run test_rank_agreement_open $MPI "${BINDIR:-bin}"/test_rank_agreement -case open_channel -dx 0.01 -t_end 0.6 -wcsph_delta 0.1 -min_speed 0.1
+run test_rank_agreement_open_8 $MPI8 "${BINDIR:-bin}"/test_rank_agreement -case open_channel -dx 0.01 -t_end 0.6 -wcsph_delta 0.1 -min_speed 0.1
 # No free surface (periodic): the pinned row (global row 0, another particle on another rank count)
 # kept its right-hand side out of the zero sum, and 1 and 2 ranks differed by 7e-4
 run test_rank_agreement_isph_pinned $MPI "${BINDIR:-bin}"/test_rank_agreement -case taylor_green -dx 0.0125 -t_end 0.01 -fluid isph -ppe_ksp_rtol 1e-10 -tol 1e-8
@@ -159,6 +163,8 @@ if [ "${1:-}" != "--unit-only" ]; then
   run three_d bash tests/check_3d.sh "$MPI" "$OUT/three_d"
   # Three dimensions, the solid and FSI: the cantilever against beam theory, slabs against the 2D plate and gate
   run three_d_solid bash tests/check_3d_solid.sh "$MPI" "$OUT/three_d_solid"
+  # Open boundaries: the open channel's inflow, mass balance and developed profile; restart bit for bit
+  run open_channel bash tests/check_open_channel.sh "$MPI" "$OUT/open_channel"
   # make install for users who do not run from the source tree, and a program of one's own built
   # against the installed library with pkg-config (cases/user_scene, copied outside the tree)
   run install bash tests/check_install.sh "$MPI" "$OUT/install"

@@ -2,6 +2,7 @@
  * across ranks, and every ghost holds its owner's current values (x, rho, p after the step, v after
  * its refresh). Run on 2 ranks. */
 #include "run/sim.h"
+#include <sphfsi.h>
 #include "fluid/wcsph.h"
 
 /* Gather (id, x, y, vx, vy, rho, p) of all owned particles to every rank, indexed by id. */
@@ -95,6 +96,7 @@ int main(int argc, char **argv)
   Sim      sim;
   PetscInt nsteps = 60, nrep;
   PetscCall(PetscInitialize(&argc, &argv, NULL, NULL));
+  PetscCall(SPHFSIRegisterBuiltinScenes());
   PetscCall(PetscOptionsSetValue(NULL, "-overwrite", NULL)); /* a test reruns into its own output directories */
   PetscCall(PetscOptionsSetValue(NULL, "-case", "dam_break"));
   PetscCall(PetscOptionsSetValue(NULL, "-dx", "0.005"));

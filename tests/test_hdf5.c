@@ -1,6 +1,7 @@
 /* A parallel HDF5 snapshot reads back: every id once, every field equal to what was written (with
  * -fluid isph or -wcsph_shift also the free-surface flag, `free_surface`). */
 #include "run/sim.h"
+#include <sphfsi.h>
 #include "io/io.h"
 #include <petscviewerhdf5.h>
 
@@ -31,6 +32,7 @@ int main(int argc, char **argv)
   PetscInt    N, *seen, nfields = 0;
   const char *path = "out/test_hdf5/snap.h5";
   PetscCall(PetscInitialize(&argc, &argv, NULL, NULL));
+  PetscCall(SPHFSIRegisterBuiltinScenes());
   PetscCall(PetscOptionsSetValue(NULL, "-overwrite", NULL)); /* a test reruns into its own output directories */
   PetscCall(PetscOptionsSetValue(NULL, "-case", "dam_break"));
   PetscCall(PetscOptionsSetValue(NULL, "-dx", "0.004"));

@@ -10,6 +10,7 @@
  *    the cubic spline summed over the lattice at h = 1.3 dx, 0.02 %); a wrong coefficient or
  *    density would be off by tens of per cent.  Run on 1 or 2 ranks. */
 #include "run/sim.h"
+#include <sphfsi.h>
 #include "fluid/isph.h"
 #include "base/kernel.h"
 #include <petscmathypre.h>
@@ -67,6 +68,8 @@ int main(int argc, char **argv)
   PetscScalar       *ff;
 
   PetscCall(PetscInitialize(&argc, &argv, NULL, NULL));
+
+  PetscCall(SPHFSIRegisterBuiltinScenes());
   PetscCall(PetscOptionsSetValue(NULL, "-overwrite", NULL)); /* a test reruns into its own output directories */
   PetscCall(PetscOptionsSetValue(NULL, "-case", "hydrostatic"));
   PetscCall(PetscOptionsSetValue(NULL, "-fluid", "isph"));

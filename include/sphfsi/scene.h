@@ -101,6 +101,36 @@ PetscErrorCode   SimSolidEnergy(Sim sim, PetscReal *ekin, PetscReal *estrain);
 const PetscReal *SimSolidLoad(Sim sim);
 const PetscReal *SimSolidSupport(Sim sim);
 
+/* Open boundaries: an inlet with a prescribed velocity, an outlet at a given pressure, each a buffer
+ * of fluid particles `rows` deep outside a plane normal to a coordinate axis.  The scene fills the
+ * buffers with fluid as it fills the rest (its fluid reaches `rows` spacings past the plane) and sets
+ * the domain's ends at the buffers' far ends.  An inlet's buffer particles move with the profile and
+ * the one that crosses the plane joins the fluid, a new one taking its place at the buffer's far end;
+ * fluid crossing an outlet's plane joins its buffer (its pressure held at `pressure`, its velocity
+ * frozen) and leaves at the domain's end (docs/open_boundaries.md). */
+typedef enum { OPEN_INLET = 0, OPEN_OUTLET } OpenBoundaryKind;
+typedef enum { PROFILE_UNIFORM = 0, PROFILE_PARABOLIC, PROFILE_TABLE } OpenProfile;
+typedef struct {
+  OpenBoundaryKind kind;
+  PetscInt         axis;      /* the plane's normal: 0 x, 1 y, 2 z */
+  PetscInt         side;      /* -1: the buffer lies below the plane (an inlet feeding +axis, an outlet of -axis flow); +1: above */
+  PetscReal        plane;     /* the plane's coordinate along axis */
+  PetscReal        lo[3], hi[3]; /* the cross-section: the other coordinates' range (axis's entries unused) */
+  PetscInt         rows;      /* buffer depth in spacings (0: the kernel's reach, SimKernelRows) */
+  OpenProfile      profile;   /* inlet: uniform, parabolic (zero at the section's edges), or a table */
+  PetscReal        velocity;  /* inlet: the mean normal speed into the domain (m/s, > 0) */
+  PetscReal        ramp;      /* inlet: the speed grows as (1 - cos(pi t / ramp)) / 2 until ramp (s; 0: none) */
+  char             table[PETSC_MAX_PATH_LEN]; /* inlet, PROFILE_TABLE: a file of lines "s u" (s the cross-section coordinate, m; u m/s) */
+  PetscReal        pressure;  /* outlet: the pressure held in its buffer (Pa) */
+} OpenBoundarySpec;
+/* In create: add one (at most 4).  Bad input (a profile pointing out of the domain, a buffer thinner
+ * than the kernel's reach, an inlet overlapping an outlet, a table that cannot be read) stops the run
+ * before its first step with one line. */
+PetscErrorCode SimAddOpenBoundary(Sim sim, const OpenBoundarySpec *spec);
+/* The fluid mass that entered through the inlets and left through the outlets (and the domain's
+ * ends) so far (kg, or kg/m in 2D). */
+PetscReal SimFluidMassIn(Sim sim);
+
 /* Builders */
 /* A scene that adds particles without the builders below: the scene's n particles of a kind (the
  * whole scene's, on every rank) for the size guard, which first runs the scene's populate only to

@@ -3,22 +3,6 @@
 #include "run/sim.h"
 #include "base/kernel.h"
 
-PetscErrorCode SceneKeepSeries(Sim sim, Series *s)
-{
-  PetscFunctionBeginUser;
-  PetscCheck(sim->nkeep_series < SIM_MAX_KEEP, sim->comm, PETSC_ERR_PLIB, "More than %d kept series: raise SIM_MAX_KEEP", SIM_MAX_KEEP);
-  sim->keep_series[sim->nkeep_series++] = s;
-  PetscFunctionReturn(PETSC_SUCCESS);
-}
-
-PetscErrorCode SceneKeepReal(Sim sim, PetscReal *r)
-{
-  PetscFunctionBeginUser;
-  PetscCheck(sim->nkeep_reals < SIM_MAX_KEEP, sim->comm, PETSC_ERR_PLIB, "More than %d kept values: raise SIM_MAX_KEEP", SIM_MAX_KEEP);
-  sim->keep_reals[sim->nkeep_reals++] = r;
-  PetscFunctionReturn(PETSC_SUCCESS);
-}
-
 PetscErrorCode SceneCount(Sim sim, ParticleKind kind, PetscInt64 n)
 {
   PetscFunctionBeginUser;

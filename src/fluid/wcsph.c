@@ -1,4 +1,5 @@
 #include "fluid/wcsph.h"
+#include "fluid/open_boundary.h"
 #include "base/options_used.h"
 #include "fluid/boundary.h"
 #include "base/kernel.h"
@@ -218,9 +219,11 @@ static PetscErrorCode Momentum(Physics *ph) { return SPH_DIM_DISPATCH(ph->dim, M
 PetscErrorCode WCSPHRates(Physics *ph)
 {
   PetscFunctionBeginUser;
+  if (ph->open) PetscCall(OpenState(ph)); /* the buffers' densities */
   PetscCall(WCSPHPressure(ph));
   PetscCall(BoundaryWallState(ph));
   PetscCall(Momentum(ph));
+  if (ph->open) PetscCall(OpenRates(ph)); /* buffer particles move as their boundary says */
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -262,6 +265,7 @@ PetscErrorCode WCSPHStep(Physics *ph)
 
   PetscFunctionBeginUser;
   KickVelocity(ph, 0.5 * dt);
+  if (ph->open) PetscCall(OpenImpose(ph, ph->t + 0.5 * dt)); /* the inlets' velocities over the drift */
   PetscCall(HaloRefresh(ph->halo, P, 1, vel));
   PetscCall(Continuity(ph));
   {
@@ -273,8 +277,10 @@ PetscErrorCode WCSPHStep(Physics *ph)
       for (PetscInt i = 0; i < D; i++) x[D * a + i] += dt * (v[D * a + i] + (xs ? xs[D * a + i] : 0));
     }
   }
+  if (ph->open) PetscCall(OpenAfterDrift(ph)); /* crossings of the open boundaries' planes */
   PetscCall(NeighbourhoodUpdate(ph->nb, ph->step));
   PetscCall(WCSPHRates(ph));
   KickVelocity(ph, 0.5 * dt);
+  if (ph->open) PetscCall(OpenImpose(ph, ph->t + dt));
   PetscFunctionReturn(PETSC_SUCCESS);
 }

@@ -55,6 +55,11 @@ static PetscErrorCode Rebuild(Neighbourhood *nb, PetscBool full, PetscInt step)
   PetscCall(PetscLogStagePush(nb->stage_neighbour));
   PetscCall(PetscLogStagePush(nb->stage_halo));
   if (full && nb->outflow) PetscCall(Outflow(nb));
+  if (full && nb->inflow) {
+    P->ng = 0; /* the ghosts are rebuilt below */
+    PetscCall(nb->inflow(nb->inflow_ctx));
+  }
+  nb->rebuild = PETSC_FALSE;
   PetscCall(DecompMigrate(nb->decomp, P));
   if (full) PetscCall(DecompBalance(nb->decomp, P, step, &rep));
   PetscCall(PetscLogStagePop());
@@ -107,7 +112,7 @@ PetscErrorCode NeighbourhoodUpdate(Neighbourhood *nb, PetscInt step)
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &d2, 1, MPIU_REAL, MPIU_MAX, nb->comm)); /* (in the caller's stage: the wait is the step's) */
   /* the steps that may rebalance rebuild on every number of ranks: the lists, and with them the
    * order of every sum, stay the same on 1 and on 2 ranks */
-  if (d2 >= lim * lim || step % nb->decomp->check_every == 0) {
+  if (d2 >= lim * lim || step % nb->decomp->check_every == 0 || nb->rebuild) { /* (rebuild: set on every rank alike) */
     PetscCall(NeighbourhoodRebuild(nb, step));
     nb->nrebuild++;
     PetscFunctionReturn(PETSC_SUCCESS);

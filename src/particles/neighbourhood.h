@@ -22,6 +22,11 @@ typedef struct {
   PetscInt    nrebuild;   /* rebuilds of the main list by NeighbourhoodUpdate */
   PetscInt    nparticles; /* particles in the run (the outflow removes some) */
   PetscReal   mass_out;   /* fluid mass removed by the outflow */
+  PetscBool   rebuild;    /* the next update rebuilds (particles are to be created: the inflow) */
+  /* particles the physics creates (an inflow) are added here, in every full rebuild after the
+   * outflow and before migration, while no ghosts exist (NULL: none) */
+  PetscErrorCode (*inflow)(void *ctx);
+  void *inflow_ctx;
   PetscLogStage stage_halo, stage_neighbour;
 } Neighbourhood;
 

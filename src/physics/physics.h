@@ -19,6 +19,7 @@ extern const char *const FluidSchemes[];
 
 typedef struct _p_ISPH  *ISPH;  /* fluid/isph.h */
 typedef struct _p_Solid *Solid; /* solid/solid.h */
+typedef struct _n_Open  *Open;  /* fluid/open_boundary.h */
 
 typedef struct {
   MPI_Comm comm;
@@ -41,6 +42,7 @@ typedef struct {
   PetscBool     confined;  /* the fluid has no free surface (Taylor-Green, Poiseuille) */
   ISPH          isph;      /* NULL unless -fluid isph */
   Solid         solid;     /* NULL unless the scene has solids */
+  Open          open;      /* NULL unless the scene has open boundaries (inlets, outlets) */
   /* the step */
   PetscReal t, dt, cfl;
   PetscInt  step;

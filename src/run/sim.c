@@ -1,6 +1,7 @@
 #include "run/sim.h"
 #include "base/options_used.h"
 #include "run/scene_registry.h"
+#include "fluid/open_boundary.h"
 #include "fluid/wcsph.h"
 #include "fluid/isph.h"
 #include "solid/solid.h"
@@ -84,6 +85,7 @@ PetscErrorCode SimDestroy(Sim *sim)
   PetscCall(IOFinalize(&s->out));
   PetscCall(ISPHDestroy(&s->phys.isph));
   PetscCall(SolidDestroy(&s->phys.solid));
+  PetscCall(OpenDestroy(&s->phys.open));
   PetscCall(CellsDestroy(&s->cells));
   PetscCall(HaloDestroy(&s->halo));
   PetscCall(DecompDestroy(&s->decomp));
@@ -347,6 +349,11 @@ PetscErrorCode SimSetUp(Sim sim)
   }
   sim->cells->skin = sim->nbhd.skin;
   PetscCall(NeighbourhoodWire(&sim->nbhd, sim->comm, sim->P, &sim->grid, sim->decomp, sim->halo, sim->cells, sim->periodic, sim->outflow, sim->stage[STAGE_HALO], sim->stage[STAGE_NEIGHBOUR]));
+  if (sim->phys.open) { /* the buffers' particles, and new ones at every rebuild */
+    PetscCall(OpenSetUp(&sim->phys));
+    sim->nbhd.inflow     = OpenInflow;
+    sim->nbhd.inflow_ctx = &sim->phys;
+  }
   {
     PetscBool store;
     PetscCall(NeighbourListOptions(sim, &store));

@@ -3,8 +3,27 @@
 #include "run/sim.h"
 #include "particles/pair_loop.h"
 #include "solid/solid.h"
+#include "fluid/open_boundary.h"
 
 MPI_Comm SimComm(Sim sim) { return sim->comm; }
+
+/* The scene's state that checkpoints carry (output.h: the kept series and values) */
+PetscErrorCode SceneKeepSeries(Sim sim, Series *s)
+{
+  PetscFunctionBeginUser;
+  PetscCheck(sim->nkeep_series < SIM_MAX_KEEP, sim->comm, PETSC_ERR_PLIB, "More than %d kept series: raise SIM_MAX_KEEP", SIM_MAX_KEEP);
+  sim->keep_series[sim->nkeep_series++] = s;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode SceneKeepReal(Sim sim, PetscReal *r)
+{
+  PetscFunctionBeginUser;
+  PetscCheck(sim->nkeep_reals < SIM_MAX_KEEP, sim->comm, PETSC_ERR_PLIB, "More than %d kept values: raise SIM_MAX_KEEP", SIM_MAX_KEEP);
+  sim->keep_reals[sim->nkeep_reals++] = r;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 void    *SimSceneContext(Sim sim) { return sim->scene_ctx; }
 PetscErrorCode SimSetSceneContext(Sim sim, void *ctx)
 {
@@ -199,3 +218,21 @@ PetscErrorCode SimForEachNeighbour(Sim sim, PetscInt a, void (*pair)(void *ctx, 
   SPHPairs(sim->cells, a, VisitPair, &v, sim->phys.dim);
   PetscFunctionReturn(PETSC_SUCCESS);
 }
+
+PetscErrorCode SimAddOpenBoundary(Sim sim, const OpenBoundarySpec *spec)
+{
+  PetscFunctionBeginUser;
+  PetscCheck(sim->phys.has_fluid, sim->comm, PETSC_ERR_ARG_INCOMP, "Open boundaries need a fluid: call SimSetMedia first");
+  PetscCheck(sim->phys.fluid == FLUID_WCSPH, sim->comm, PETSC_ERR_ARG_INCOMP, "Open boundaries (inlets, outlets) are not yet available with -fluid isph: use -fluid wcsph");
+  if (!sim->phys.open) {
+    PetscCall(OpenCreate(&sim->phys.open));
+    sim->phys.open->next_id = &sim->next_id;
+    PetscCall(ParticlesEnableField(sim->P, FIELD_OPEN, PETSC_TRUE)); /* ghosts too: an outlet reads its neighbours' */
+    PetscCall(SceneKeepReal(sim, &sim->phys.open->mass_in)); /* checkpoints carry it */
+  }
+  PetscCall(OpenAdd(&sim->phys, sim->phys.open, spec, sim->dom_lo, sim->dom_hi));
+  if (spec->kind == OPEN_OUTLET) sim->outflow = PETSC_TRUE; /* its buffer's particles leave at the domain's end */
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscReal SimFluidMassIn(Sim sim) { return sim->phys.open ? sim->phys.open->mass_in : 0; }

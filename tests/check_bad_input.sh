@@ -145,7 +145,7 @@ check "-stl_1 (wall) overlaps -wall_box_1" $B3 -stl_1 "$OUT/cube.stl" -stl_1_tra
 check "points out of the domain"      -case open_channel -inlet_velocity -0.1
 check "is thinner than the kernel's reach" -case open_channel -wall_rows 1
 check "cannot read the profile table /nonexistent/profile.txt" -case open_channel -inlet_table /nonexistent/profile.txt
-check "not yet available with -fluid isph" -case open_channel -fluid isph
+check "the outlet's pressure is the pressure equation's Dirichlet value 0" -case open_channel -fluid isph -outlet_pressure 100
 wait
 cat "$OUT"/verdict.* 2>/dev/null
 bad=$(ls "$OUT"/verdict.* 2>/dev/null | wc -l)

@@ -1,4 +1,5 @@
 #include "fluid/isph.h"
+#include "fluid/open_boundary.h"
 #include "base/options_used.h"
 #include "solid/solid.h"
 #include "fluid/boundary.h"
@@ -244,8 +245,9 @@ SPH_INLINE PetscErrorCode DensityFreeSurfaceSourceD(Physics *ph, const PetscInt 
     /* a confined flow (Taylor-Green, Poiseuille) has no free surface: a particle whose rho* dips
      * below beta rho0 there is disorder, and a P = 0 row inside the fluid would be wrong */
     fs[a] = !confined && (s->fs == ISPH_FS_DENSITY ? rho[a] < s->beta * rho0 : sum.divr < s->divr_min) ? 1.0 : 0.0;
-    nfree += fs[a] > 0;
     s->src[a] = (1 - w) * sum.div / (rho[a] * dt) + w * (rho0 - rho[a]) / (rho0 * dt * dt);
+    if (ph->open) OpenPressureRows(ph, a, &fs[a], &s->src[a]); /* open boundaries' buffers */
+    nfree += fs[a] > 0;
   }
   PetscCall(MPIU_Allreduce(&nfree, &s->nfree, 1, MPIU_INT, MPI_SUM, ph->comm));
   PetscCall(HaloRefresh(ph->halo, P, 2, refresh));
@@ -490,7 +492,11 @@ PetscErrorCode ISPHPredict(Physics *ph)
   PetscFunctionBeginUser;
   if (ph->has_solid) PetscCall(BoundaryWallVelocity(ph)); /* the solids moved (and may have rebuilt) since the last step */
   PetscCall(Predictor(ph));
-  PetscCall(NeighbourhoodRebuild(ph->nb, ph->step)); /* neighbours at r* */
+  if (ph->open) { /* crossings of the open boundaries' planes; the inlets' v* before the ghosts take it */
+    PetscCall(OpenAfterDrift(ph));
+    PetscCall(OpenImpose(ph, ph->t + ph->dt));
+  }
+  PetscCall(NeighbourhoodRebuild(ph->nb, ph->step)); /* neighbours at r* (and the inflow's new particles) */
   PetscCall(DensityFreeSurfaceSource(ph));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -506,7 +512,14 @@ PetscErrorCode ISPHCorrect(Physics *ph)
 {
   PetscFunctionBeginUser;
   PetscCall(Corrector(ph));
+  if (ph->open) { /* the buffers: no acceleration, an outlet's velocity the fluid's upstream, an inlet's the profile's */
+    const FieldId vel[] = {FIELD_V};
+    PetscCall(HaloRefresh(ph->halo, ph->P, 1, vel)); /* the corrected velocities, which an outlet reads */
+    PetscCall(OpenRates(ph));
+    PetscCall(OpenImpose(ph, ph->t + ph->dt));
+  }
   if (PField(ph->P, FIELD_XSPH)) PetscCall(Drift(ph));
+  if (ph->open) PetscCall(OpenNoShift(ph));
   PetscCall(MoveToEnd(ph));
   PetscCall(NeighbourhoodRebuild(ph->nb, ph->step));
   PetscCall(BoundaryWallVelocity(ph));

@@ -163,13 +163,15 @@ PetscErrorCode OpenImpose(Physics *ph, PetscReal t)
   Particles        P    = ph->P;
   const PetscInt   D    = ph->dim;
   const PetscReal *x = PField(P, FIELD_X), *zone = PField(P, FIELD_OPEN);
-  PetscReal       *v = PField(P, FIELD_V);
+  PetscReal       *v = PField(P, FIELD_V), *vs = P->f[FIELD_VSTAR].on ? PField(P, FIELD_VSTAR) : NULL;
   PetscFunctionBeginUser;
   for (PetscInt a = 0; a < P->n; a++) {
     const PetscInt k = (PetscInt)zone[a] - 1;
     if (k < 0 || open->b[k].kind != OPEN_INLET || !KindIsFluid(P->kind[a])) continue;
     for (PetscInt d = 0; d < D; d++) v[D * a + d] = 0;
     v[D * a + open->b[k].axis] = -open->b[k].side * InletSpeed(open, k, x + D * a, t, D); /* into the domain */
+    if (vs)
+      for (PetscInt d = 0; d < D; d++) vs[D * a + d] = v[D * a + d]; /* ISPH: the predicted velocity too */
   }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -260,6 +262,20 @@ PetscErrorCode OpenRates(Physics *ph)
     if (zone[a] > 0 && KindIsFluid(P->kind[a]))
       for (PetscInt d = 0; d < D; d++) acc[D * a + d] = 0;
   if (HasKind(ph->open, OPEN_OUTLET)) PetscCall(Extrapolate(ph, OPEN_OUTLET, FIELD_V));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode OpenNoShift(Physics *ph)
+{
+  Particles        P    = ph->P;
+  const PetscInt   D    = ph->dim;
+  const PetscReal *zone = PField(P, FIELD_OPEN);
+  PetscReal       *xs   = P->f[FIELD_XSPH].on ? PField(P, FIELD_XSPH) : NULL;
+  PetscFunctionBeginUser;
+  if (!xs) PetscFunctionReturn(PETSC_SUCCESS);
+  for (PetscInt a = 0; a < P->n; a++)
+    if (zone[a] > 0 && KindIsFluid(P->kind[a]))
+      for (PetscInt d = 0; d < D; d++) xs[D * a + d] = 0;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -372,14 +388,14 @@ PetscErrorCode OpenInflow(void *ctx)
   open->nnew = 0;
   PetscCall(PetscFree4(ids, order, mall, mass));
   PetscCall(PetscFree2(counts, displs));
-  PetscCall(OpenImpose(ph, ph->t)); /* the new ones' velocities */
+  PetscCall(OpenImpose(ph, ph->t + ph->dt)); /* the new ones' velocities (and the others', as the step will end) */
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscBool OpenDirichlet(const Physics *ph, PetscInt a, PetscReal *p)
+void OpenPressureRows(const Physics *ph, PetscInt a, PetscReal *fs, PetscReal *src)
 {
   const PetscReal z = PField(ph->P, FIELD_OPEN)[a];
-  if (z <= 0 || ph->open->b[(PetscInt)z - 1].kind != OPEN_OUTLET) return PETSC_FALSE;
-  *p = ph->open->b[(PetscInt)z - 1].pressure;
-  return PETSC_TRUE;
+  if (z <= 0) return;
+  if (ph->open->b[(PetscInt)z - 1].kind == OPEN_OUTLET) *fs = 1; /* p = 0: the PPE's Dirichlet rows */
+  else { *fs = 0; *src = 0; }
 }

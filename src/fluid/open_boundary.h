@@ -39,7 +39,7 @@ PetscErrorCode OpenAdd(Physics *ph, Open open, const OpenBoundarySpec *spec, con
 /* After the particles are made: the buffers' rows (0: the kernel's reach), the checks that need the
  * kernel, the zone of every fluid particle, the inlets' velocities. */
 PetscErrorCode OpenSetUp(Physics *ph);
-/* The inlets' buffer velocities at time t */
+/* The inlets' buffer velocities at time t (and ISPH's predicted velocities) */
 PetscErrorCode OpenImpose(Physics *ph, PetscReal t);
 /* WCSPH, before the pressure: an inlet's buffer density is the fluid's next to it (a zero normal
  * gradient: the flow sets the inlet's pressure), an outlet's the equation of state's at its pressure;
@@ -47,10 +47,17 @@ PetscErrorCode OpenImpose(Physics *ph, PetscReal t);
 PetscErrorCode OpenState(Physics *ph);
 /* After the fluid's accelerations: buffer particles feel none; an outlet's take the fluid's velocity */
 PetscErrorCode OpenRates(Physics *ph);
+/* The buffers move as their boundaries say: no shifting or XSPH correction of their positions (an
+ * inlet's rows stay a lattice, so that a new particle lands `rows` spacings behind its parent in the
+ * gap the row leaves) */
+PetscErrorCode OpenNoShift(Physics *ph);
 /* After the drift: the outlets' densities, the crossings of the planes, the particles to make (and
  * with any, the next update rebuilds) */
 PetscErrorCode OpenAfterDrift(Physics *ph);
 /* The neighbourhood's inflow hook: make the marked particles (no ghosts exist then) */
 PetscErrorCode OpenInflow(void *ctx);
-/* ISPH: the outlets' buffers are Dirichlet rows of the PPE at their pressure */
-PetscBool OpenDirichlet(const Physics *ph, PetscInt a, PetscReal *p);
+/* ISPH, particle a's role in the pressure equation: an outlet's buffer gives its Dirichlet rows (p = 0,
+ * fs set), an inlet's none (fs cleared: its far end's thin kernel sum is no free surface) and no
+ * source (src 0: its velocity is given; its rows carry the fluid's pressure on to a zero normal
+ * gradient at its end) */
+void OpenPressureRows(const Physics *ph, PetscInt a, PetscReal *fs, PetscReal *src);

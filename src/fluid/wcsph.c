@@ -268,6 +268,7 @@ PetscErrorCode WCSPHStep(Physics *ph)
   if (ph->open) PetscCall(OpenImpose(ph, ph->t + 0.5 * dt)); /* the inlets' velocities over the drift */
   PetscCall(HaloRefresh(ph->halo, P, 1, vel));
   PetscCall(Continuity(ph));
+  if (ph->open) PetscCall(OpenNoShift(ph));
   {
     PetscReal *x = PField(P, FIELD_X), *v = PField(P, FIELD_V), *xs = PField(P, FIELD_XSPH), *rho = PField(P, FIELD_RHO), *drho = PField(P, FIELD_DRHO);
     PetscInt   D = P->dim;

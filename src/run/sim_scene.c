@@ -223,7 +223,7 @@ PetscErrorCode SimAddOpenBoundary(Sim sim, const OpenBoundarySpec *spec)
 {
   PetscFunctionBeginUser;
   PetscCheck(sim->phys.has_fluid, sim->comm, PETSC_ERR_ARG_INCOMP, "Open boundaries need a fluid: call SimSetMedia first");
-  PetscCheck(sim->phys.fluid == FLUID_WCSPH, sim->comm, PETSC_ERR_ARG_INCOMP, "Open boundaries (inlets, outlets) are not yet available with -fluid isph: use -fluid wcsph");
+  PetscCheck(sim->phys.fluid == FLUID_WCSPH || spec->kind != OPEN_OUTLET || spec->pressure == 0, sim->comm, PETSC_ERR_ARG_INCOMP, "Outlet: with -fluid isph the outlet's pressure is the pressure equation's Dirichlet value 0; give pressure 0 (or -fluid wcsph)");
   if (!sim->phys.open) {
     PetscCall(OpenCreate(&sim->phys.open));
     sim->phys.open->next_id = &sim->next_id;

@@ -7,12 +7,12 @@
 #include <sphfsi.h>
 
 typedef struct {
-  PetscReal H, L, U, Re, ramp, xp;
+  PetscReal H, L, U, Re, ramp, xp, pout;
   PetscInt  nx, ny, rows;
   PetscBool parabolic;
   char      table[PETSC_MAX_PATH_LEN]; /* an inflow profile from a file ("y u" lines) */
   Series    min, mout; /* mass in and out against time, for the rates over the run's second half */
-  Series    usum, ucount; /* from half the run on: sum and count of u at probe_x in each row (t: the row) */
+  Series    usum, ysum, ucount; /* from half the run on: sums of u and y and the count of the particles at probe_x in each row (t: the row) */
   PetscReal l2_last;
 } Channel;
 
@@ -27,6 +27,7 @@ static PetscErrorCode Create(Sim sim)
   PetscCall(SceneKeepSeries(sim, &c->min));
   PetscCall(SceneKeepSeries(sim, &c->mout));
   PetscCall(SceneKeepSeries(sim, &c->usum));
+  PetscCall(SceneKeepSeries(sim, &c->ysum));
   PetscCall(SceneKeepSeries(sim, &c->ucount));
   PetscCall(SceneKeepReal(sim, &c->l2_last));
   c->H = 0.1; c->L = 0.5; c->U = 0.1; c->Re = 10; c->ramp = 0; c->xp = -1;
@@ -39,6 +40,7 @@ static PetscErrorCode Create(Sim sim)
   PetscCall(OptBool("-inlet_parabolic", "A parabolic inflow (the developed profile) rather than a uniform one", "", c->parabolic, &c->parabolic, NULL));
   PetscCall(PetscOptionsString("-inlet_table", "An inflow profile from a file: lines \"y u\" (m, m/s), y across the channel from its floor; -inlet_velocity is then its mean, for the probes", "", c->table, c->table, sizeof(c->table), NULL));
   PetscCall(OptReal("-re", "Reynolds number U H / nu (sets the viscosity)", "", c->Re, &c->Re, NULL));
+  PetscCall(OptReal("-outlet_pressure", "The outlet's pressure (Pa)", "", c->pout, &c->pout, NULL));
   PetscCall(OptReal("-probe_x", "Where the profile is measured (m; default 3.5 H, or 0.7 L if shorter)", "", c->xp, &c->xp, NULL));
   PetscCall(OptInt("-wall_rows", "Rows of wall + dummy particles (and of each buffer)", "", c->rows, &c->rows, NULL));
   PetscOptionsEnd();
@@ -72,7 +74,7 @@ static PetscErrorCode Create(Sim sim)
   in.ramp     = c->ramp;
   PetscCall(SimAddOpenBoundary(sim, &in));
   out.kind = OPEN_OUTLET; out.axis = 0; out.side = 1; out.plane = c->L; out.rows = c->rows;
-  out.lo[1] = 0; out.hi[1] = c->H; out.pressure = 0;
+  out.lo[1] = 0; out.hi[1] = c->H; out.pressure = c->pout;
   PetscCall(SimAddOpenBoundary(sim, &out));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -93,7 +95,9 @@ static PetscErrorCode Populate(Sim sim)
 
 /* mass_in, mass_out: the fluid mass that entered and left (kg/m); u_center and l2_profile at probe_x:
  * the mean u of the particles within 3 dx / 4 of the centre line (the two middle rows), and sqrt(sum (u - u_p)^2 / sum u_p^2)
- * over the particles within dx of x = probe_x (two columns), u_p = 6 U s (1 - s). */
+ * over the particles within dx of x = probe_x (two columns), u_p = 6 U s (1 - s); from half the run on,
+ * the particles' u and y summed row by row, for the mean profile (each row's mean u against u_p at
+ * its particles' mean height). */
 static PetscErrorCode Probe(Sim sim, PetscReal *vals)
 {
   Channel         *c = (Channel *)SimSceneContext(sim);
@@ -103,7 +107,7 @@ static PetscErrorCode Probe(Sim sim, PetscReal *vals)
   PetscInt         n;
   const PetscBool  mean = (PetscBool)(SimTime(sim) >= 0.5 * SimEndTime(sim)); /* the profile's mean over the run's second half */
   PetscFunctionBeginUser;
-  PetscCall(PetscCalloc1(2 * c->ny, &rows));
+  PetscCall(PetscCalloc1(3 * c->ny, &rows));
   PetscCall(SimGetLocalSize(sim, &n));
   PetscCall(SimGetField(sim, "kind", NULL, &kind));
   PetscCall(SimGetField(sim, "x", NULL, &x));
@@ -119,7 +123,8 @@ static PetscErrorCode Probe(Sim sim, PetscReal *vals)
     if (mean) {
       const PetscInt j = PetscMin(PetscMax((PetscInt)(sy * c->ny), 0), c->ny - 1);
       rows[j] += v[2 * a];
-      rows[c->ny + j] += 1;
+      rows[c->ny + j] += x[2 * a + 1];
+      rows[2 * c->ny + j] += 1;
     }
   }
   PetscCall(SimRestoreField(sim, "kind", NULL, &kind));
@@ -127,13 +132,14 @@ static PetscErrorCode Probe(Sim sim, PetscReal *vals)
   PetscCall(SimRestoreField(sim, "v", NULL, &v));
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, s, 4, MPIU_REAL, MPI_SUM, SimComm(sim)));
   if (mean) {
-    PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, rows, 2 * c->ny, MPIU_REAL, MPI_SUM, SimComm(sim)));
+    PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, rows, 3 * c->ny, MPIU_REAL, MPI_SUM, SimComm(sim)));
     if (!c->usum.n)
       for (PetscInt j = 0; j < c->ny; j++) {
         PetscCall(SeriesAppend(&c->usum, j, 0));
+        PetscCall(SeriesAppend(&c->ysum, j, 0));
         PetscCall(SeriesAppend(&c->ucount, j, 0));
       }
-    for (PetscInt j = 0; j < c->ny; j++) { c->usum.y[j] += rows[j]; c->ucount.y[j] += rows[c->ny + j]; }
+    for (PetscInt j = 0; j < c->ny; j++) { c->usum.y[j] += rows[j]; c->ysum.y[j] += rows[c->ny + j]; c->ucount.y[j] += rows[2 * c->ny + j]; }
   }
   PetscCall(PetscFree(rows));
   vals[0] = SimFluidMassIn(sim);
@@ -172,8 +178,10 @@ static PetscErrorCode Errors(Sim sim, FILE *f)
   {
     PetscReal e2 = 0, u2 = 0;
     for (PetscInt j = 0; j < c->usum.n; j++) {
-      const PetscReal sy = (j + 0.5) / c->ny, up = 6 * c->U * sy * (1 - sy);
+      PetscReal sy, up;
       if (c->ucount.y[j] <= 0) continue;
+      sy = c->ysum.y[j] / c->ucount.y[j] / c->H; /* the row's particles' mean height */
+      up = 6 * c->U * sy * (1 - sy);
       e2 += PetscSqr(c->usum.y[j] / c->ucount.y[j] - up);
       u2 += up * up;
     }
@@ -190,6 +198,7 @@ static PetscErrorCode Destroy(Sim sim)
   PetscCall(SeriesDestroy(&c->min));
   PetscCall(SeriesDestroy(&c->mout));
   PetscCall(SeriesDestroy(&c->usum));
+  PetscCall(SeriesDestroy(&c->ysum));
   PetscCall(SeriesDestroy(&c->ucount));
   PetscCall(PetscFree(c));
   PetscCall(SimSetSceneContext(sim, NULL));

@@ -146,6 +146,10 @@ check "points out of the domain"      -case open_channel -inlet_velocity -0.1
 check "is thinner than the kernel's reach" -case open_channel -wall_rows 1
 check "cannot read the profile table /nonexistent/profile.txt" -case open_channel -inlet_table /nonexistent/profile.txt
 check "the outlet's pressure is the pressure equation's Dirichlet value 0" -case open_channel -fluid isph -outlet_pressure 100
+OB="-case boxes -dx 0.01 -domain -0.03,-0.03,0.53,0.13 -fluid_box_1 -0.03,0,0.53,0.1 -wall_box_1 -0.03,-0.03,0.53,0 -wall_box_1_faces top -gravity 0,0 -fluid_c0 3"
+check "overlaps open boundary 1 (inlet)"  $OB -inlet_1 -0.03,0,0,0.1 -inlet_1_velocity 0.1 -outlet_1 -0.02,0,0.01,0.1
+check "overlaps a wall or a solid"        $OB -inlet_1 -0.03,-0.03,0,0.1 -inlet_1_velocity 0.1
+check "must be a whole number of spacings" $OB -inlet_1 -0.025,0,0,0.1 -inlet_1_velocity 0.1
 wait
 cat "$OUT"/verdict.* 2>/dev/null
 bad=$(ls "$OUT"/verdict.* 2>/dev/null | wc -l)

@@ -123,10 +123,17 @@ typedef struct {
   char             table[PETSC_MAX_PATH_LEN]; /* inlet, PROFILE_TABLE: a file of lines "s u" (s the cross-section coordinate, m; u m/s) */
   PetscReal        pressure;  /* outlet: the pressure held in its buffer (Pa) */
 } OpenBoundarySpec;
-/* In create: add one (at most 4).  Bad input (a profile pointing out of the domain, a buffer thinner
+#define SCENE_MAX_OPEN 4
+/* In create: add one (at most SCENE_MAX_OPEN).  Bad input (a profile pointing out of the domain, a buffer thinner
  * than the kernel's reach, an inlet overlapping an outlet, a table that cannot be read) stops the run
  * before its first step with one line. */
 PetscErrorCode SimAddOpenBoundary(Sim sim, const OpenBoundarySpec *spec);
+/* In a scene's options block: inlets and outlets as data, -inlet_K and -outlet_K (K = 1..4) each a
+ * buffer box filled with water (its depth along the flow a whole number of spacings), with
+ * -inlet_K_direction / -outlet_K_direction (+x, -x, +y, ...: the flow's direction in or out),
+ * -inlet_K_velocity, -inlet_K_profile uniform|parabolic|table, -inlet_K_table FILE, -inlet_K_ramp,
+ * -outlet_K_pressure.  The n specs read go to SimAddOpenBoundary once the domain is set. */
+PetscErrorCode SceneOpenBoundaryOptions(Sim sim, PetscOptionItems *PetscOptionsObject, OpenBoundarySpec spec[], PetscInt *n);
 /* The fluid mass that entered through the inlets and left through the outlets (and the domain's
  * ends) so far (kg, or kg/m in 2D). */
 PetscReal SimFluidMassIn(Sim sim);

@@ -17,7 +17,7 @@
 #include "base/refdata.h"
 #include <sphfsi/scene.h>
 
-#define OPEN_MAX 4
+#define OPEN_MAX SCENE_MAX_OPEN
 
 typedef struct _n_Open *Open;
 struct _n_Open {

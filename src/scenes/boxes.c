@@ -21,6 +21,7 @@
  * x0,x1,y0,y1,z0,z1[,s[,rows]] has its floor at z0 and walls on all four sides up to z1; obstacle
  * faces left,right,front,back,bottom,top (x-, x+, y-, y+, z-, z+); -domain six numbers; a level
  * gauge x,y; a pressure gauge x,y,z; a solid gauge x0,y0,z0,x1,y1,z1 (probes solid_dx, _dy, _dz).
+ * Inlets and outlets (docs/open_boundaries.md): -inlet_K, -outlet_K buffer boxes (SceneOpenBoundaryOptions).
  * Shapes (<sphfsi/shapes.h>, docs/geometry.md): -cylinder_K x,y,r (3D -sphere_K x,y,z,r), -polygon_K
  * x0,y0,x1,y1,... (2D), each -..._kind wall|fluid|solid|clamp, made after the wall boxes; water of
  * the boxes is cut where an obstacle, solid or clamp shape is.  -periodic x[,y[,z]] with -domain;
@@ -43,6 +44,8 @@ typedef struct {
   PetscReal level[NGAUGE][2], press[NGAUGE][3], sgauge[NGAUGE][6];
   char      names[SCENE_MAX_PROBES][32];
   Shapes    shapes;
+  OpenBoundarySpec open[SCENE_MAX_OPEN]; /* -inlet_K, -outlet_K */
+  PetscInt         nopen;
 } Boxes;
 
 extern SceneOps SceneBoxes; /* not const: Create fills in its probe names */
@@ -219,6 +222,7 @@ static PetscErrorCode Create(Sim sim)
   PetscCall(ReadBoxes(sim, PetscOptionsObject, "wall_box", "Obstacle of wall particles x0,y0,x1,y1 (m), at -dx", c->wall, &c->nwall, PETSC_FALSE, PETSC_TRUE));
   PetscCall(ShapesCreate(&c->shapes));
   PetscCall(ShapesRead(sim, PetscOptionsObject, c->shapes, rows));
+  PetscCall(SceneOpenBoundaryOptions(sim, PetscOptionsObject, c->open, &c->nopen));
   outflow = SimOutflow(sim);
   PetscCall(OptBool("-outflow", "Water that leaves the domain is removed (an open boundary)", "", outflow, &outflow, NULL));
   PetscCall(SimSetOutflow(sim, outflow));
@@ -311,6 +315,7 @@ static PetscErrorCode Create(Sim sim)
       }
     }
   }
+  for (PetscInt k = 0; k < c->nopen; k++) PetscCall(SimAddOpenBoundary(sim, &c->open[k])); /* once the domain is known */
   for (PetscInt i = 0; i < c->nfluid; i++) {
     const PetscReal *b = c->fluid[i].b;
     PetscBool        in = PETSC_TRUE;
@@ -351,6 +356,10 @@ static PetscErrorCode Create(Sim sim)
     PetscCall(ProbeName(c, &n, "solid_dx", k));
     PetscCall(ProbeName(c, &n, "solid_dy", k));
     if (D == 3) PetscCall(ProbeName(c, &n, "solid_dz", k));
+  }
+  if (c->nopen) {
+    PetscCall(ProbeName(c, &n, "mass_in", 0));
+    PetscCall(ProbeName(c, &n, "mass_out", 0));
   }
   if (ShapesFlowColumns(c->shapes)) {
     PetscCall(ProbeName(c, &n, "u_mean", 0));
@@ -440,6 +449,10 @@ static PetscErrorCode Probe(Sim sim, PetscReal *vals)
   for (PetscInt k = 0; k < c->npress; k++) PetscCall(SceneProbePressure(sim, c->press[k], &vals[n++]));
   for (PetscInt k = 0; k < c->nsgauge; k++)
     for (PetscInt d = 0; d < D; d++) vals[n++] = s[(D + 1) * k + D] > 0 ? s[(D + 1) * k + d] / s[(D + 1) * k + D] : 0;
+  if (c->nopen) {
+    vals[n++] = SimFluidMassIn(sim);
+    vals[n++] = SimFluidMassOut(sim);
+  }
   PetscCall(ShapesFlowProbe(sim, c->shapes, vals + n));
   PetscFunctionReturn(PETSC_SUCCESS);
 }

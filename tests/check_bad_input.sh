@@ -66,6 +66,14 @@ check "-block_motion"         -case solid_block -block_motion spin
 check "-solid_cfl"            -case oscillating_plate -solid_cfl 0.4
 check "-solid_order"          -case oscillating_plate -solid_order 3
 check "-solid_formulation"    -case oscillating_plate -solid_formulation eulerian
+# the solid's law and its moduli as K, G or E, nu (one pair)
+check "-solid_law"            -case oscillating_plate -solid_law mooney_rivlin
+check "needs -solid_formulation total" -case oscillating_plate -solid_law st_venant_kirchhoff -solid_formulation updated
+check "not both (given: -solid_K -solid_E -solid_nu)" -case oscillating_plate -solid_K 3e6 -solid_E 2e6 -solid_nu 0.4
+check "Give -solid_E and -solid_nu together" -case oscillating_plate -solid_E 2e6
+check "-solid_nu 0.5 must be in (-1, 0.5)" -case oscillating_plate -solid_E 2e6 -solid_nu 0.5
+check "-turek_hron_case"      -case turek_hron -turek_hron_case fsi9
+check "The flag needs >= 3 particles" -case turek_hron -flag_ny 2
 # issue 8: restart, malformed values, conflicts, misspelt options
 timeout 60 $MPI bin/sphfsi -case hydrostatic -dx 0.01 -max_steps 2 -checkpoint_interval 1 -output_interval 1 -progress_every 0 -output_dir "$OUT/ckpt" > "$OUT/ckpt.log" 2>&1 || { echo "could not write the checkpoint the restart cases need"; exit 1; }
 check "no_such_checkpoint.h5 cannot be opened (No such file"   -case hydrostatic -dx 0.01 -restart "$OUT/no_such_checkpoint.h5"

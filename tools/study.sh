@@ -17,6 +17,13 @@
 #   cantilever          cases/cantilever.opts (total-Lagrangian solid, static load, dynamic relaxation),
 #                       5, 7, 10 particles across, to 0.12 s; error: |sag - Euler-Bernoulli| / E-B
 #                       (plane strain; a 2D FEM of the clamped plate is 0.08 % below it)
+#   turek_hron_csm1     cases/turek_hron_csm1.opts (St Venant-Kirchhoff flag under gravity, dynamic
+#                       relaxation to 2 s), 4, 8, 16 particles across; error: uy_A against the
+#                       benchmark (ux_A beside it).  Not in the default list: 16 across costs ~40 min
+#                       on 1 rank
+#   turek_hron_csm3     cases/turek_hron_csm3.opts (the same flag swinging to 10 s), 4, 8, 16 across;
+#                       error: uy_A's frequency against the benchmark (its amplitude beside it).  Not
+#                       in the default list: 16 across costs ~2 h on 1 rank
 #   elastic_gate        cases/elastic_gate.opts (ISPH + solid), cases/elastic_gate_wcsph.opts (WCSPH +
 #                       solid), uniform dx (-dx_coarse = -dx) 1.667, 1.25, 1 mm (3, 4, 5 particles
 #                       across the gate; the scene needs at least 3; the case files' 1 mm at the gate
@@ -30,7 +37,8 @@
 # Environment:
 #   NP             ranks per run (2)
 #   STUDY_SCENES   subset, space-separated (dam_break dam_break_lobovsky taylor_green poiseuille oscillating_plate
-#                  cantilever elastic_gate); the report covers every scene with a plan.tsv in out/study
+#                  cantilever elastic_gate; also turek_hron_csm1 turek_hron_csm3, not run by default); the
+#                  report covers every scene with a plan.tsv in out/study
 #   STUDY_REUSE=1  keep the result of an earlier run with the same options (its run.json)
 #   STUDY_SIZE     default | cluster | quick.  cluster: 4-5 resolutions per scheme (the default ones and
 #                  finer ones: dam break to a/320, Taylor-Green to L/400, Poiseuille to Hc/80,
@@ -85,6 +93,9 @@ scene() {
   cantilever) # the static cantilever's sag (cases/cantilever.opts): 5 across 14 s, 10 across 126 s here
     SCHEMES="solid:-options_file cases/cantilever.opts"
     for d in $(pick "5 7 10" "5 10 20 40" "4 5"); do RES="$RES;ny$d:$(f7 0.005/$d):-plate_ny $d"; done ;;
+  turek_hron_csm1|turek_hron_csm3) # Turek-Hron's solid cases (cases/turek_hron_csm*.opts); flag 0.02 m thick
+    SCHEMES="solid:-options_file cases/$1.opts"
+    for d in $(pick "4 8 16" "4 8 16 32" "4 5"); do RES="$RES;ny$d:$(f7 0.02/$d):-flag_ny $d"; done ;;
   elastic_gate)
     SCHEMES="isph:-options_file cases/elastic_gate.opts;wcsph:-options_file cases/elastic_gate_wcsph.opts"
     for d in $(pick "3 4 5" "3 4 5 7 10" "3"); do
@@ -93,7 +104,7 @@ scene() {
   *) echo "unknown scene $1 (STUDY_SCENES)" >&2; return 1;;
   esac
   # every scene runs to its case file's t_end, but for STUDY_SIZE=quick
-  [ $SIZE = quick ] && COMMON="$COMMON -t_end $(case $1 in oscillating_plate) echo 0.3;; cantilever) echo 0.02;; elastic_gate) echo 0.01;; *) echo 0.1;; esac)"
+  [ $SIZE = quick ] && COMMON="$COMMON -t_end $(case $1 in oscillating_plate) echo 0.3;; cantilever) echo 0.02;; turek_hron_csm1) echo 0.1;; turek_hron_csm3) echo 2;; elastic_gate) echo 0.01;; *) echo 0.1;; esac)"
   RES=${RES#;}
 }
 

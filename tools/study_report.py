@@ -43,6 +43,10 @@ SCENES = {
                           ("amplitude_rel_err", "amplitude")),
     "cantilever": ("Static cantilever", "sag_eb_rel_err", "|sag − Euler–Bernoulli sag (plane strain)| / E–B", "%", 100,
                    ("sag_rel_err", "with Timoshenko shear")),
+    "turek_hron_csm1": ("Turek–Hron CSM1 (static flag)", "uy_A_rel_err", "|uy_A − benchmark| / benchmark (−66.10 mm)", "%", 100,
+                        ("ux_A_rel_err", "ux_A")),
+    "turek_hron_csm3": ("Turek–Hron CSM3 (swinging flag)", "uy_A_frequency_rel_err", "|frequency of uy_A − benchmark| / benchmark (1.0995 Hz)", "%", 100,
+                        ("uy_A_amplitude_rel_err", "uy_A amplitude")),
     "elastic_gate": ("Elastic gate", "tip_dx_err_rms", "rms error of the gate tip's tip_dx against the experiment", "mm", 1e3,
                      ("tip_dy_err_rms", "tip_dy rms")),
 }

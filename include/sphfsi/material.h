@@ -22,7 +22,14 @@ typedef struct {
   PetscBool wall_clip;     /* WCSPH: the Adami wall pressure clipped at 0, so that a wall never pulls fluid */
 } FluidMaterial;
 
-/* A scene sets rho0, K and G; c0 = sqrt(K / rho0) is set up by the solid. */
+/* The hyper-elastic law of the total-Lagrangian solid (-solid_law; the updated solid is
+ * hypo-elastic and has none): compressible neo-Hookean, or St Venant-Kirchhoff (S = lambda tr(E) I
+ * + 2 mu E, E the Green-Lagrange strain; the Turek-Hron benchmark's).  Both take lambda = K - 2 G / 3
+ * and mu = G, plane strain in 2D, so they agree at small strain. */
+typedef enum { SOLID_LAW_NEO_HOOKEAN = 0, SOLID_LAW_ST_VENANT_KIRCHHOFF } SolidLaw;
+
+/* A scene sets rho0, K and G (and law, if not neo-Hookean); c0 = sqrt(K / rho0) is set up by the
+ * solid.  The options give the moduli as -solid_K, -solid_G or as -solid_E, -solid_nu. */
 typedef struct {
   PetscReal rho0;  /* reference density */
   PetscReal K, G;  /* bulk and shear modulus */
@@ -30,6 +37,7 @@ typedef struct {
   PetscReal alpha; /* artificial viscosity, Eq. 24 */
   PetscReal eps;   /* artificial stress e, Eqs. 25-31 (0 = off) */
   PetscReal n;     /* exponent of f = W_ab / W(dx, h) in Eq. 23 */
+  SolidLaw  law;   /* total-Lagrangian: the stress from F (default neo-Hookean) */
 } SolidMaterial;
 
 /* The equation of state, Eq. 20 */

@@ -364,7 +364,7 @@ PetscErrorCode IOSummary(Output *out, const char *status, const char *message, P
     if (ph->isph && ph->isph->ppe->nsolve) fprintf(f, "  \"ksp_its_mean\": %.4g,\n  \"ksp_its_max\": %d,\n", (double)(ph->isph->ppe->its_sum / ph->isph->ppe->nsolve), (int)ph->isph->ppe->its_max);
     else fprintf(f, "  \"ksp_its_mean\": null,\n  \"ksp_its_max\": null,\n");
     JsonReal(f, "mass_rel_drift", *out->run.mass0 > 0 ? (*out->run.mass - *out->run.mass0) / *out->run.mass0 : 0);
-    if (ph->solid) fprintf(f, "  \"c0_solid\": %.6g,\n  \"solid_substeps_max\": %d,\n  \"solid_formulation\": \"%s\",\n", (double)ph->sl.c0, (int)ph->solid->nsub_max, SolidFormulations[ph->solid->formulation]);
+    if (ph->solid) fprintf(f, "  \"c0_solid\": %.6g,\n  \"solid_substeps_max\": %d,\n  \"solid_formulation\": \"%s\",\n  \"solid_law\": \"%s\",\n", (double)ph->sl.c0, (int)ph->solid->nsub_max, SolidFormulations[ph->solid->formulation], ph->solid->formulation == SOLID_TOTAL ? SolidLaws[ph->sl.law] : "hypo-elastic");
     if (ph->nb->skin > 0) fprintf(f, "  \"neighbour_skin_dx\": %.6g,\n  \"neighbour_rebuilds\": %d,\n", (double)(ph->nb->skin / ph->dx), (int)ph->nb->nrebuild); /* this run's (-wcsph_skin) */
     if (ph->has_fluid) fprintf(f, "  \"c0\": %.6g,\n", (double)ph->fl.c0);
     else fprintf(f, "  \"c0\": null,\n");

@@ -14,6 +14,36 @@
 
 const char *const SolidGradients[]    = {"standard", "corrected", "SolidGradient", "SOLID_GRAD_", NULL};
 const char *const SolidFormulations[] = {"updated", "total", "SolidFormulation", "SOLID_", NULL};
+const char *const SolidLaws[]         = {"neo_hookean", "st_venant_kirchhoff", "SolidLaw", "SOLID_LAW_", NULL};
+
+/* The moduli, as the scene's K and G (which -solid_K, -solid_G override) or as -solid_E, -solid_nu,
+ * one pair or the other.  E and nu are read first and with a `set` flag, so that they enter
+ * options_used only when given; then K and G are not read at all (recorded as defaults beside a
+ * given E they would make options_used give both pairs, which is refused).  The 3D relations:
+ * K = E / (3 (1 - 2 nu)), G = E / (2 (1 + nu)), i.e. lambda = E nu / ((1 + nu) (1 - 2 nu)), mu = G;
+ * a 2D run is plane strain with the same lambda and mu. */
+static PetscErrorCode SolidModuliFromOptions(PetscOptionItems *PetscOptionsObject, MPI_Comm comm, SolidMaterial *m)
+{
+  PetscReal E = m->K > 0 ? 9 * m->K * m->G / (3 * m->K + m->G) : 0, nu = m->K > 0 ? (3 * m->K - 2 * m->G) / (2 * (3 * m->K + m->G)) : 0;
+  PetscBool E_set, nu_set, K_given, G_given;
+  PetscFunctionBeginUser;
+  PetscCall(OptReal("-E", "Solid Young's modulus E (Pa), with -solid_nu instead of -solid_K and -solid_G: K = E / (3 (1 - 2 nu)), G = E / (2 (1 + nu)) (default: from the scene's K and G)", "", E, &E, &E_set));
+  PetscCall(OptReal("-nu", "Solid Poisson's ratio nu, with -solid_E (plane strain in 2D: lambda = E nu / ((1 + nu) (1 - 2 nu)), mu = E / (2 (1 + nu)))", "", nu, &nu, &nu_set));
+  if (!E_set && !nu_set) {
+    PetscCall(OptReal("-K", "Solid bulk modulus K (Pa); c0^2 = K / rho0, Eq. 20; lambda = K - 2 G / 3 (or give -solid_E and -solid_nu)", "", m->K, &m->K, NULL));
+    PetscCall(OptReal("-G", "Solid shear modulus mu_s (Pa), Eq. 40 (or give -solid_E and -solid_nu)", "", m->G, &m->G, NULL));
+    PetscFunctionReturn(PETSC_SUCCESS);
+  }
+  PetscCall(PetscOptionsHasName(PetscOptionsObject->options, PetscOptionsObject->prefix, "-K", &K_given));
+  PetscCall(PetscOptionsHasName(PetscOptionsObject->options, PetscOptionsObject->prefix, "-G", &G_given));
+  PetscCheck(!K_given && !G_given, comm, PETSC_ERR_ARG_INCOMP, "Give the solid's moduli as -solid_K and -solid_G or as -solid_E and -solid_nu, not both (given: %s%s%s%s)", K_given ? "-solid_K " : "", G_given ? "-solid_G " : "", E_set ? "-solid_E " : "", nu_set ? "-solid_nu" : "");
+  PetscCheck(E_set && nu_set, comm, PETSC_ERR_ARG_INCOMP, "Give -solid_E and -solid_nu together (only %s was given)", E_set ? "-solid_E" : "-solid_nu");
+  PetscCheck(E > 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-solid_E %g must be > 0", (double)E);
+  PetscCheck(nu > -1 && nu < 0.5, comm, PETSC_ERR_ARG_OUTOFRANGE, "-solid_nu %g must be in (-1, 0.5)", (double)nu);
+  m->K = E / (3 * (1 - 2 * nu));
+  m->G = E / (2 * (1 + nu));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
 
 /* The coupling's options (-fsi_), with a fluid: in the solid, which carries them. */
 static PetscErrorCode FSISetFromOptions(Physics *ph)
@@ -59,8 +89,12 @@ PetscErrorCode SolidSetFromOptions(Physics *ph)
   if (s->formulation == SOLID_TOTAL && s->order == 2) PetscCall(OptBool("-clamp_face", "Total-Lagrangian, order 2: a clamp is a boundary, its particles next to the body stand for the face midway to it in the fits, and it stores no energy (off: the clamp is material held still)", "", s->clamp_face, &s->clamp_face, NULL));
   if (s->formulation == SOLID_TOTAL) PetscCall(OptReal("-hourglass", "Total-Lagrangian: hourglass-control coefficient zeta, the energy zeta G / 2 of the bonds' deviation from the affine fit (solid_terms.h); 0 = off", "", s->hourglass, &s->hourglass, NULL));
   PetscCall(OptReal("-rho", "Solid reference density (kg/m^3)", "", m->rho0, &m->rho0, NULL));
-  PetscCall(OptReal("-K", "Solid bulk modulus K (Pa); c0^2 = K / rho0, Eq. 20", "", m->K, &m->K, NULL));
-  PetscCall(OptReal("-G", "Solid shear modulus mu_s (Pa), Eq. 40", "", m->G, &m->G, NULL));
+  PetscCall(SolidModuliFromOptions(PetscOptionsObject, ph->comm, m));
+  {
+    PetscInt law = m->law; /* the scene's default */
+    PetscCall(OptEList("-law", "Total-Lagrangian: the hyper-elastic law, neo_hookean (S = G (I - C^-1) + lambda ln J C^-1) or st_venant_kirchhoff (S = lambda tr(E) I + 2 G E, E = (C - I) / 2; the Turek-Hron benchmark's); both with lambda = K - 2 G / 3", "", SolidLaws, 2, SolidLaws[law], &law, NULL));
+    m->law = (SolidLaw)law;
+  }
   PetscCall(OptReal("-alpha", "Solid artificial viscosity coefficient, Eq. 24", "", m->alpha, &m->alpha, NULL));
   PetscCall(OptReal("-art_stress", "Artificial stress coefficient e, Eqs. 25-31; 0 = off", "", m->eps, &m->eps, NULL));
   PetscCall(OptReal("-art_stress_n", "Exponent n of f = W_ab / W(dx, h) in the artificial stress, Eq. 23", "", m->n, &m->n, NULL));
@@ -80,6 +114,7 @@ PetscErrorCode SolidSetFromOptions(Physics *ph)
   /* the one-sided fits at a surface are stiffer than the bulk: measured on the oscillating plate
    * (6 across) the total-Lagrangian solid is stable at 0.35 and not at 0.4 */
   PetscCheck(s->formulation != SOLID_TOTAL || s->cfl <= 0.3, ph->comm, PETSC_ERR_ARG_OUTOFRANGE, "-solid_cfl %g is above 0.3, the stable limit of -solid_formulation total with a margin (its surface particles are stiffer than the bulk): use -solid_cfl 0.3 or less", (double)s->cfl);
+  PetscCheck(m->law == SOLID_LAW_NEO_HOOKEAN || s->formulation == SOLID_TOTAL, ph->comm, PETSC_ERR_ARG_INCOMP, "-solid_law %s needs -solid_formulation total: the updated solid is hypo-elastic (a Jaumann rate of Hooke's law), it has no hyper-elastic law", SolidLaws[m->law]);
   PetscCheck(m->rho0 > 0, ph->comm, PETSC_ERR_ARG_OUTOFRANGE, "-solid_rho %g must be > 0", (double)m->rho0);
   PetscCheck(m->K > 0, ph->comm, PETSC_ERR_ARG_OUTOFRANGE, "-solid_K %g must be > 0", (double)m->K);
   PetscCheck(m->G >= 0, ph->comm, PETSC_ERR_ARG_OUTOFRANGE, "-solid_G %g must be >= 0", (double)m->G);
@@ -393,7 +428,7 @@ PetscErrorCode SolidView(Physics *ph, PetscViewer v)
   const SolidMaterial *m = &ph->sl;
   PetscFunctionBeginUser;
   if (ph->solid->formulation == SOLID_TOTAL) {
-    PetscCall(PetscViewerASCIIPrintf(v, "Solid: total-Lagrangian neo-Hookean, rho0 %g, K %g Pa, G %g Pa, c0 %g m/s; artificial viscosity alpha %g; hourglass control %g%s\n", (double)m->rho0, (double)m->K, (double)m->G, (double)m->c0, (double)m->alpha, (double)ph->solid->hourglass, m->eps > 0 ? "; -solid_art_stress not used" : ""));
+    PetscCall(PetscViewerASCIIPrintf(v, "Solid: total-Lagrangian %s, rho0 %g, K %g Pa, G %g Pa (lambda %g, mu %g Pa), c0 %g m/s; artificial viscosity alpha %g; hourglass control %g%s\n", m->law == SOLID_LAW_ST_VENANT_KIRCHHOFF ? "St Venant-Kirchhoff" : "neo-Hookean", (double)m->rho0, (double)m->K, (double)m->G, (double)(m->K - 2 * m->G / 3), (double)m->G, (double)m->c0, (double)m->alpha, (double)ph->solid->hourglass, m->eps > 0 ? "; -solid_art_stress not used" : ""));
     PetscFunctionReturn(PETSC_SUCCESS);
   }
   PetscCall(PetscViewerASCIIPrintf(v, "Solid: rho0 %g, K %g Pa, G %g Pa, c0 %g m/s; artificial viscosity alpha %g; artificial stress e %g n %g%s; velocity gradient %s\n", (double)m->rho0, (double)m->K, (double)m->G, (double)m->c0, (double)m->alpha, (double)m->eps, (double)m->n, m->eps > 0 ? "" : " (off)", SolidGradients[ph->solid->gradient]));

@@ -14,6 +14,7 @@ extern const char *const SolidGradients[];
  * hourglass control (solid_total.c). */
 typedef enum { SOLID_UPDATED = 0, SOLID_TOTAL } SolidFormulation;
 extern const char *const SolidFormulations[];
+extern const char *const SolidLaws[]; /* -solid_law: SolidLaw of <sphfsi/material.h> */
 
 struct _p_Solid {
   SolidFormulation formulation;

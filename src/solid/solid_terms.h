@@ -1,6 +1,7 @@
 /* Per-particle and per-pair terms of the hypo-elastic solid (section 2.4). */
 #pragma once
 #include "base/dim.h"
+#include "base/material.h"
 
 /* Eqs. 25-34 (Monaghan 2000; Gray, Monaghan & Swift 2001): artificial stress R (xx, xy, yy) of a
  * particle of total stress sigma = -P I + S.  In the principal frame (Eq. 29) a tensile principal
@@ -117,7 +118,8 @@ static inline void ArtificialStress3(PetscReal e, const PetscReal sigma[6], Pets
 /* Total-Lagrangian solid (solid_total.c).  Compressible neo-Hookean material in plane strain
  * (F_zz = 1): second Piola-Kirchhoff stress S = G (I - C^-1) + lambda ln J C^-1, C = F^T F,
  * lambda = K - 2 G / 3, which is Hooke's law with the same K and G at small strain.  F and the
- * result row-major 2x2; returns J = det F (<= 0: the particle is inverted, S untouched). */
+ * result row-major 2x2; returns J = det F (<= 0: the particle is inverted, S untouched).  The
+ * default law; -solid_law selects between it and St Venant-Kirchhoff (SolidLawPK2D below). */
 static inline PetscReal NeoHookeanPK2(PetscReal K, PetscReal G, const PetscReal F[4], PetscReal S[4])
 {
   PetscReal J = F[0] * F[3] - F[1] * F[2], C[3], detC, Ci[3], l;
@@ -197,6 +199,85 @@ SPH_INLINE void      NeoHookeanCauchyD(PetscReal K, PetscReal G, const PetscReal
 {
   if (D == 2) NeoHookeanCauchy(K, G, F, S, p, dev);
   else NeoHookean3Cauchy(F, S, p, dev);
+}
+
+/* St Venant-Kirchhoff (the Turek-Hron benchmark's solid): S = lambda tr(E) I + 2 mu E with the
+ * Green-Lagrange strain E = (F^T F - I) / 2, lambda = K - 2 G / 3, mu = G (Hooke's law in E, so the
+ * same small-strain moduli as the neo-Hookean law), energy W = lambda / 2 tr(E)^2 + mu E : E.  Plane
+ * strain in 2D: F_zz = 1, E_zz = 0, S_zz = lambda tr(E).  Returns J = det F; J <= 0 (inverted, where
+ * this law is not even stable) leaves S untouched, as the neo-Hookean law does, for the run guard. */
+static inline PetscReal StVenantKirchhoffPK2(PetscReal K, PetscReal G, const PetscReal F[4], PetscReal S[4])
+{
+  PetscReal J = F[0] * F[3] - F[1] * F[2], l = K - 2.0 * G / 3.0, E[3], tr;
+  if (J <= 0) return J;
+  E[0] = 0.5 * (F[0] * F[0] + F[2] * F[2] - 1); E[1] = 0.5 * (F[0] * F[1] + F[2] * F[3]); E[2] = 0.5 * (F[1] * F[1] + F[3] * F[3] - 1); /* xx, xy, yy */
+  tr   = E[0] + E[2];
+  S[0] = l * tr + 2 * G * E[0];
+  S[1] = S[2] = 2 * G * E[1];
+  S[3] = l * tr + 2 * G * E[2];
+  return J;
+}
+
+static inline PetscReal StVenantKirchhoffEnergy(PetscReal K, PetscReal G, const PetscReal F[4])
+{
+  PetscReal l = K - 2.0 * G / 3.0, exx = 0.5 * (F[0] * F[0] + F[2] * F[2] - 1), exy = 0.5 * (F[0] * F[1] + F[2] * F[3]), eyy = 0.5 * (F[1] * F[1] + F[3] * F[3] - 1), tr = exx + eyy;
+  return 0.5 * l * tr * tr + G * (exx * exx + 2 * exy * exy + eyy * eyy);
+}
+
+/* Its Cauchy stress as pressure and deviator (xx, xy, yy), as NeoHookeanCauchy: sigma = F S F^T / J,
+ * sigma_zz = S_zz / J = lambda tr(E) / J in plane strain. */
+static inline void StVenantKirchhoffCauchy(PetscReal K, PetscReal G, const PetscReal F[4], const PetscReal S[4], PetscReal *p, PetscReal dev[3])
+{
+  PetscReal J = F[0] * F[3] - F[1] * F[2], P[4], sxx, sxy, syy, szz, tr = 0.5 * (F[0] * F[0] + F[1] * F[1] + F[2] * F[2] + F[3] * F[3] - 2);
+  P[0] = F[0] * S[0] + F[1] * S[2]; P[1] = F[0] * S[1] + F[1] * S[3];
+  P[2] = F[2] * S[0] + F[3] * S[2]; P[3] = F[2] * S[1] + F[3] * S[3];
+  sxx = (P[0] * F[0] + P[1] * F[1]) / J; sxy = (P[0] * F[2] + P[1] * F[3]) / J; syy = (P[2] * F[2] + P[3] * F[3]) / J;
+  szz = (K - 2.0 * G / 3.0) * tr / J;
+  *p     = -(sxx + syy + szz) / 3;
+  dev[0] = sxx + *p; dev[1] = sxy; dev[2] = syy + *p;
+}
+
+/* The same in 3D: F and S row-major 3 x 3; returns J = det F (<= 0: S untouched). */
+static inline PetscReal StVenantKirchhoff3PK2(PetscReal K, PetscReal G, const PetscReal F[9], PetscReal S[9])
+{
+  static const PetscInt row[6] = {0, 0, 0, 1, 1, 2}, col[6] = {0, 1, 2, 1, 2, 2};
+  PetscReal             E[6], J, l = K - 2.0 * G / 3.0, tr;
+  J = F[0] * (F[4] * F[8] - F[5] * F[7]) - F[1] * (F[3] * F[8] - F[5] * F[6]) + F[2] * (F[3] * F[7] - F[4] * F[6]);
+  if (J <= 0) return J;
+  for (PetscInt m = 0; m < 6; m++) E[m] = 0.5 * (F[row[m]] * F[col[m]] + F[3 + row[m]] * F[3 + col[m]] + F[6 + row[m]] * F[6 + col[m]] - (row[m] == col[m])); /* (F^T F - I) / 2 */
+  tr = E[0] + E[3] + E[5];
+  for (PetscInt m = 0; m < 6; m++) S[3 * row[m] + col[m]] = S[3 * col[m] + row[m]] = (row[m] == col[m] ? l * tr : 0.0) + 2 * G * E[m];
+  return J;
+}
+
+static inline PetscReal StVenantKirchhoff3Energy(PetscReal K, PetscReal G, const PetscReal F[9])
+{
+  static const PetscInt row[6] = {0, 0, 0, 1, 1, 2}, col[6] = {0, 1, 2, 1, 2, 2};
+  PetscReal             E[6], tr, ee = 0;
+  for (PetscInt m = 0; m < 6; m++) E[m] = 0.5 * (F[row[m]] * F[col[m]] + F[3 + row[m]] * F[3 + col[m]] + F[6 + row[m]] * F[6 + col[m]] - (row[m] == col[m]));
+  tr = E[0] + E[3] + E[5];
+  for (PetscInt m = 0; m < 6; m++) ee += (row[m] == col[m] ? 1 : 2) * E[m] * E[m]; /* E : E */
+  return 0.5 * (K - 2.0 * G / 3.0) * tr * tr + G * ee;
+}
+
+/* The total-Lagrangian solid's law (-solid_law), chosen where the stress, energy and Cauchy stress
+ * of a particle are needed (solid_total.c): one selector, so every law takes the same path through
+ * the fits, the cell quadrature (Hooke's tensor, the same for both at small strain), the forces and
+ * the output.  The 3D Cauchy stress F S F^T / J holds for any law. */
+SPH_INLINE PetscReal SolidLawPK2D(SolidLaw law, PetscReal K, PetscReal G, const PetscReal *F, PetscReal *S, const PetscInt D)
+{
+  if (law == SOLID_LAW_ST_VENANT_KIRCHHOFF) return D == 2 ? StVenantKirchhoffPK2(K, G, F, S) : StVenantKirchhoff3PK2(K, G, F, S);
+  return NeoHookeanPK2D(K, G, F, S, D);
+}
+SPH_INLINE PetscReal SolidLawEnergyD(SolidLaw law, PetscReal K, PetscReal G, const PetscReal *F, const PetscInt D)
+{
+  if (law == SOLID_LAW_ST_VENANT_KIRCHHOFF) return D == 2 ? StVenantKirchhoffEnergy(K, G, F) : StVenantKirchhoff3Energy(K, G, F);
+  return NeoHookeanEnergyD(K, G, F, D);
+}
+SPH_INLINE void SolidLawCauchyD(SolidLaw law, PetscReal K, PetscReal G, const PetscReal *F, const PetscReal *S, PetscReal *p, PetscReal *dev, const PetscInt D)
+{
+  if (law == SOLID_LAW_ST_VENANT_KIRCHHOFF && D == 2) StVenantKirchhoffCauchy(K, G, F, S, p, dev);
+  else NeoHookeanCauchyD(K, G, F, S, p, dev, D);
 }
 
 /* Index of the pair (j, k) in a symmetric tensor's upper triangle (dim.h's order). */

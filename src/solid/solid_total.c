@@ -8,8 +8,9 @@
  * is cut.  Order 1 is exact only for affine fields: at the surface of a bent plate it takes the
  * strain of a point inside it, and at 5 particles across that makes the plate 42 % too compliant.
  * G_a is fixed by the reference configuration and computed after each rebuild.
- * The stress is hyper-elastic (neo-Hookean, solid_terms.h); the forces are minus the gradient of
- * the discrete strain energy sum_a V0_a W(F_a) (so energy and momentum are conserved):
+ * The stress is hyper-elastic (neo-Hookean or St Venant-Kirchhoff, -solid_law, solid_terms.h);
+ * the forces are minus the gradient of the discrete strain energy sum_a V0_a W(F_a) (so energy
+ * and momentum are conserved):
  *   dv_a/dt = 1 / rho0 sum_b V0_b |grad0 W_ab| / |X_ab| (Q_a p_ab - Q_b p_ba),   Q = P G,
  * P = F S the first Piola-Kirchhoff stress; with order 1 this is the usual
  * 1 / rho0 sum_b V0_b (P_a B_a + P_b B_b) grad0 W_ab.  Rotations are exact: no Jaumann rate and no
@@ -298,11 +299,11 @@ SPH_INLINE void Fit(Physics *ph, PetscInt a, PetscReal *A, const PetscInt D)
   for (PetscInt i = 0; i < D * NB(D); i++) A[i] = f.A[i];
 }
 
-/* Energy density of a particle from its fit A and operator G (solid_terms.h: the neo-Hookean
- * W(F) and, with kappa > 0, the second-order quadrature of its cell, kappa = dx^2 / 24);
- * F, and with Q the derivative dW/dA = (dW/dF) G01 + (dW/dD) G2, D the second derivatives
- * times h, into W.  PETSC_FALSE for an inverted particle (det F <= 0). */
-SPH_INLINE PetscBool ParticleEnergyD(const SolidMaterial *sm, const PetscReal *G, const PetscReal *A, PetscReal h, PetscReal kappa, PetscReal *F, PetscReal *Q, PetscReal *Wout, const PetscInt D)
+/* Energy density of a particle from its fit A and operator G (solid_terms.h: the law's W(F)
+ * and, with kappa > 0, the second-order quadrature of its cell, kappa = dx^2 / 24); F, and
+ * with Q the derivative dW/dA = (dW/dF) G01 + (dW/dD) G2, D the second derivatives times h, into
+ * W.  The law is a constant of each instance below.  PETSC_FALSE for an inverted particle. */
+SPH_INLINE PetscBool ParticleEnergyD(const SolidMaterial *sm, const PetscReal *G, const PetscReal *A, PetscReal h, PetscReal kappa, PetscReal *F, PetscReal *Q, PetscReal *Wout, const SolidLaw law, const PetscInt D)
 {
   const PetscInt nb = NB(D), ns = nb - D;
   PetscReal      Dd[18] = {0}, Sk[9], dF[9], dD[18], W, J;
@@ -314,9 +315,9 @@ SPH_INLINE PetscBool ParticleEnergyD(const SolidMaterial *sm, const PetscReal *G
     for (PetscInt j = 0; j < ns && kappa > 0; j++)
       for (PetscInt q = 0; q < nb; q++) Dd[ns * i + j] += A[nb * i + q] * G[nb * (D + j) + q];
   }
-  J = NeoHookeanPK2D(sm->K, sm->G, F, Sk, D);
+  J = SolidLawPK2D(law, sm->K, sm->G, F, Sk, D);
   if (J <= 0) return PETSC_FALSE;
-  W = NeoHookeanEnergyD(sm->K, sm->G, F, D);
+  W = SolidLawEnergyD(law, sm->K, sm->G, F, D);
   if (!Q) {
     *Wout = W + (kappa > 0 ? CellQuadratureD(sm->K, sm->G, kappa, h, F, Dd, NULL, NULL, D) : 0);
     return PETSC_TRUE;
@@ -340,15 +341,24 @@ SPH_INLINE PetscBool ParticleEnergyD(const SolidMaterial *sm, const PetscReal *G
   return PETSC_TRUE;
 }
 
-/* An out-of-line instance per dimension: the 2D one compiles as the 2D-only code did, so its
- * rounding is unchanged (inlined into the loop, the compiler contracts its sums differently). */
-static __attribute__((noinline)) PetscBool ParticleEnergy2(const SolidMaterial *sm, const PetscReal *G, const PetscReal *A, PetscReal h, PetscReal kappa, PetscReal *F, PetscReal *Q, PetscReal *W) { return ParticleEnergyD(sm, G, A, h, kappa, F, Q, W, 2); }
-static __attribute__((noinline)) PetscBool ParticleEnergy3(const SolidMaterial *sm, const PetscReal *G, const PetscReal *A, PetscReal h, PetscReal kappa, PetscReal *F, PetscReal *Q, PetscReal *W) { return ParticleEnergyD(sm, G, A, h, kappa, F, Q, W, 3); }
-SPH_INLINE PetscBool ParticleEnergy(const SolidMaterial *sm, const PetscReal *G, const PetscReal *A, PetscReal h, PetscReal kappa, PetscReal *F, PetscReal *Q, PetscReal *W, const PetscInt D) { return D == 2 ? ParticleEnergy2(sm, G, A, h, kappa, F, Q, W) : ParticleEnergy3(sm, G, A, h, kappa, F, Q, W); }
+/* An out-of-line instance per dimension and law (the law a constant in each): the 2D neo-Hookean one
+ * compiles as the 2D-only code did, so its rounding is unchanged (inlined into the loop, the
+ * compiler contracts its sums differently). */
+#define PARTICLE_ENERGY_INSTANCE(name, law, D) \
+  static __attribute__((noinline)) PetscBool name(const SolidMaterial *sm, const PetscReal *G, const PetscReal *A, PetscReal h, PetscReal kappa, PetscReal *F, PetscReal *Q, PetscReal *W) { return ParticleEnergyD(sm, G, A, h, kappa, F, Q, W, law, D); }
+PARTICLE_ENERGY_INSTANCE(ParticleEnergy2, SOLID_LAW_NEO_HOOKEAN, 2)
+PARTICLE_ENERGY_INSTANCE(ParticleEnergy3, SOLID_LAW_NEO_HOOKEAN, 3)
+PARTICLE_ENERGY_INSTANCE(ParticleEnergySVK2, SOLID_LAW_ST_VENANT_KIRCHHOFF, 2)
+PARTICLE_ENERGY_INSTANCE(ParticleEnergySVK3, SOLID_LAW_ST_VENANT_KIRCHHOFF, 3)
+SPH_INLINE PetscBool ParticleEnergy(const SolidMaterial *sm, const PetscReal *G, const PetscReal *A, PetscReal h, PetscReal kappa, PetscReal *F, PetscReal *Q, PetscReal *W, const SolidLaw law, const PetscInt D)
+{
+  if (law == SOLID_LAW_ST_VENANT_KIRCHHOFF) return D == 2 ? ParticleEnergySVK2(sm, G, A, h, kappa, F, Q, W) : ParticleEnergySVK3(sm, G, A, h, kappa, F, Q, W);
+  return D == 2 ? ParticleEnergy2(sm, G, A, h, kappa, F, Q, W) : ParticleEnergy3(sm, G, A, h, kappa, F, Q, W);
+}
 
 /* F_a and Q_a of owned solids (refreshed on ghosts); density, pressure and deviatoric stress of
  * owned and ghost solids from their F. */
-SPH_INLINE PetscErrorCode DeformationAndStressD(Physics *ph, const PetscInt D)
+SPH_INLINE PetscErrorCode DeformationAndStressD(Physics *ph, const SolidLaw law, const PetscInt D)
 {
   Solid                s = ph->solid;
   Particles            P = ph->P;
@@ -371,7 +381,7 @@ SPH_INLINE PetscErrorCode DeformationAndStressD(Physics *ph, const PetscInt D)
       continue;
     }
     Fit(ph, a, A, D);
-    if (!ParticleEnergy(sm, s->G0 + nb * nb * slot[a], A, h[a], s->quadrature ? dxa * dxa / 24 : 0, Fa, Qa, &W, D)) /* inverted: the run guard stops on the NaN and names the particle */
+    if (!ParticleEnergy(sm, s->G0 + nb * nb * slot[a], A, h[a], s->quadrature ? dxa * dxa / 24 : 0, Fa, Qa, &W, law, D)) /* inverted: the run guard stops on the NaN and names the particle */
       for (PetscInt q = 0; q < D * nb; q++) Qa[q] = NAN;
   }
   PetscCall(HaloRefreshSlots(ph->halo, s->sf_slot, s->nown, 2, width, FQ));
@@ -380,10 +390,10 @@ SPH_INLINE PetscErrorCode DeformationAndStressD(Physics *ph, const PetscInt D)
     PetscReal        Sk[9], J;
     if (!KindIsSolid(P->kind[a])) continue;
     Fa = s->Fd + D * D * slot[a];
-    J = NeoHookeanPK2D(sm->K, sm->G, Fa, Sk, D);
+    J = SolidLawPK2D(law, sm->K, sm->G, Fa, Sk, D);
     if (J <= 0) { rho[a] = NAN; continue; }
     rho[a] = sm->rho0 / J;
-    NeoHookeanCauchyD(sm->K, sm->G, Fa, Sk, p + a, S + ns * a, D);
+    SolidLawCauchyD(law, sm->K, sm->G, Fa, Sk, p + a, S + ns * a, D);
   }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -462,13 +472,23 @@ SPH_INLINE PetscErrorCode MomentumD(Physics *ph, const PetscInt D)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode SolidTotalRates(Physics *ph)
-{
-  PetscFunctionBeginUser;
-  PetscCall(SPH_DIM_DISPATCH(ph->dim, DeformationAndStressD, ph));
-  PetscCall(SPH_DIM_DISPATCH(ph->dim, MomentumD, ph));
-  PetscFunctionReturn(PETSC_SUCCESS);
-}
+/* The rates and the strain energy are instantiated per law, the law a constant in each and chosen
+ * once per call: the neo-Hookean instance is the code every existing case ran before the laws
+ * were selectable, bit for bit.  (With the law chosen per particle inside them, the compiler fused
+ * other products of the fluid's loads into FMAs: the 2D and 3D elastic gates' solid velocities
+ * changed in the last bit.) */
+#define TOTAL_RATES_INSTANCE(name, law) \
+  static __attribute__((noinline)) PetscErrorCode name(Physics *ph) \
+  { \
+    PetscFunctionBeginUser; \
+    PetscCall(SPH_DIM_DISPATCH(ph->dim, DeformationAndStressD, ph, law)); \
+    PetscCall(SPH_DIM_DISPATCH(ph->dim, MomentumD, ph)); \
+    PetscFunctionReturn(PETSC_SUCCESS); \
+  }
+TOTAL_RATES_INSTANCE(RatesNeoHookean, SOLID_LAW_NEO_HOOKEAN)
+TOTAL_RATES_INSTANCE(RatesStVenantKirchhoff, SOLID_LAW_ST_VENANT_KIRCHHOFF)
+
+PetscErrorCode SolidTotalRates(Physics *ph) { return ph->sl.law == SOLID_LAW_ST_VENANT_KIRCHHOFF ? RatesStVenantKirchhoff(ph) : RatesNeoHookean(ph); }
 
 /* The hourglass energy of particle a's reference bonds (TotalStrainEnergyD) */
 typedef struct {
@@ -488,7 +508,7 @@ SPH_INLINE void HourglassPair(void *ctx, PetscInt a, SPHPair p, const PetscInt D
   if (hs->s->f0[p.k] != 0) hs->e += HourglassEnergy(0.5 * hs->s->hourglass * hs->G * hs->m[b] * hs->ir0 * -hs->s->f0[p.k], hs->Fa, Xab, xab, D);
 }
 
-SPH_INLINE PetscReal TotalStrainEnergyD(Physics *ph, const PetscInt D)
+SPH_INLINE PetscReal TotalStrainEnergyD(Physics *ph, const SolidLaw law, const PetscInt D)
 {
   Solid            s = ph->solid;
   Particles        P = ph->P;
@@ -500,7 +520,7 @@ SPH_INLINE PetscReal TotalStrainEnergyD(Physics *ph, const PetscInt D)
     PetscReal A[27], Fa[9], dxa = h[a] / ph->kernel.h_factor, ea;
     if (!KindIsSolid(P->kind[a]) || (s->clamp_face && P->kind[a] == KIND_CLAMP)) continue;
     Fit(ph, a, A, D);
-    if (!ParticleEnergy(&ph->sl, s->G0 + nb * nb * s->slot[a], A, h[a], s->quadrature ? dxa * dxa / 24 : 0, Fa, NULL, &ea, D)) ea = NAN;
+    if (!ParticleEnergy(&ph->sl, s->G0 + nb * nb * s->slot[a], A, h[a], s->quadrature ? dxa * dxa / 24 : 0, Fa, NULL, &ea, law, D)) ea = NAN;
     if (s->hourglass > 0) {
       HourglassSum hs = {.s = s, .X = X, .x = x, .m = m, .Fa = Fa, .G = ph->sl.G, .ir0 = ir0, .e = ea};
       SPHPairs(s->nl, a, HourglassPair, &hs, D);
@@ -511,4 +531,6 @@ SPH_INLINE PetscReal TotalStrainEnergyD(Physics *ph, const PetscInt D)
   return e;
 }
 
-PetscReal SolidTotalStrainEnergy(Physics *ph) { return SPH_DIM_DISPATCH(ph->dim, TotalStrainEnergyD, ph); }
+static __attribute__((noinline)) PetscReal EnergyNeoHookean(Physics *ph) { return SPH_DIM_DISPATCH(ph->dim, TotalStrainEnergyD, ph, SOLID_LAW_NEO_HOOKEAN); }
+static __attribute__((noinline)) PetscReal EnergyStVenantKirchhoff(Physics *ph) { return SPH_DIM_DISPATCH(ph->dim, TotalStrainEnergyD, ph, SOLID_LAW_ST_VENANT_KIRCHHOFF); }
+PetscReal SolidTotalStrainEnergy(Physics *ph) { return ph->sl.law == SOLID_LAW_ST_VENANT_KIRCHHOFF ? EnergyStVenantKirchhoff(ph) : EnergyNeoHookean(ph); }

@@ -74,6 +74,8 @@ check "Give -solid_E and -solid_nu together" -case oscillating_plate -solid_E 2e
 check "-solid_nu 0.5 must be in (-1, 0.5)" -case oscillating_plate -solid_E 2e6 -solid_nu 0.5
 check "-turek_hron_case"      -case turek_hron -turek_hron_case fsi9
 check "The flag needs >= 3 particles" -case turek_hron -flag_ny 2
+check "needs an even number of particles across" -case turek_hron -turek_hron_case cfd1 -flag_ny 3
+check "-turek_hron_smooth and -turek_hron_ramp must be >= 0" -case turek_hron -turek_hron_case cfd3 -turek_hron_smooth -1
 # issue 8: restart, malformed values, conflicts, misspelt options
 timeout 60 $MPI bin/sphfsi -case hydrostatic -dx 0.01 -max_steps 2 -checkpoint_interval 1 -output_interval 1 -progress_every 0 -output_dir "$OUT/ckpt" > "$OUT/ckpt.log" 2>&1 || { echo "could not write the checkpoint the restart cases need"; exit 1; }
 check "no_such_checkpoint.h5 cannot be opened (No such file"   -case hydrostatic -dx 0.01 -restart "$OUT/no_such_checkpoint.h5"

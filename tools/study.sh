@@ -24,6 +24,11 @@
 #   turek_hron_csm3     cases/turek_hron_csm3.opts (the same flag swinging to 10 s), 4, 8, 16 across;
 #                       error: uy_A's frequency against the benchmark (its amplitude beside it).  Not
 #                       in the default list: 16 across costs ~2 h on 1 rank
+#   turek_hron_cfd1, _cfd3, _fsi2, _fsi3  cases/turek_hron_*.opts (the channel with the rigid or the
+#                       elastic flag, open boundaries), both fluids, 2, 4, 8 particles across the flag
+#                       (fsi: 4, 8, 16; the elastic flag needs >= 3); error: drag (cfd1), the lift's
+#                       amplitude (cfd3), uy_A's amplitude (fsi) against the benchmark.  Not in the
+#                       default list: 8 across costs hours on 2 ranks
 #   elastic_gate        cases/elastic_gate.opts (ISPH + solid), cases/elastic_gate_wcsph.opts (WCSPH +
 #                       solid), uniform dx (-dx_coarse = -dx) 1.667, 1.25, 1 mm (3, 4, 5 particles
 #                       across the gate; the scene needs at least 3; the case files' 1 mm at the gate
@@ -37,7 +42,8 @@
 # Environment:
 #   NP             ranks per run (2)
 #   STUDY_SCENES   subset, space-separated (dam_break dam_break_lobovsky taylor_green poiseuille oscillating_plate
-#                  cantilever elastic_gate; also turek_hron_csm1 turek_hron_csm3, not run by default); the
+#                  cantilever elastic_gate; also turek_hron_csm1 turek_hron_csm3 turek_hron_cfd1 turek_hron_cfd3
+#                  turek_hron_fsi2 turek_hron_fsi3, not run by default); the
 #                  report covers every scene with a plan.tsv in out/study
 #   STUDY_REUSE=1  keep the result of an earlier run with the same options (its run.json)
 #   STUDY_SIZE     default | cluster | quick.  cluster: 4-5 resolutions per scheme (the default ones and
@@ -96,6 +102,10 @@ scene() {
   turek_hron_csm1|turek_hron_csm3) # Turek-Hron's solid cases (cases/turek_hron_csm*.opts); flag 0.02 m thick
     SCHEMES="solid:-options_file cases/$1.opts"
     for d in $(pick "4 8 16" "4 8 16 32" "4 5"); do RES="$RES;ny$d:$(f7 0.02/$d):-flag_ny $d"; done ;;
+  turek_hron_cfd1|turek_hron_cfd3|turek_hron_fsi2|turek_hron_fsi3) # Turek-Hron's channel (cases/turek_hron_*.opts), both fluids; even counts across the flag
+    SCHEMES="wcsph:-options_file cases/$1.opts;isph:-options_file cases/$1.opts -fluid isph -isph_shift 5 -isph_alpha 0"
+    case $1 in *fsi*) divs=$(pick "4 8 16" "4 8 16 32" "4");; *) divs=$(pick "2 4 8" "2 4 8 16" "2");; esac
+    for d in $divs; do RES="$RES;ny$d:$(f7 0.02/$d):-flag_ny $d"; done ;;
   elastic_gate)
     SCHEMES="isph:-options_file cases/elastic_gate.opts;wcsph:-options_file cases/elastic_gate_wcsph.opts"
     for d in $(pick "3 4 5" "3 4 5 7 10" "3"); do
@@ -104,7 +114,7 @@ scene() {
   *) echo "unknown scene $1 (STUDY_SCENES)" >&2; return 1;;
   esac
   # every scene runs to its case file's t_end, but for STUDY_SIZE=quick
-  [ $SIZE = quick ] && COMMON="$COMMON -t_end $(case $1 in oscillating_plate) echo 0.3;; cantilever) echo 0.02;; turek_hron_csm1) echo 0.1;; turek_hron_csm3) echo 2;; elastic_gate) echo 0.01;; *) echo 0.1;; esac)"
+  [ $SIZE = quick ] && COMMON="$COMMON -t_end $(case $1 in oscillating_plate) echo 0.3;; cantilever) echo 0.02;; turek_hron_csm1) echo 0.1;; turek_hron_csm3) echo 2;; turek_hron_cfd*|turek_hron_fsi*) echo 0.5;; elastic_gate) echo 0.01;; *) echo 0.1;; esac)"
   RES=${RES#;}
 }
 

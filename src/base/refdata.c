@@ -166,6 +166,50 @@ PetscErrorCode RefDataLoad(RefData *rd, const char *file, const char *xcol, cons
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+#define ROW_MAX_COLS 32
+PetscErrorCode RefDataRow(RefData *rd, MPI_Comm comm, const char *file, const char *const key[2], const char *const val[2], PetscInt n, const char *const col[], PetscReal out[], PetscBool *found)
+{
+  PetscReal *buf; /* the columns, then whether the row was found */
+  char       line[4096];
+  FILE      *f;
+  PetscFunctionBeginUser;
+  PetscCall(PetscCalloc1(n + 1, &buf));
+  PetscCall(RefDataOpen(rd, file, &f)); /* a missing file is reported there */
+  if (f) {
+    int ik[2] = {-1, key[1] ? -1 : -2}, *ic;
+    PetscCall(PetscMalloc1(n, &ic));
+    for (PetscInt q = 0; q < n; q++) ic[q] = -1;
+    while (fgets(line, sizeof(line), f)) {
+      char *tok, *rest = line, *v[ROW_MAX_COLS] = {NULL};
+      int   nt = 0;
+      if (line[0] == '#' || line[0] == '\n') continue;
+      line[strcspn(line, "\r\n")] = 0;
+      while ((tok = strsep(&rest, ",")) && nt < ROW_MAX_COLS) v[nt++] = tok;
+      if (ik[0] == -1) { /* the header */
+        for (int t = 0; t < nt; t++) {
+          for (int q = 0; q < 2; q++)
+            if (key[q] && !strcmp(v[t], key[q])) ik[q] = t;
+          for (PetscInt q = 0; q < n; q++)
+            if (!strcmp(v[t], col[q])) ic[q] = t;
+        }
+        if (ik[0] < 0 || ik[1] == -1) break;
+        continue;
+      }
+      if (ik[0] >= nt || strcasecmp(v[ik[0]], val[0]) || (key[1] && (ik[1] >= nt || strcasecmp(v[ik[1]], val[1])))) continue;
+      for (PetscInt q = 0; q < n; q++) buf[q] = ic[q] >= 0 && ic[q] < nt && v[ic[q]][0] ? atof(v[ic[q]]) : 0;
+      buf[n] = 1;
+      break;
+    }
+    PetscCall(PetscFree(ic));
+    fclose(f);
+  }
+  PetscCallMPI(MPI_Bcast(buf, (PetscMPIInt)(n + 1), MPIU_REAL, 0, comm));
+  *found = (PetscBool)(buf[n] > 0);
+  for (PetscInt q = 0; q < n; q++) out[q] = buf[q];
+  PetscCall(PetscFree(buf));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 PetscErrorCode RefDataDestroy(RefData *rd)
 {
   PetscFunctionBeginUser;

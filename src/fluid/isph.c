@@ -296,7 +296,7 @@ SPH_INLINE void PressureGradient(Particles P, Cells C, PetscInt a, ISPHGradient 
   PetscBool        corrected;
   SPHPairs(C, a, PressureGradientPair, &s, D);
   corrected = (PetscBool)(mode == ISPH_GRAD_CORRECTED || (mode == ISPH_GRAD_HYBRID && s.near));
-  if (solid_eq14 && s.body && !s.near) corrected = PETSC_FALSE; /* the pair forces the body receives (FluidLoad) */
+  if (solid_eq14 && s.body && !s.near) corrected = PETSC_FALSE; /* the pair forces the body receives (FluidPairLoad) */
   if (!corrected) {
     for (PetscInt i = 0; i < D; i++) g[i] = s.gs[i];
     return;

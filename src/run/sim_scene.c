@@ -4,6 +4,7 @@
 #include "particles/pair_loop.h"
 #include "solid/solid.h"
 #include "fluid/open_boundary.h"
+#include "fluid/body_force.h"
 
 MPI_Comm SimComm(Sim sim) { return sim->comm; }
 
@@ -118,6 +119,15 @@ PetscErrorCode SimSolidEnergy(Sim sim, PetscReal *ekin, PetscReal *estrain)
 }
 const PetscReal *SimSolidLoad(Sim sim) { return sim->phys.solid->load_mean; }
 const PetscReal *SimSolidSupport(Sim sim) { return sim->phys.solid->support_mean; }
+PetscErrorCode   SimBodyForce(Sim sim, PetscInt k, PetscReal force[3])
+{
+  PetscFunctionBeginUser;
+  PetscCheck(k > 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "Body %" PetscInt_FMT ": bodies are numbered from 1 (0 is none)", k);
+  PetscCheck(sim->phys.has_fluid, sim->comm, PETSC_ERR_ARG_WRONGSTATE, "A body's force is the fluid's: this run has no fluid");
+  force[0] = force[1] = force[2] = 0;
+  PetscCall(FluidBodyForce(&sim->phys, k, force));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
 
 /* Particles */
 PetscErrorCode SimGetLocalSize(Sim sim, PetscInt *n)

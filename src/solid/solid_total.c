@@ -420,7 +420,7 @@ SPH_INLINE void MomentumPair(void *ctx, PetscInt a, SPHPair pr, const PetscInt D
   const PetscReal     *X = ms->X, *x = ms->x, *m = ms->m, ir0 = ms->ir0;
   const PetscInt       nb = NB(D), b = pr.b, k = pr.k;
   PetscReal            d[3];
-  if (KindIsFluid(ms->P->kind[b])) { if (pr.F != 0) FluidLoad(ms->ph, a, b, pr.F, ms->fl, D); return; }
+  if (KindIsFluid(ms->P->kind[b])) { if (pr.F != 0) FluidPairLoad(ms->ph, a, b, pr.F, ms->fl, D); return; }
   if (!KindIsSolid(ms->P->kind[b])) return;
   VSub(x + D * a, x + D * b, d, D);
   if (s->f0[k] != 0) {

@@ -85,7 +85,7 @@ SPH_INLINE void MomentumPair(void *ctx, PetscInt a, SPHPair pr, const PetscInt D
   PetscInt             b = pr.b;
   PetscReal            d[3], g[3], dv[3], r2, rb = s->rho[b], ib = 1.0 / (rb * rb), ga[3], gb[3], gm[3], pi;
   if (pr.F == 0) return; /* in the skin */
-  if (KindIsFluid(s->P->kind[b])) { FluidLoad(s->ph, a, b, pr.F, s->fl, D); return; }
+  if (KindIsFluid(s->P->kind[b])) { FluidPairLoad(s->ph, a, b, pr.F, s->fl, D); return; }
   if (!KindIsSolid(s->P->kind[b])) return;
   VSub(x + D * a, x + D * b, d, D);
   VSub(v + D * a, v + D * b, dv, D);
@@ -112,7 +112,7 @@ SPH_INLINE void MomentumPair(void *ctx, PetscInt a, SPHPair pr, const PetscInt D
 }
 
 /* Eq. 23 for owned solids over their solid neighbours: stress, artificial viscosity (Eq. 24) and
- * artificial stress; the fluid's loads (FluidLoad); gravity.  Walls do not act; clamps do not
+ * artificial stress; the fluid's loads (FluidPairLoad); gravity.  Walls do not act; clamps do not
  * accelerate: what would, the support takes (Solid.support).  With the corrected gradient each
  * particle's stress acts through its own corrected kernel gradient, sigma_a L_a grad W +
  * sigma_b L_b grad W (pair terms with the mean), which keeps the pair forces opposite. */

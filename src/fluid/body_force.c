@@ -1,0 +1,39 @@
+#include "fluid/body_force.h"
+#include "fluid/boundary_load.h"
+#include "particles/pair_loop.h"
+
+/* What the loop over a fluid particle's pairs gathers (BodyForceD). */
+typedef struct {
+  Physics         *ph;
+  const PetscReal *body, *m;
+  PetscReal        k;
+  PetscReal        f[3];
+} BodyForceSum;
+
+/* A body particle b's share of pair (a, b): m_b times its acceleration from fluid particle a */
+SPH_INLINE void BodyForcePair(void *ctx, PetscInt a, SPHPair p, const PetscInt D)
+{
+  BodyForceSum *s = (BodyForceSum *)ctx;
+  PetscReal     acc[3] = {0, 0, 0};
+  if (s->body[p.b] != s->k || !KindIsBoundary(s->ph->P->kind[p.b])) return;
+  FluidPairLoad(s->ph, p.b, a, p.F, acc, D);
+  for (PetscInt i = 0; i < D; i++) s->f[i] += s->m[p.b] * acc[i];
+}
+
+/* Over the owned fluid particles, so that each pair counts once on any number of ranks. */
+SPH_INLINE PetscErrorCode BodyForceD(Physics *ph, PetscInt k, PetscReal force[3], const PetscInt D)
+{
+  Particles    P = ph->P;
+  BodyForceSum s = {.ph = ph, .body = PField(P, FIELD_BODY), .m = PField(P, FIELD_M), .k = (PetscReal)k};
+  PetscFunctionBeginUser;
+  PetscCheck(s.body, ph->comm, PETSC_ERR_ORDER, "A body's force needs the field \"body\": enable it in the scene's create and set it in its populate");
+  for (PetscInt a = 0; a < P->n; a++)
+    if (KindIsFluid(P->kind[a])) SPHPairs(ph->cells, a, BodyForcePair, &s, D);
+  PetscCall(MPIU_Allreduce(s.f, force, 3, MPIU_REAL, MPIU_SUM, ph->comm));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode FluidBodyForce(Physics *ph, PetscInt k, PetscReal force[3])
+{
+  return SPH_DIM_DISPATCH(ph->dim, BodyForceD, ph, k, force);
+}

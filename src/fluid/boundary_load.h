@@ -1,0 +1,38 @@
+/* The fluid's pair force on a particle that bounds it (a wall, a dummy or a solid): what the fluid
+ * gets from it, reversed (Newton's third law).  The solid's load (solid_impl.h) and the forces on
+ * named bodies (body_force.h) are both this sum. */
+#pragma once
+#include "fluid/boundary.h"
+#include "fluid/fluid_terms.h"
+#include "fluid/isph.h"
+#include "solid/solid.h"
+#include "base/dim.h"
+
+/* Acceleration of boundary particle a from fluid neighbour b (F = F_ab of the pair): the reverse of
+ * what the fluid gets from a (wcsph.c, isph.c), with a as the fluid sees it (FluidView): pressure
+ * (Eq. 19, Eq. 14's symmetric form with ISPH) and artificial viscosity, laminar viscosity against
+ * a's no-slip velocity and, on a solid with the repulsive force on, Eq. 41. */
+SPH_INLINE void FluidPairLoad(Physics *ph, PetscInt a, PetscInt b, PetscReal F, PetscReal *acc, const PetscInt D)
+{
+  Particles        P = ph->P;
+  const PetscReal *x = PField(P, FIELD_X), *v = PField(P, FIELD_V), *rho = PField(P, FIELD_RHO), *p = PField(P, FIELD_P), *m = PField(P, FIELD_M), *h = PField(P, FIELD_H);
+  const PetscReal *fv = PField(P, FIELD_FVIEW), *vw = PField(P, FIELD_VWALL), *nrm = PField(P, FIELD_NORMAL);
+  const PetscReal  alpha = ph->isph ? ph->isph->alpha : ph->fl.alpha;
+  const PetscBool  repulsion = (PetscBool)(KindIsSolid(P->kind[a]) && ph->solid && ph->solid->repulsion);
+  PetscReal        d[3], dv[3], r2, hab = PairH(h[a], h[b]);
+  PetscReal        pa, ra, ma, rb = rho[b];
+  PetscReal        pterm, visc, s = m[b] / m[a];
+  PetscReal        rep = 0; /* the repulsive force's magnitude along a's normal */
+  FluidView(fv, P->kind[a], a, m, rho, p, &ma, &ra, &pa);
+  VSub(x + D * b, x + D * a, d, D);
+  VSub(v + D * b, v + D * a, dv, D);
+  r2    = VDot(d, d, D);
+  pterm = p[b] / (rb * rb) + pa / (ra * ra) + ArtificialViscosity(alpha, ph->fl.c0, hab, 0.5 * (ra + rb), VDot(dv, d, D), r2);
+  visc  = LaminarViscosity(ma, ph->fl.mu, rb, ra, F * r2, r2, hab, ph->fl.eta, ph->fl.lap_kappa);
+  if (repulsion) rep = ph->solid->repulsion_scale * FSIRepulsion(VDot(dv, nrm + D * a, D), PetscSqrtReal(r2) / (2 * hab), ph->dt); /* the scale is 1 in 2D at h = 1.3 dx */
+  for (PetscInt i = 0; i < D; i++) { /* the fluid's pair acceleration, reversed */
+    PetscReal fb = visc * (v[D * b + i] - vw[D * a + i]) - ma * pterm * F * d[i];
+    if (repulsion) fb += rep * nrm[D * a + i];
+    acc[i] -= s * fb;
+  }
+}

@@ -1,0 +1,63 @@
+#!/usr/bin/env python3
+"""Plot Turek-Hron runs (-case turek_hron): drag, lift and point A's displacement against time with
+the benchmark's band (mean +- amplitude, or the steady value), from the runs' probes.csv and the
+reference data (turek_hron2006_fsi_benchmark.csv).
+
+  tools/plot_turek_hron.py OUT.png LABEL=RUNDIR [LABEL=RUNDIR ...]
+
+Each RUNDIR holds a run's probes.csv and summary.json (its case is read there).  One panel per
+quantity the runs have (drag, lift with the fluid; uy_A, ux_A with the elastic flag)."""
+import csv, json, os, sys
+import numpy as np
+import matplotlib
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+REF = [os.path.join(HERE, "..", "..", "shared", "refdata"), os.path.join(HERE, "..", "refdata")]
+
+
+def reference():
+    for d in REF:
+        f = os.path.join(d, "turek_hron2006_fsi_benchmark.csv")
+        if os.path.exists(f):
+            rows = [r for r in csv.reader(open(f)) if r and not r[0].startswith("#")]
+            head = rows[0]
+            return {(r[0].lower(), r[1]): dict(zip(head, r)) for r in rows[1:]}
+    return {}
+
+
+def main():
+    out, runs = sys.argv[1], [a.split("=", 1) for a in sys.argv[2:]]
+    ref = reference()
+    data = []
+    for label, d in runs:
+        p = np.genfromtxt(os.path.join(d, "probes.csv"), delimiter=",", names=True)
+        cs = json.load(open(os.path.join(d, "summary.json"))).get("options", {}).get("turek_hron_case", "")
+        if not cs:  # the case from the options_used file
+            for line in open(os.path.join(d, "options_used")):
+                if line.startswith("-turek_hron_case"):
+                    cs = line.split()[1]
+        data.append((label, cs, p))
+    qs = [q for q in ("drag", "lift", "uy_A", "ux_A") if any(np.any(p[q][1:] != 0) for _, _, p in data)]
+    fig, axs = plt.subplots(len(qs), 1, figsize=(8, 2.4 * len(qs)), sharex=True, squeeze=False)
+    for ax, q in zip(axs[:, 0], qs):
+        scale = 1e3 if q.endswith("_A") else 1
+        for label, cs, p in data:
+            ax.plot(p["t"], scale * p[q], lw=0.7, label=f"{label}")
+        r = ref.get((data[0][1], q))
+        if r:
+            m, a = float(r["mean"]), float(r["amplitude"] or 0)
+            if a > 0:
+                ax.axhspan(m - a, m + a, color="0.85", zorder=0, label="benchmark mean ± amplitude")
+            ax.axhline(m, color="k", lw=0.8, ls="--", label="benchmark mean")
+        ax.set_ylabel(q + (" (mm)" if scale != 1 else " (N/m)"))
+        ax.legend(fontsize=7, loc="best")
+    axs[-1, 0].set_xlabel("t (s)")
+    fig.suptitle(f"Turek–Hron {data[0][1].upper()}")
+    fig.tight_layout()
+    fig.savefig(out, dpi=110)
+
+
+if __name__ == "__main__":
+    main()

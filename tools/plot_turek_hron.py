@@ -4,9 +4,13 @@ the benchmark's band (mean +- amplitude, or the steady value), from the runs' pr
 reference data (turek_hron2006_fsi_benchmark.csv).
 
   tools/plot_turek_hron.py OUT.png LABEL=RUNDIR [LABEL=RUNDIR ...]
+  tools/plot_turek_hron.py --vorticity OUT.png RUNDIR [SNAPSHOT]
 
-Each RUNDIR holds a run's probes.csv and summary.json (its case is read there).  One panel per
-quantity the runs have (drag, lift with the fluid; uy_A, ux_A with the elastic flag)."""
+Each RUNDIR holds a run's probes.csv and options_used (its case is read there).  One panel per
+quantity the runs have (drag, lift with the fluid; uy_A, ux_A with the elastic flag).  --vorticity:
+the vorticity dv/dx - du/dy around the cylinder and the flag in a snapshot (the last by default): the
+fluid's velocity averaged on a grid of 1.5 dx cells, differentiated by central differences (a
+picture, not a measurement); walls and the flag in grey."""
 import csv, json, os, sys
 import numpy as np
 import matplotlib
@@ -59,5 +63,40 @@ def main():
     fig.savefig(out, dpi=110)
 
 
+def vorticity(out, run, snap=None):
+    import glob
+    import h5py
+    files = sorted(glob.glob(os.path.join(run, "particles_*.h5")))
+    h = h5py.File(snap or files[-1], "r")
+    kind, x, v = h["kind"][:].ravel(), h["x"][:], h["v"][:]
+    dx = float(np.median(h["h"][:])) / 1.4  # h = 1.4 dx with WCSPH's default; only sets the grid
+    cell = 1.5 * dx
+    lo, hi = np.array([0.0, 0.0]), np.array([1.5, 0.41])
+    n = np.ceil((hi - lo) / cell).astype(int)
+    fl = (kind == 0) & np.all((x >= lo) & (x < hi), axis=1)
+    ij = ((x[fl] - lo) / cell).astype(int)
+    cnt = np.zeros(n); u = np.zeros(n); w = np.zeros(n)
+    np.add.at(cnt, (ij[:, 0], ij[:, 1]), 1)
+    np.add.at(u, (ij[:, 0], ij[:, 1]), v[fl, 0])
+    np.add.at(w, (ij[:, 0], ij[:, 1]), v[fl, 1])
+    with np.errstate(invalid="ignore", divide="ignore"):
+        u /= cnt; w /= cnt
+    om = np.gradient(w, cell, axis=0) - np.gradient(u, cell, axis=1)
+    om[cnt == 0] = np.nan
+    fig, ax = plt.subplots(figsize=(11, 3.6))
+    lim = np.nanpercentile(np.abs(om), 99)
+    im = ax.imshow(om.T, origin="lower", extent=[lo[0], hi[0], lo[1], hi[1]], cmap="RdBu_r", vmin=-lim, vmax=lim)
+    b = (kind != 0) & np.all((x >= lo) & (x < hi), axis=1)
+    ax.scatter(x[b, 0], x[b, 1], s=0.3, c="0.5")
+    ax.set_aspect("equal"); ax.set_xlabel("x (m)"); ax.set_ylabel("y (m)")
+    fig.colorbar(im, ax=ax, label="vorticity (1/s)", shrink=0.8)
+    ax.set_title(f"{os.path.basename(os.path.normpath(run))}, t = {float(h.attrs.get('time', np.nan)) if 'time' in h.attrs else ''}")
+    fig.tight_layout()
+    fig.savefig(out, dpi=120)
+
+
 if __name__ == "__main__":
-    main()
+    if sys.argv[1] == "--vorticity":
+        vorticity(sys.argv[2], sys.argv[3], sys.argv[4] if len(sys.argv) > 4 else None)
+    else:
+        main()

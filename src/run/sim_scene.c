@@ -191,7 +191,7 @@ PetscErrorCode SimEnableField(Sim sim, const char name[])
   PetscInt *ints;
   PetscFunctionBeginUser;
   PetscCall(FieldByName(sim, name, &f, &ints));
-  if (!ints) PetscCall(ParticlesEnableField(sim->P, f, PETSC_FALSE));
+  if (!ints) PetscCall(ParticlesEnableField(sim->P, f, (PetscBool)(f == FIELD_BODY))); /* SimBodyForce reads the ghosts' bodies */
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

@@ -229,6 +229,9 @@ static PetscErrorCode PopulateChannel(Sim sim, TurekHron *c)
   const PetscReal dx = SimSpacing(sim), x0 = -(c->rows - 0.5) * dx;
   const PetscInt  n  = c->nx + 2 * c->rows; /* the buffers' columns too */
   const PetscReal xclamp = c->xc + PetscSqrtReal(c->R * c->R - 0.25 * c->H * c->H) - (c->nclamp + 0.5) * dx * 1.01;
+  /* WCSPH: the water starts at the outlet's pressure, not at 0 (from 0 a pressure wave would run in
+   * from the outlet and ring between it and the inlet at the start) */
+  const PetscReal rho = SimFluidIncompressible(sim) ? RHO_F : EOSDensity(SimFluidMaterial(sim), c->pout);
   PetscFunctionBeginUser;
   for (PetscInt k = 0; k < c->rows; k++) {
     PetscCall(SceneAddLattice(sim, k ? KIND_DUMMY : KIND_WALL, x0, -(k + 0.5) * dx, n, 1, dx, RHO_F));
@@ -237,7 +240,7 @@ static PetscErrorCode PopulateChannel(Sim sim, TurekHron *c)
   for (PetscInt j = 0; j < c->nch; j++)
     for (PetscInt i = 0; i < n; i++) {
       const PetscReal p[2] = {x0 + i * dx, (j + 0.5) * dx}, sp[2] = {dx, dx};
-      if (!InBody(c, p)) PetscCall(SceneAddPoint(sim, KIND_FLUID, p, sp, dx, RHO_F));
+      if (!InBody(c, p)) PetscCall(SceneAddPoint(sim, KIND_FLUID, p, sp, dx, rho));
     }
   for (PetscInt k = 0;; k++) { /* rings at R - (k + 1/2) dx, each of whole spacings ~dx */
     const PetscReal r  = c->R - (k + 0.5) * dx;

@@ -11,7 +11,7 @@ quantity the runs have (drag, lift with the fluid; uy_A, ux_A with the elastic f
 the vorticity dv/dx - du/dy around the cylinder and the flag in a snapshot (the last by default): the
 fluid's velocity averaged on a grid of 1.5 dx cells, differentiated by central differences (a
 picture, not a measurement); walls and the flag in grey."""
-import csv, json, os, sys
+import csv, os, sys
 import numpy as np
 import matplotlib
 matplotlib.use("Agg")
@@ -37,11 +37,10 @@ def main():
     data = []
     for label, d in runs:
         p = np.genfromtxt(os.path.join(d, "probes.csv"), delimiter=",", names=True)
-        cs = json.load(open(os.path.join(d, "summary.json"))).get("options", {}).get("turek_hron_case", "")
-        if not cs:  # the case from the options_used file
-            for line in open(os.path.join(d, "options_used")):
-                if line.startswith("-turek_hron_case"):
-                    cs = line.split()[1]
+        cs = ""  # the case, from the run's options_used (a run still going has no summary.json yet)
+        for line in open(os.path.join(d, "options_used")):
+            if line.startswith("-turek_hron_case"):
+                cs = line.split()[1]
         data.append((label, cs, p))
     qs = [q for q in ("drag", "lift", "uy_A", "ux_A") if any(np.any(p[q][1:] != 0) for _, _, p in data)]
     fig, axs = plt.subplots(len(qs), 1, figsize=(8, 2.4 * len(qs)), sharex=True, squeeze=False)

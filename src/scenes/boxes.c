@@ -46,6 +46,7 @@ typedef struct {
   Shapes    shapes;
   OpenBoundarySpec open[SCENE_MAX_OPEN]; /* -inlet_K, -outlet_K */
   PetscInt         nopen;
+  PetscBool        body_force; /* probes of the fluid's force on the obstacles (SimBodyForce) */
 } Boxes;
 
 extern SceneOps SceneBoxes; /* not const: Create fills in its probe names */
@@ -223,6 +224,7 @@ static PetscErrorCode Create(Sim sim)
   PetscCall(ShapesCreate(&c->shapes));
   PetscCall(ShapesRead(sim, PetscOptionsObject, c->shapes, rows));
   PetscCall(SceneOpenBoundaryOptions(sim, PetscOptionsObject, c->open, &c->nopen));
+  PetscCall(OptBool("-body_force", "Probes force_x, force_y (3D also force_z): the fluid's force on the obstacles (wall boxes, shapes and solids; N/m in 2D, N in 3D), as the momentum equation exchanges it", "", c->body_force, &c->body_force, NULL));
   outflow = SimOutflow(sim);
   PetscCall(OptBool("-outflow", "Water that leaves the domain is removed (an open boundary)", "", outflow, &outflow, NULL));
   PetscCall(SimSetOutflow(sim, outflow));
@@ -365,6 +367,13 @@ static PetscErrorCode Create(Sim sim)
     PetscCall(ProbeName(c, &n, "u_mean", 0));
     PetscCall(ProbeName(c, &n, "drag", 0));
   }
+  if (c->body_force) {
+    PetscCheck(SimHasFluid(sim), SimComm(sim), PETSC_ERR_ARG_INCOMP, "-body_force measures the fluid's force: give a -fluid_box");
+    PetscCall(SimEnableField(sim, "body"));
+    PetscCall(ProbeName(c, &n, "force_x", 0));
+    PetscCall(ProbeName(c, &n, "force_y", 0));
+    if (D == 3) PetscCall(ProbeName(c, &n, "force_z", 0));
+  }
   PetscCheck(n <= SCENE_MAX_PROBES, SimComm(sim), PETSC_ERR_ARG_OUTOFRANGE, "Scene boxes has %d probe columns (front_x, v_max and the gauges; a solid gauge counts one per dimension): at most %d", (int)n, SCENE_MAX_PROBES);
   SceneBoxes.nprobes = n;
   PetscFunctionReturn(PETSC_SUCCESS);
@@ -375,6 +384,7 @@ static PetscErrorCode Populate(Sim sim)
   Boxes *c = (Boxes *)SimSceneContext(sim);
   PetscFunctionBeginUser;
   const PetscInt D = SimDim(sim), up = D - 1;
+  PetscInt       first_body;
   for (PetscInt i = 0; i < c->nfluid; i++) { /* at rest: hydrostatic below the lattice's top */
     const Box *F     = &c->fluid[i];
     PetscInt   first, n;
@@ -389,6 +399,7 @@ static PetscErrorCode Populate(Sim sim)
     if (D == 3) PetscCall(SceneAddTankBox(sim, T->b, T->b + 3, T->b[5], T->s, T->rows));
     else PetscCall(SceneAddTank(sim, T->b[0], T->b[2], T->b[1], T->b[3], T->s, T->rows, T->left, T->right));
   }
+  first_body = SimNextId(sim); /* the obstacles: what follows the tanks */
   for (PetscInt i = 0; i < c->nsolid; i++) PetscCall(SceneAddBox(sim, KIND_SOLID, c->solid[i].b, SimSpacing(sim), SimSolidMaterial(sim)->rho0));
   for (PetscInt i = 0; i < c->nclamp; i++) PetscCall(SceneAddBox(sim, KIND_CLAMP, c->clamp[i].b, SimSpacing(sim), SimSolidMaterial(sim)->rho0));
   for (PetscInt i = 0; i < c->nwall; i++) PetscCall(SceneAddWallBox(sim, c->wall[i].b, SimSpacing(sim), c->wall[i].face));
@@ -401,6 +412,19 @@ static PetscErrorCode Populate(Sim sim)
     PetscCall(ShapesSetDry(sim, c->shapes, n, (const PetscReal(*)[6])dry));
   }
   PetscCall(ShapesPopulate(sim, c->shapes));
+  if (c->body_force) { /* body 1: every wall or solid particle made after the tanks */
+    const PetscInt *id, *kind;
+    PetscReal      *body;
+    PetscInt        np;
+    PetscCall(SimGetLocalSize(sim, &np));
+    PetscCall(SimGetField(sim, "id", NULL, &id));
+    PetscCall(SimGetField(sim, "kind", NULL, &kind));
+    PetscCall(SimGetField(sim, "body", NULL, &body));
+    for (PetscInt a = 0; a < np; a++) body[a] = id[a] >= first_body && !KindIsFluid(kind[a]) ? 1 : 0;
+    PetscCall(SimRestoreField(sim, "id", NULL, &id));
+    PetscCall(SimRestoreField(sim, "kind", NULL, &kind));
+    PetscCall(SimRestoreField(sim, "body", NULL, &body));
+  }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -454,6 +478,12 @@ static PetscErrorCode Probe(Sim sim, PetscReal *vals)
     vals[n++] = SimFluidMassOut(sim);
   }
   PetscCall(ShapesFlowProbe(sim, c->shapes, vals + n));
+  n += ShapesFlowColumns(c->shapes);
+  if (c->body_force) {
+    PetscReal f[3];
+    PetscCall(SimBodyForce(sim, 1, f));
+    for (PetscInt d = 0; d < D; d++) vals[n++] = f[d];
+  }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

@@ -8,6 +8,10 @@
 #                       self-convergence (rms change of its curve from the coarser run)
 #   dam_break_lobovsky  cases/dam_break_lobovsky.opts, WCSPH and ISPH, dx = H/20, H/40, H/80, to
 #                       t sqrt(g/H) = 4; error: water levels H1-H4 against Lobovsky et al. 2014
+#   dam_break_impact    cases/dam_break_lobovsky.opts, both fluids, H/20-H/80, to t sqrt(g/H) = 3.7;
+#                       error: sensor 1's first peak against the experiment's (and its impulse)
+#   dam_break_buchner   cases/dam_break_buchner.opts, both fluids, H/20-H/80, to t sqrt(g/H) = 7;
+#                       error: rms of P1 against Buchner 2002 over 2.4 <= t sqrt(g/H) <= 7
 #   taylor_green        cases/taylor_green.opts (ISPH with shifting A = 20; WCSPH without: -wcsph_shift came later), dx = L/25, L/50,
 #                       L/100, L/200, to 1 s; error: L2 velocity error at t = 1 s (relative)
 #   poiseuille          cases/poiseuille.opts, WCSPH and ISPH, dx = Hc/10, Hc/20, Hc/40, to 2 s;
@@ -42,7 +46,7 @@
 # Environment:
 #   NP             ranks per run (2)
 #   STUDY_SCENES   subset, space-separated (dam_break dam_break_lobovsky taylor_green poiseuille oscillating_plate
-#                  cantilever elastic_gate; also turek_hron_csm1 turek_hron_csm3 turek_hron_cfd1 turek_hron_cfd3
+#                  cantilever elastic_gate; also dam_break_impact dam_break_buchner turek_hron_csm1 turek_hron_csm3 turek_hron_cfd1 turek_hron_cfd3
 #                  turek_hron_fsi2 turek_hron_fsi3, not run by default); the
 #                  report covers every scene with a plan.tsv in out/study
 #   STUDY_REUSE=1  keep the result of an earlier run with the same options (its run.json)
@@ -91,6 +95,9 @@ scene() {
   dam_break_lobovsky) # to t sqrt(g/H) = 4: the front and the first wave, where the experiment's
     # repetitions agree (its gauges' two series differ by 0.005-0.010 H rms); after it the wave breaks
     fluid dam_break_lobovsky 0.3 H "20 40 80" "20 40 80 160" "10 20"; COMMON="$COMMON -t_end 0.7" ;;
+  dam_break_impact) # cases/dam_break_lobovsky.opts to t sqrt(g/H) = 3.7: the first impact on the far wall
+    fluid dam_break_lobovsky 0.3 H "20 40 80" "20 40 80 160" "10 20"; COMMON="$COMMON -t_end 0.65 -probe_interval 0.0002" ;;
+  dam_break_buchner) fluid dam_break_buchner 0.6 H "20 40 80" "20 40 80 160" "10 20" ;;
   taylor_green) fluid taylor_green 1 L "25 50 100 200" "25 50 100 200 400" "10 20" ;;
   poiseuille)   fluid poiseuille 1e-3 Hc "10 20 40" "10 20 40 80" "10 20" ;;
   oscillating_plate)
@@ -114,7 +121,7 @@ scene() {
   *) echo "unknown scene $1 (STUDY_SCENES)" >&2; return 1;;
   esac
   # every scene runs to its case file's t_end, but for STUDY_SIZE=quick
-  [ $SIZE = quick ] && COMMON="$COMMON -t_end $(case $1 in oscillating_plate) echo 0.3;; cantilever) echo 0.02;; turek_hron_csm1) echo 0.1;; turek_hron_csm3) echo 2;; turek_hron_cfd*|turek_hron_fsi*) echo 0.5;; elastic_gate) echo 0.01;; *) echo 0.1;; esac)"
+  [ $SIZE = quick ] && COMMON="$COMMON -t_end $(case $1 in oscillating_plate) echo 0.3;; cantilever) echo 0.02;; turek_hron_csm1) echo 0.1;; turek_hron_csm3) echo 2;; turek_hron_cfd*|turek_hron_fsi*) echo 0.5;; elastic_gate) echo 0.01;; dam_break_impact) echo 0.65;; dam_break_buchner) echo 1.74;; *) echo 0.1;; esac)"
   RES=${RES#;}
 }
 

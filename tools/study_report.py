@@ -35,6 +35,12 @@ SCENES = {
                            "four gauges of the rms |h − h_exp| / H", "% of H", 100,
                            ("P1_peak_rel_err", "P1's first peak against the experiment's, relative", "%", 100),
                            (("H1", "H2", "H3", "H4"), "levels' change from the coarser run", "% of H", 100 / 0.3)),  # H = 0.3 m
+    "dam_break_impact": ("Dam break impact, Lobovsky et al. 2014", "P1_peak_rel_err",
+                         "sensor 1's first peak (y = 3 mm) against the experiment's (event 5), relative", "%", 100,
+                         ("P1_impulse_rel_err", "its impulse over 0.2 t√(g/H) from the onset", "%", 100)),
+    "dam_break_buchner": ("Dam break, Buchner 2002", "P1_err_rms",
+                          "rms of P1 (y = 0.16 m) against Buchner 2002 over 2.4 ≤ t√(g/H) ≤ 7", "ρgH", 1,
+                          ("P1_peak_rel_err", "P1's first peak, relative", "%", 100)),
     "taylor_green": ("Taylor–Green, Re 100", "l2_vel_err_final", "L2 velocity error at t_end, relative", "%", 100,
                      ("e_kin_rel_err_final", "E_kin")),
     "poiseuille": ("Poiseuille", "l2_vel_err_final", "L2 velocity error at t_end, relative (Morris et al. 1997)", "%", 100,

@@ -14,6 +14,7 @@ typedef struct {
   PetscReal eta;           /* regularisation of Eqs. 16 and 22 over h (-fluid_eta) */
   PetscReal lap_kappa;     /* normalisation of Eqs. 16 and 22: exact on the lattice (-fluid_lap_normalise) */
   PetscReal alpha;         /* artificial viscosity, Eq. 24 (WCSPH) */
+  PetscReal wall_av;       /* Eq. 24's coefficient against walls and solids over the scheme's (-wcsph_wall_av, -isph_wall_av) */
   PetscReal delta;         /* density diffusion (delta-SPH), 0 = off */
   PetscReal xsph;          /* XSPH epsilon, Eq. 44, 0 = off */
   PetscReal shift;         /* WCSPH Fickian shifting coefficient A, 0 = off */

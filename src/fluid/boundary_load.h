@@ -17,7 +17,7 @@ SPH_INLINE void FluidPairLoad(Physics *ph, PetscInt a, PetscInt b, PetscReal F, 
   Particles        P = ph->P;
   const PetscReal *x = PField(P, FIELD_X), *v = PField(P, FIELD_V), *rho = PField(P, FIELD_RHO), *p = PField(P, FIELD_P), *m = PField(P, FIELD_M), *h = PField(P, FIELD_H);
   const PetscReal *fv = PField(P, FIELD_FVIEW), *vw = PField(P, FIELD_VWALL), *nrm = PField(P, FIELD_NORMAL);
-  const PetscReal  alpha = ph->isph ? ph->isph->alpha : ph->fl.alpha;
+  const PetscReal  alpha = (ph->isph ? ph->isph->alpha : ph->fl.alpha) * ph->fl.wall_av; /* a is a wall or a solid */
   const PetscBool  repulsion = (PetscBool)(KindIsSolid(P->kind[a]) && ph->solid && ph->solid->repulsion);
   PetscReal        d[3], dv[3], r2, hab = PairH(h[a], h[b]);
   PetscReal        pa, ra, ma, rb = rho[b];

@@ -44,6 +44,7 @@ PetscErrorCode ISPHSetFromOptions(Physics *ph)
   PetscCall(OptReal("-gradient_cond", "The corrected gradient only where its correction matrix is well conditioned: smallest over largest eigenvalue above this (1 on a full or half support; small across a thin jet; 0: wherever it is invertible); elsewhere the uncorrected difference form", "", s->grad_cond, &s->grad_cond, NULL));
   PetscCall(OptBool("-solid_eq14", "Fluid particles next to a solid body (and not at the free surface) take Eq. 14, whose pair forces are those the body receives: the momentum exchange is exact", "", s->solid_eq14, &s->solid_eq14, NULL));
   PetscCall(OptReal("-alpha", "Artificial viscosity (Eq. 24, velocity scale c0) in the predictor; damps the free-surface noise of the projection", "", s->alpha, &s->alpha, NULL));
+  PetscCall(OptReal("-wall_av", "Artificial viscosity against walls and solids, as a factor of -isph_alpha: with the walls at rest it acts as a friction that slows a thin front running along a floor (the dam break's front reaches the far wall late); 0 = none, the walls hold the fluid by pressure and Eq. 16 alone", "", ph->fl.wall_av, &ph->fl.wall_av, NULL));
   PetscCall(OptBool("-wall_contact", "A free-surface particle (P = 0, so no pressure stops it) that approaches a wall within dx of its first row loses its velocity towards the wall", "", s->wall_contact, &s->wall_contact, NULL));
   PetscCall(OptReal("-shift", "Particle shifting coefficient A (D = A h |v| dt, Skillen et al. 2013); 0 = off", "", s->shift, &s->shift, NULL));
   PetscOptionsEnd();
@@ -52,6 +53,7 @@ PetscErrorCode ISPHSetFromOptions(Physics *ph)
   PetscCheck(s->divr_min > 0 && s->divr_min < 2, ph->comm, PETSC_ERR_ARG_OUTOFRANGE, "-isph_divr %g must be in (0, 2)", (double)s->divr_min);
   PetscCheck(s->blend >= 0 && s->blend <= 1, ph->comm, PETSC_ERR_ARG_OUTOFRANGE, "-isph_blend %g must be in [0, 1]", (double)s->blend);
   PetscCheck(s->alpha >= 0, ph->comm, PETSC_ERR_ARG_OUTOFRANGE, "-isph_alpha %g must be >= 0", (double)s->alpha);
+  PetscCheck(ph->fl.wall_av >= 0 && ph->fl.wall_av <= 1, ph->comm, PETSC_ERR_ARG_OUTOFRANGE, "-isph_wall_av %g must be in [0, 1] (a factor of -isph_alpha)", (double)ph->fl.wall_av);
   PetscCheck(s->shift >= 0, ph->comm, PETSC_ERR_ARG_OUTOFRANGE, "-isph_shift %g must be >= 0", (double)s->shift);
   PetscCheck(s->grad_cond >= 0 && s->grad_cond < 1, ph->comm, PETSC_ERR_ARG_OUTOFRANGE, "-isph_gradient_cond %g must be in [0, 1): the smallest over the largest eigenvalue of the correction matrix (0.25 the default)", (double)s->grad_cond);
   if (s->source == ISPH_SOURCE_DIVERGENCE) s->blend = 0;
@@ -142,7 +144,7 @@ typedef struct {
   const FluidMaterial *fl;
   Particles            P;
   const PetscReal     *x, *v, *rho, *m, *h, *vw, *fv;
-  PetscReal            alpha;
+  PetscReal            alpha, alpha_wall; /* Eq. 24's between fluid particles, against walls and solids */
   PetscReal            ac[3];
 } PredictorSum;
 
@@ -161,7 +163,7 @@ SPH_INLINE void PredictorPair(void *ctx, PetscInt a, SPHPair p, const PetscInt D
   FluidView(s->fv, s->P->kind[b], b, s->m, rho, NULL, &mb, &rb, &pb);
   c = LaminarViscosity(mb, fl->mu, rho[a], rb, p.F * r2, r2, hab, fl->eta, fl->lap_kappa);
   VSub(v + D * a, v + D * b, dvab, D);
-  av = s->alpha > 0 ? mb * ArtificialViscosity(s->alpha, fl->c0, hab, 0.5 * (rho[a] + rb), VDot(dvab, d, D), r2) * p.F : 0;
+  av = s->alpha > 0 ? mb * ArtificialViscosity(KindIsFluid(s->P->kind[b]) ? s->alpha : s->alpha_wall, fl->c0, hab, 0.5 * (rho[a] + rb), VDot(dvab, d, D), r2) * p.F : 0;
   for (PetscInt i = 0; i < D; i++) s->ac[i] += c * (v[D * a + i] - vb[i]) - av * d[i];
 }
 
@@ -177,7 +179,7 @@ SPH_INLINE PetscErrorCode PredictorD(Physics *ph, const PetscInt D)
 
   PetscFunctionBeginUser;
   for (PetscInt a = 0; a < P->n; a++) {
-    PredictorSum s = {.fl = &ph->fl, .P = P, .x = x, .v = v, .rho = rho, .m = m, .h = h, .vw = vw, .fv = fv, .alpha = alpha, .ac = {ph->g[0], ph->g[1], ph->g[2]}};
+    PredictorSum s = {.fl = &ph->fl, .P = P, .x = x, .v = v, .rho = rho, .m = m, .h = h, .vw = vw, .fv = fv, .alpha = alpha, .alpha_wall = alpha * ph->fl.wall_av, .ac = {ph->g[0], ph->g[1], ph->g[2]}};
     if (KindIsFluid(P->kind[a]) && (mu > 0 || alpha > 0)) SPHPairs(ph->cells, a, PredictorPair, &s, D);
     for (PetscInt i = 0; i < D; i++) vs[D * a + i] = v[D * a + i] + dt * s.ac[i];
   }

@@ -18,12 +18,14 @@ PetscErrorCode WCSPHSetFromOptions(Physics *ph)
   PetscCall(OptDeprecated("-alpha", "-wcsph_alpha"));
   PetscCall(OptDeprecated("-delta", "-wcsph_delta"));
   PetscCall(OptReal("-alpha", "Artificial viscosity coefficient, Eq. 24", "", fl->alpha, &fl->alpha, NULL));
+  PetscCall(OptReal("-wall_av", "Artificial viscosity against walls and solids, as a factor of -wcsph_alpha: with the walls at rest it acts as a friction that slows a thin front running along a floor (the dam break's front reaches the far wall late); 0 = none, the walls hold the fluid by pressure and Eq. 16 alone", "", fl->wall_av, &fl->wall_av, NULL));
   PetscCall(OptReal("-delta", "Density diffusion coefficient (delta-SPH); 0 = off", "", fl->delta, &fl->delta, NULL));
   PetscCall(OptReal("-shift", "Particle shifting coefficient A (D = A h |v| dt, Skillen et al. 2013; none on the free surface, div r < 1.5, and next to it); 0 = off", "", fl->shift, &fl->shift, NULL));
   PetscCall(OptBool("-wall_clip", "Clip the wall pressure (Adami extrapolation) at 0: fluid in tension next to a wall is not held on it", "", fl->wall_clip, &fl->wall_clip, NULL));
   PetscCall(OptReal("-skin", "Verlet skin of the neighbour list, in particle spacings: the pairs within 2h + skin are kept and the list is rebuilt only once some particle has moved half the skin; 0 rebuilds at every step", "", skin, &skin, NULL));
   PetscOptionsEnd();
   PetscCheck(fl->alpha >= 0, ph->comm, PETSC_ERR_ARG_OUTOFRANGE, "-wcsph_alpha %g must be >= 0", (double)fl->alpha);
+  PetscCheck(fl->wall_av >= 0 && fl->wall_av <= 1, ph->comm, PETSC_ERR_ARG_OUTOFRANGE, "-wcsph_wall_av %g must be in [0, 1] (a factor of -wcsph_alpha)", (double)fl->wall_av);
   PetscCheck(fl->delta >= 0 && fl->delta <= 1, ph->comm, PETSC_ERR_ARG_OUTOFRANGE, "-wcsph_delta %g must be in [0, 1]", (double)fl->delta);
   PetscCheck(fl->shift >= 0, ph->comm, PETSC_ERR_ARG_OUTOFRANGE, "-wcsph_shift %g must be >= 0", (double)fl->shift);
   PetscCheck(skin >= 0 && skin <= 2, ph->comm, PETSC_ERR_ARG_OUTOFRANGE, "-wcsph_skin %g must be in [0, 2] particle spacings", (double)skin);
@@ -52,7 +54,7 @@ PetscErrorCode WCSPHView(Physics *ph, PetscViewer v)
 {
   const FluidMaterial *fl = &ph->fl;
   PetscFunctionBeginUser;
-  PetscCall(PetscViewerASCIIPrintf(v, "WCSPH: c0 %g m/s, AV alpha %g, delta-SPH %g, XSPH %g, shifting A = %g, wall pressure %s, neighbour skin %g dx\n", (double)fl->c0, (double)fl->alpha, (double)fl->delta, (double)fl->xsph, (double)fl->shift, fl->wall_clip ? "clipped at 0" : "as extrapolated (may be < 0)", (double)(ph->nb->skin / ph->dx)));
+  PetscCall(PetscViewerASCIIPrintf(v, "WCSPH: c0 %g m/s, AV alpha %g (x %g against walls), delta-SPH %g, XSPH %g, shifting A = %g, wall pressure %s, neighbour skin %g dx\n", (double)fl->c0, (double)fl->alpha, (double)fl->wall_av, (double)fl->delta, (double)fl->xsph, (double)fl->shift, fl->wall_clip ? "clipped at 0" : "as extrapolated (may be < 0)", (double)(ph->nb->skin / ph->dx)));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -181,7 +183,7 @@ SPH_INLINE void MomentumPair(void *ctx, PetscInt a, SPHPair pr, const PetscInt D
   VSub(va, s->v + D * b, dvab, D);
   r2 = VDot(d, d, D);
   FluidView(s->fv, s->P->kind[b], b, s->m, s->rho, s->p, &mb, &rb, &pb);
-  pterm = s->pa + pb / (rb * rb) + ArtificialViscosity(fl->alpha, fl->c0, hab, 0.5 * (s->ra + rb), VDot(dvab, d, D), r2);
+  pterm = s->pa + pb / (rb * rb) + ArtificialViscosity(KindIsFluid(s->P->kind[b]) ? fl->alpha : fl->alpha * fl->wall_av, fl->c0, hab, 0.5 * (s->ra + rb), VDot(dvab, d, D), r2);
   visc  = LaminarViscosity(mb, fl->mu, s->ra, rb, F * r2, r2, hab, fl->eta, fl->lap_kappa);
   if (s->nrm && KindIsSolid(s->P->kind[b])) {
     PetscReal f = FSIRepulsion(VDot(dvab, s->nrm + D * b, D), PetscSqrtReal(r2) / (2 * hab), s->ph->dt);

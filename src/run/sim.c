@@ -45,6 +45,7 @@ PetscErrorCode SimCreate(MPI_Comm comm, Sim *sim)
     ph->fl.eta        = 0.1; /* the paper's */
     ph->fl.lap_kappa  = 1;
     ph->fl.alpha      = 0.02;
+    ph->fl.wall_av    = 1.0;
     ph->fl.xsph       = 0.0;
     ph->fl.wall_clip  = PETSC_TRUE; /* WCSPH walls push, never pull (boundary.c) */
     ph->g[1]          = -9.81;

@@ -1,11 +1,18 @@
-/* Water at rest in a tank: the floor pressure must be rho g H and nothing must move.  In 2D or 3D
- * (-dim 3: a square tank W x W, the water H deep, gravity along -z). */
+/* Water at rest in a tank: the floor pressure must be rho g H, the side wall's rho g (H - y), and
+ * nothing must move.  In 2D or 3D (-dim 3: a square tank W x W, the water H deep, gravity along -z).
+ * The side wall's pressure is read as a wall sensor reads it (SceneProbePressure on the wall's
+ * face) at NWALL heights; its spread about rho g (H - y) after the first second is what the impact
+ * cases' sensors carry as noise (issue 56). */
 #include <sphfsi.h>
+
+#define NWALL 8 /* heights on the side wall */
 
 typedef struct {
   PetscReal W, H;
   PetscInt  rows;
-  Series    pb; /* p_bottom history */
+  Series    pb;   /* p_bottom history */
+  Series    dev;  /* rms over the wall's heights of (p - rho g (H - y)) / (rho g H) */
+  Series    dmax; /* the largest |p - rho g (H - y)| / (rho g H) over the wall's heights */
 } Hydro;
 
 static PetscErrorCode Create(Sim sim)
@@ -15,6 +22,8 @@ static PetscErrorCode Create(Sim sim)
   PetscCall(PetscNew(&c));
   PetscCall(SimSetSceneContext(sim, c));
   PetscCall(SceneKeepSeries(sim, &c->pb));
+  PetscCall(SceneKeepSeries(sim, &c->dev));
+  PetscCall(SceneKeepSeries(sim, &c->dmax));
   c->W = 0.1; c->H = 0.1; c->rows = SimKernelRows(sim);
   PetscOptionsBegin(SimComm(sim), NULL, "Scene hydrostatic: water at rest in a tank", "");
   PetscCall(OptReal("-tank_width", "Tank (and water) width (m)", "", c->W, &c->W, NULL));
@@ -58,18 +67,36 @@ static PetscErrorCode Populate(Sim sim)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* p_bottom, v_max, and the side wall's deviation from rho g (H - y) (rms over NWALL heights,
+ * over rho g H) */
 static PetscErrorCode Probe(Sim sim, PetscReal *vals)
 {
-  Hydro    *c = (Hydro *)SimSceneContext(sim);
-  PetscReal x0[3] = {0.5 * c->W, SimDim(sim) == 3 ? 0.5 * c->W : 0, 0}; /* the middle of the floor */
+  Hydro         *c  = (Hydro *)SimSceneContext(sim);
+  const PetscInt up = SimDim(sim) - 1;
+  const PetscReal rg = SimFluidMaterial(sim)->rho0 * (-SimGravity(sim)[up]) * c->H;
+  PetscReal      x0[3] = {0.5 * c->W, SimDim(sim) == 3 ? 0.5 * c->W : 0, 0}; /* the middle of the floor */
+  PetscReal      s2 = 0, dm = 0;
   PetscFunctionBeginUser;
   PetscCall(SceneProbePressure(sim, x0, &vals[0]));
   PetscCall(SceneMaxSpeed(sim, &vals[1]));
   PetscCall(SeriesAppend(&c->pb, SimTime(sim), vals[0]));
+  for (PetscInt k = 0; k < NWALL; k++) { /* the wall x = 0, in 3D the middle of its face */
+    PetscReal xw[3] = {0, 0.5 * c->W, 0}, p, d;
+    xw[up] = (k + 0.5) * c->H / NWALL;
+    PetscCall(SceneProbePressure(sim, xw, &p));
+    d = (p - rg * (1 - xw[up] / c->H)) / rg;
+    s2 += d * d;
+    dm = PetscMax(dm, PetscAbsReal(d));
+  }
+  vals[2] = PetscSqrtReal(s2 / NWALL);
+  PetscCall(SeriesAppend(&c->dev, SimTime(sim), vals[2]));
+  PetscCall(SeriesAppend(&c->dmax, SimTime(sim), dm));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-/* Mean floor pressure over the last quarter of the run against rho g H. */
+/* Mean floor pressure over the last quarter of the run against rho g H; the side wall's spread
+ * about rho g (H - y) after the first second (rms over the heights and the samples), and its largest
+ * deviation. */
 static PetscErrorCode Errors(Sim sim, FILE *f)
 {
   Hydro    *c = (Hydro *)SimSceneContext(sim);
@@ -80,6 +107,13 @@ static PetscErrorCode Errors(Sim sim, FILE *f)
   for (PetscInt k = 0; k < c->pb.n; k++)
     if (c->pb.t[k] >= 0.75 * SimTime(sim)) { s += c->pb.y[k]; n++; }
   if (f) fprintf(f, "\"p_bottom_rel_err\": %.6g, \"p_bottom_ref\": %.6g, \"v_max_final\": %.6g", (double)(n ? PetscAbsReal(s / n - ref) / ref : -1), (double)ref, (double)vmax);
+  {
+    PetscReal s2 = 0, dm = 0;
+    n = 0;
+    for (PetscInt k = 0; k < c->dev.n; k++)
+      if (c->dev.t[k] >= 1.0) { s2 += c->dev.y[k] * c->dev.y[k]; dm = PetscMax(dm, c->dmax.y[k]); n++; }
+    if (f && n) fprintf(f, ", \"p_wall_spread\": %.6g, \"p_wall_dev_max\": %.6g", (double)PetscSqrtReal(s2 / n), (double)dm);
+  }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -88,6 +122,8 @@ static PetscErrorCode Destroy(Sim sim)
   Hydro *c = (Hydro *)SimSceneContext(sim);
   PetscFunctionBeginUser;
   PetscCall(SeriesDestroy(&c->pb));
+  PetscCall(SeriesDestroy(&c->dev));
+  PetscCall(SeriesDestroy(&c->dmax));
   PetscCall(PetscFree(c));
   PetscCall(SimSetSceneContext(sim, NULL));
   PetscFunctionReturn(PETSC_SUCCESS);
@@ -96,6 +132,6 @@ static PetscErrorCode Destroy(Sim sim)
 const SceneOps SceneHydrostatic = {
   .name = "hydrostatic", .help = "water at rest in a tank",
   .create = Create, .populate = Populate,
-  .nprobes = 2, .probe_names = {"p_bottom", "v_max"},
+  .nprobes = 3, .probe_names = {"p_bottom", "v_max", "p_wall_dev"},
   .probe = Probe, .errors = Errors, .destroy = Destroy,
 };

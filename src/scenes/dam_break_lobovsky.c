@@ -42,11 +42,13 @@ static const Experiment Lobovsky2014 = {
   .impact_end = {3.5, 3.5, 3.5, 0}, /* sensor 4, higher up, peaks later with the run-up */
 };
 
-/* Buchner's sensors where the reference data's header puts them (after Adami et al. 2012), with a
- * 9 mm face as TrixiParticles' validation takes it (an assumption: Buchner's thesis is not at hand). */
+/* Buchner's sensors where the experiment had them, P1's centre 0.160 m above the floor, with the
+ * 90 mm face of Marrone et al. 2011 (as TrixiParticles' setup_marrone_2011.jl takes it; Buchner's
+ * thesis is not at hand).  Adami et al. 2012 and the codes after them put the numerical sensor's top
+ * there instead, 45 mm lower, after Greco (docs/impact.md measures what that does). */
 static const Experiment Buchner2002 = {
   .reference = "Buchner 2002 (H = 0.6 m; P1, P2 as digitised by TrixiParticles)",
-  .H = 0.6, .L = 1.2, .Lt = 3.22, .sensor = 0.009, .t_end = 7.0, .rms_from = 2.4, .ngauge = 0, .nsensor = 2,
+  .H = 0.6, .L = 1.2, .Lt = 3.22, .sensor = 0.09, .t_end = 7.0, .rms_from = 2.4, .ngauge = 0, .nsensor = 2,
   .sensor_y = {0.160, 0.584},
   .pressure_file = {"buchner2002_dambreak_H0.6_pressure_P1__trixiparticles.csv", "buchner2002_dambreak_H0.6_pressure_P2__trixiparticles.csv"},
   .sensor_cols = {"p_star", "p_star"},

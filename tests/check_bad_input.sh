@@ -45,6 +45,7 @@ check "-wcsph_delta"          -case dam_break -delta 2  # its name before 0.9.0:
 check "-wcsph_skin"           -case dam_break -wcsph_skin 3
 check "-wcsph_wall_av"        -case dam_break -wcsph_wall_av 2
 check "-isph_wall_av"         -case dam_break -fluid isph -isph_wall_av -1
+check "-wcsph_riemann"        -case dam_break -wcsph_riemann -3
 check "-sensor_size"          -case dam_break_buchner -sensor_size 0.5
 check "-fluid_start_jitter"   -case dam_break -fluid_start_jitter 0.5
 check "-h_factor"             -case dam_break -h_factor 0.5

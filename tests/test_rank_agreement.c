@@ -50,6 +50,7 @@ int main(int argc, char **argv)
     PetscCall(PetscOptionsSetValue(NULL, "-t_end", "0.05"));
     PetscCall(PetscOptionsSetValue(NULL, "-wcsph_delta", "0.1"));
     PetscCall(PetscOptionsSetValue(NULL, "-wcsph_alpha", "0.1"));
+    PetscCall(PetscOptionsSetValue(NULL, "-wcsph_riemann", "3")); /* and its pass against the walls, through the halo */
     PetscCall(PetscOptionsSetValue(NULL, "-fluid_xsph", "0.5"));
   }
   PetscCall(PetscOptionsSetValue(NULL, "-progress_every", "0"));

@@ -16,6 +16,7 @@ typedef struct {
   PetscReal alpha;         /* artificial viscosity, Eq. 24 (WCSPH) */
   PetscReal wall_av;       /* Eq. 24's coefficient against walls and solids over the scheme's (-wcsph_wall_av, -isph_wall_av) */
   PetscReal delta;         /* density diffusion (delta-SPH), 0 = off */
+  PetscReal riemann;       /* WCSPH: the acoustic Riemann solver's dissipation with its limiter (Zhang, Hu & Adams 2017), eta; 0 = off */
   PetscReal xsph;          /* XSPH epsilon, Eq. 44, 0 = off */
   PetscReal shift;         /* WCSPH Fickian shifting coefficient A, 0 = off */
   PetscBool shift_correct; /* both schemes: a shifted particle's velocity corrected to its new place */

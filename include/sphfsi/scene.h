@@ -205,7 +205,11 @@ PetscErrorCode SceneZonesSetUp(Sim sim, PetscReal dc, PetscReal *W, PetscReal *f
  * right wall of height top at x_end when right. */
 PetscErrorCode SceneAddZonedWater(Sim sim, PetscReal dc, PetscReal W, PetscReal fine, PetscReal H, PetscReal top, PetscInt rows, PetscReal x_end, PetscBool right);
 /* Shepard interpolation of the fluid pressure at a point, each neighbour's value carried to the
- * point hydrostatically: p(x0) = sum (p_b + rho_b g.(x0 - x_b)) W / sum W, rho_b by SceneFluidDensity (collective). */
+ * point hydrostatically: p(x0) = sum (p_b + rho_b g.(x0 - x_b)) W / sum W, rho_b by SceneFluidDensity,
+ * times the wetted fraction of the kernel's support outside the walls and solids,
+ * min(1, sum_fluid V_b W / (1 - sum_boundary V_b W)): a point that is partly dry reads the mean with
+ * the air at 0, as a transducer's face does, where Shepard's form alone would carry the wet
+ * neighbours' pressure over the dry part (collective). */
 PetscErrorCode SceneProbePressure(Sim sim, const PetscReal x0[], PetscReal *p);
 /* Level gauges: the water depth under a point, as the volume of fluid per unit length (2D) or area
  * (3D) on the vertical line through it, sum_b V_b W_col(s), with W_col(s) = int W(sqrt(s^2 + t^2)) dt

@@ -286,21 +286,27 @@ PetscErrorCode SceneProbePressure(Sim sim, const PetscReal x0[], PetscReal *pval
 {
   Particles      P = sim->P;
   PetscReal     *x = PField(P, FIELD_X), *p = PField(P, FIELD_P), *rho = PField(P, FIELD_RHO), *h = PField(P, FIELD_H);
-  PetscReal      s[2] = {0, 0};
-  const PetscInt D = P->dim;
+  const PetscReal *m = PField(P, FIELD_M);
+  PetscReal        s[4] = {0, 0, 0, 0}; /* sum (p_b + rho_b g.d) W, sum W, the fluid's sum V_b W, the boundary's */
+  const PetscInt   D    = P->dim;
   PetscFunctionBeginUser;
   for (PetscInt a = 0; a < P->n; a++) {
     PetscReal d[3] = {0, 0, 0}, w, gd;
-    if (!KindIsFluid(P->kind[a])) continue;
     VSub(x0, x + D * a, d, D);
     w = KernelW(&sim->phys.kernel, PetscSqrtReal(VDot(d, d, D)), h[a]);
     if (w <= 0) continue;
+    if (!KindIsFluid(P->kind[a])) {
+      s[3] += w * m[a] / rho[a];
+      continue;
+    }
     gd = VDot(sim->phys.g, d, D);
     s[0] += w * (p[a] + SceneFluidDensity(sim, rho[a]) * gd);
     s[1] += w;
+    s[2] += w * m[a] / rho[a];
   }
-  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, s, 2, MPIU_REAL, MPI_SUM, sim->comm));
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, s, 4, MPIU_REAL, MPI_SUM, sim->comm));
   *pval = s[1] > 0 ? s[0] / s[1] : 0;
+  if (s[3] < 1) *pval *= PetscMin(1.0, s[2] / (1.0 - s[3])); /* the wetted fraction of the support outside the walls */
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

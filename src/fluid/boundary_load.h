@@ -10,7 +10,7 @@
 
 /* Acceleration of boundary particle a from fluid neighbour b (F = F_ab of the pair): the reverse of
  * what the fluid gets from a (wcsph.c, isph.c), with a as the fluid sees it (FluidView): pressure
- * (Eq. 19, Eq. 14's symmetric form with ISPH) and artificial viscosity, laminar viscosity against
+ * (Eq. 19, Eq. 14's symmetric form with ISPH), artificial viscosity and WCSPH's Riemann dissipation, laminar viscosity against
  * a's no-slip velocity and, on a solid with the repulsive force on, Eq. 41. */
 SPH_INLINE void FluidPairLoad(Physics *ph, PetscInt a, PetscInt b, PetscReal F, PetscReal *acc, const PetscInt D)
 {
@@ -18,6 +18,7 @@ SPH_INLINE void FluidPairLoad(Physics *ph, PetscInt a, PetscInt b, PetscReal F, 
   const PetscReal *x = PField(P, FIELD_X), *v = PField(P, FIELD_V), *rho = PField(P, FIELD_RHO), *p = PField(P, FIELD_P), *m = PField(P, FIELD_M), *h = PField(P, FIELD_H);
   const PetscReal *fv = PField(P, FIELD_FVIEW), *vw = PField(P, FIELD_VWALL), *nrm = PField(P, FIELD_NORMAL);
   const PetscReal  alpha = (ph->isph ? ph->isph->alpha : ph->fl.alpha) * ph->fl.wall_av; /* a is a wall or a solid */
+  const PetscBool  riemann = (PetscBool)(!ph->isph && ph->fl.riemann > 0); /* WCSPH's Riemann dissipation */
   const PetscBool  repulsion = (PetscBool)(KindIsSolid(P->kind[a]) && ph->solid && ph->solid->repulsion);
   PetscReal        d[3], dv[3], r2, hab = PairH(h[a], h[b]);
   PetscReal        pa, ra, ma, rb = rho[b];
@@ -29,6 +30,7 @@ SPH_INLINE void FluidPairLoad(Physics *ph, PetscInt a, PetscInt b, PetscReal F, 
   r2    = VDot(d, d, D);
   pterm = p[b] / (rb * rb) + pa / (ra * ra) + ArtificialViscosity(alpha, ph->fl.c0, hab, 0.5 * (ra + rb), VDot(dv, d, D), r2);
   visc  = LaminarViscosity(ma, ph->fl.mu, rb, ra, F * r2, r2, hab, ph->fl.eta, ph->fl.lap_kappa);
+  if (riemann) pterm += PField(P, FIELD_QWALL)[b] * (ra + rb) / (ra * rb); /* b's Riemann dissipation against the walls (wcsph.c) */
   if (repulsion) rep = ph->solid->repulsion_scale * FSIRepulsion(VDot(dv, nrm + D * a, D), PetscSqrtReal(r2) / (2 * hab), ph->dt); /* the scale is 1 in 2D at h = 1.3 dx */
   for (PetscInt i = 0; i < D; i++) { /* the fluid's pair acceleration, reversed */
     PetscReal fb = visc * (v[D * b + i] - vw[D * a + i]) - ma * pterm * F * d[i];

@@ -10,6 +10,18 @@ static inline PetscReal ArtificialViscosity(PetscReal alpha, PetscReal c, PetscR
   return -alpha * c * (h * vr / (r2 + 0.01 * h * h)) / rho_bar;
 }
 
+/* Zhang, Hu & Adams 2017: the dissipative part of the linearised (acoustic) Riemann solver's
+ * interface pressure between a and b, P* = (p_a + p_b) / 2 + this, with their low-dissipation
+ * limiter: rho c beta du / 2, beta = min(eta du / c, 1), where du = U_L - U_R > 0 is the speed at
+ * which a and b approach along their line (-v_ab . r_ab / r).  Zero when they recede; quadratic in
+ * du for small jumps (so it leaves shear and weak waves alone), the full acoustic impedance
+ * rho c du / 2 for du >= c / eta.  It enters the momentum equation as 2 P* / (rho_a rho_b). */
+static inline PetscReal RiemannDissipation(PetscReal eta, PetscReal c, PetscReal rho_bar, PetscReal du)
+{
+  if (du <= 0 || eta <= 0) return 0.0;
+  return 0.5 * rho_bar * c * PetscMin(eta * du / c, 1.0) * du;
+}
+
 /* Eq. 16: laminar viscosity, the coefficient of (v_a - v_b); rgw = r_ab . grad_a W_ab; the
  * regularisation eta h (-fluid_eta; the paper 0.1) keeps r -> 0 finite; kappa normalises the operator to
  * be exact on the lattice (kernel.h, KernelLatticeSum, LATTICE_LAPLACIAN) */

@@ -20,12 +20,14 @@ PetscErrorCode WCSPHSetFromOptions(Physics *ph)
   PetscCall(OptReal("-alpha", "Artificial viscosity coefficient, Eq. 24", "", fl->alpha, &fl->alpha, NULL));
   PetscCall(OptReal("-wall_av", "Artificial viscosity against walls and solids, as a factor of -wcsph_alpha: with the walls at rest it acts as a friction that slows a thin front running along a floor (the dam break's front reaches the far wall late); 0 = none, the walls hold the fluid by pressure and Eq. 16 alone", "", fl->wall_av, &fl->wall_av, NULL));
   PetscCall(OptReal("-delta", "Density diffusion coefficient (delta-SPH); 0 = off", "", fl->delta, &fl->delta, NULL));
+  PetscCall(OptReal("-riemann", "Dissipation of the acoustic Riemann solver between approaching pairs, with Zhang, Hu & Adams 2017's limiter beta = min(eta du / c0, 1): the coefficient eta (they take 3); against walls and solids with their mirrored velocity.  It damps impacts' acoustic ringing where Eq. 24 would smear shear; 0 = off", "", fl->riemann, &fl->riemann, NULL));
   PetscCall(OptReal("-shift", "Particle shifting coefficient A (D = A h |v| dt, Skillen et al. 2013; none on the free surface, div r < 1.5, and next to it); 0 = off", "", fl->shift, &fl->shift, NULL));
   PetscCall(OptBool("-wall_clip", "Clip the wall pressure (Adami extrapolation) at 0: fluid in tension next to a wall is not held on it", "", fl->wall_clip, &fl->wall_clip, NULL));
   PetscCall(OptReal("-skin", "Verlet skin of the neighbour list, in particle spacings: the pairs within 2h + skin are kept and the list is rebuilt only once some particle has moved half the skin; 0 rebuilds at every step", "", skin, &skin, NULL));
   PetscOptionsEnd();
   PetscCheck(fl->alpha >= 0, ph->comm, PETSC_ERR_ARG_OUTOFRANGE, "-wcsph_alpha %g must be >= 0", (double)fl->alpha);
   PetscCheck(fl->wall_av >= 0 && fl->wall_av <= 1, ph->comm, PETSC_ERR_ARG_OUTOFRANGE, "-wcsph_wall_av %g must be in [0, 1] (a factor of -wcsph_alpha)", (double)fl->wall_av);
+  PetscCheck(fl->riemann >= 0, ph->comm, PETSC_ERR_ARG_OUTOFRANGE, "-wcsph_riemann %g must be >= 0 (Zhang et al.'s limiter is 3; 0 = off)", (double)fl->riemann);
   PetscCheck(fl->delta >= 0 && fl->delta <= 1, ph->comm, PETSC_ERR_ARG_OUTOFRANGE, "-wcsph_delta %g must be in [0, 1]", (double)fl->delta);
   PetscCheck(fl->shift >= 0, ph->comm, PETSC_ERR_ARG_OUTOFRANGE, "-wcsph_shift %g must be >= 0", (double)fl->shift);
   PetscCheck(skin >= 0 && skin <= 2, ph->comm, PETSC_ERR_ARG_OUTOFRANGE, "-wcsph_skin %g must be in [0, 2] particle spacings", (double)skin);
@@ -47,6 +49,7 @@ PetscErrorCode WCSPHSetUp(Physics *ph)
   PetscCall(ParticlesEnableField(ph->P, FIELD_VWALL, PETSC_FALSE)); /* ghosts: refreshed by BoundaryWallState */
   if (fl->xsph > 0 || fl->shift > 0) PetscCall(ParticlesEnableField(ph->P, FIELD_XSPH, PETSC_FALSE));
   if (fl->shift > 0 && !ph->confined) PetscCall(ParticlesEnableField(ph->P, FIELD_FS, PETSC_TRUE)); /* ghosts: at the rebuild */
+  if (fl->riemann > 0) PetscCall(ParticlesEnableField(ph->P, FIELD_QWALL, PETSC_FALSE)); /* ghosts: by WallRiemann */
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -54,7 +57,7 @@ PetscErrorCode WCSPHView(Physics *ph, PetscViewer v)
 {
   const FluidMaterial *fl = &ph->fl;
   PetscFunctionBeginUser;
-  PetscCall(PetscViewerASCIIPrintf(v, "WCSPH: c0 %g m/s, AV alpha %g (x %g against walls), delta-SPH %g, XSPH %g, shifting A = %g, wall pressure %s, neighbour skin %g dx\n", (double)fl->c0, (double)fl->alpha, (double)fl->wall_av, (double)fl->delta, (double)fl->xsph, (double)fl->shift, fl->wall_clip ? "clipped at 0" : "as extrapolated (may be < 0)", (double)(ph->nb->skin / ph->dx)));
+  PetscCall(PetscViewerASCIIPrintf(v, "WCSPH: c0 %g m/s, AV alpha %g (x %g against walls), Riemann dissipation eta %g, delta-SPH %g, XSPH %g, shifting A = %g, wall pressure %s, neighbour skin %g dx\n", (double)fl->c0, (double)fl->alpha, (double)fl->wall_av, (double)fl->riemann, (double)fl->delta, (double)fl->xsph, (double)fl->shift, fl->wall_clip ? "clipped at 0" : "as extrapolated (may be < 0)", (double)(ph->nb->skin / ph->dx)));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -160,17 +163,67 @@ SPH_INLINE PetscErrorCode ContinuityD(Physics *ph, const PetscInt D)
 
 static PetscErrorCode Continuity(Physics *ph) { return SPH_DIM_DISPATCH(ph->dim, ContinuityD, ph); }
 
+/* What the wall pass gathers over the walls and solids next to fluid particle a (WallRiemannD). */
+typedef struct {
+  Particles        P;
+  const PetscReal *x, *v, *m, *rho;
+  PetscReal        g[3], w, vw[3]; /* sum V_b grad_a W_ab; the weights -V_b F_ab and the velocities they weigh */
+} WallApproachSum;
+
+SPH_INLINE void WallApproachPair(void *ctx, PetscInt a, SPHPair pr, const PetscInt D)
+{
+  WallApproachSum *s = (WallApproachSum *)ctx;
+  PetscInt         b = pr.b;
+  PetscReal        vb;
+  if (!KindIsBoundary(s->P->kind[b])) return;
+  vb = s->m[b] / s->rho[b];
+  for (PetscInt i = 0; i < D; i++) s->g[i] += vb * pr.F * (s->x[D * a + i] - s->x[D * b + i]);
+  s->w -= vb * pr.F;
+  for (PetscInt i = 0; i < D; i++) s->vw[i] -= vb * pr.F * s->v[D * b + i];
+}
+
+/* The Riemann dissipation of fluid particle a against the walls and solids it touches, per unit
+ * density (fluid_terms.h), into FIELD_QWALL.  The wall is the mirror of the fluid (Adami et al.
+ * 2012): the jump is twice a's approach speed along the wall's normal, here the direction of
+ * sum_b V_b grad_a W_ab over a's boundary neighbours, relative to their mean velocity.  A particle
+ * sliding along a wall has no jump; along the pairs' own lines, each wall particle ahead of it
+ * would be approached and the dissipation would act as a friction (as Eq. 24 does against walls). */
+SPH_INLINE PetscErrorCode WallRiemannD(Physics *ph, const PetscInt D)
+{
+  Particles        P = ph->P;
+  const PetscReal *x = PField(P, FIELD_X), *v = PField(P, FIELD_V), *m = PField(P, FIELD_M), *rho = PField(P, FIELD_RHO);
+  PetscReal       *q       = PField(P, FIELD_QWALL);
+  const FieldId    field[] = {FIELD_QWALL};
+
+  PetscFunctionBeginUser;
+  for (PetscInt a = 0; a < P->n; a++) {
+    WallApproachSum s = {.P = P, .x = x, .v = v, .m = m, .rho = rho};
+    PetscReal       gn, du = 0;
+    q[a] = 0;
+    if (!KindIsFluid(P->kind[a])) continue;
+    SPHPairs(ph->cells, a, WallApproachPair, &s, D);
+    gn = PetscSqrtReal(VDot(s.g, s.g, D));
+    if (!(gn > 0 && s.w > 0)) continue;
+    for (PetscInt i = 0; i < D; i++) du += 2.0 * (v[D * a + i] - s.vw[i] / s.w) * s.g[i] / gn; /* g points at the wall */
+    q[a] = RiemannDissipation(ph->fl.riemann, ph->fl.c0, 1.0, du);
+  }
+  PetscCall(HaloRefresh(ph->halo, P, 1, field));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+static PetscErrorCode WallRiemann(Physics *ph) { return SPH_DIM_DISPATCH(ph->dim, WallRiemannD, ph); }
+
 /* What the momentum loop gathers over the pairs of fluid particle a (MomentumD). */
 typedef struct {
   Physics             *ph;
   Particles            P;
-  const PetscReal     *x, *v, *rho, *p, *m, *h, *vw, *fv, *nrm;
+  const PetscReal     *x, *v, *rho, *p, *m, *h, *vw, *fv, *nrm, *qw;
   const FluidMaterial *fl;
   PetscReal            ra, pa, ha; /* rho_a, p_a / rho_a^2, h_a */
   PetscReal            ac[3];
 } MomentumSum;
 
-/* Eq. 19 with Eq. 24, Eq. 16 and Eq. 41's pair */
+/* Eq. 19 with Eq. 24 and the Riemann dissipation (fluid_terms.h; against walls WallRiemannD's), Eq. 16 and Eq. 41's pair */
 SPH_INLINE void MomentumPair(void *ctx, PetscInt a, SPHPair pr, const PetscInt D)
 {
   MomentumSum         *s = (MomentumSum *)ctx;
@@ -190,7 +243,9 @@ SPH_INLINE void MomentumPair(void *ctx, PetscInt a, SPHPair pr, const PetscInt D
     f *= s->ph->solid->repulsion_scale; /* to the paper's 2D sum at 1.3 dx (solid.c); 1 there */
     for (PetscInt i = 0; i < D; i++) s->ac[i] += f * s->nrm[D * b + i];
   }
-  if (KindIsBoundary(s->P->kind[b])) VSub(va, s->vw + D * b, dvab, D);
+  if (KindIsBoundary(s->P->kind[b])) VSub(va, s->vw + D * b, dvab, D); /* b's mirrored velocity */
+  if (s->qw && KindIsBoundary(s->P->kind[b])) pterm += s->qw[a] * (s->ra + rb) / (s->ra * rb); /* 2 P* / (rho_a rho_b), WallRiemannD */
+  else if (fl->riemann > 0 && r2 > 0) pterm += 2.0 * RiemannDissipation(fl->riemann, fl->c0, 0.5 * (s->ra + rb), -VDot(dvab, d, D) / PetscSqrtReal(r2)) / (s->ra * rb);
   for (PetscInt i = 0; i < D; i++) s->ac[i] += (visc * dvab[i] - mb * pterm * F * d[i]);
 }
 
@@ -203,11 +258,12 @@ SPH_INLINE PetscErrorCode MomentumD(Physics *ph, const PetscInt D)
   const PetscReal *x = PField(P, FIELD_X), *v = PField(P, FIELD_V), *rho = PField(P, FIELD_RHO), *p = PField(P, FIELD_P);
   const PetscReal *m = PField(P, FIELD_M), *h = PField(P, FIELD_H), *vw = PField(P, FIELD_VWALL), *fv = PField(P, FIELD_FVIEW);
   const PetscReal *nrm = ph->solid && ph->solid->repulsion ? PField(P, FIELD_NORMAL) : NULL;
+  const PetscReal *qw  = ph->fl.riemann > 0 ? PField(P, FIELD_QWALL) : NULL;
   PetscReal       *acc = PField(P, FIELD_ACC);
 
   PetscFunctionBeginUser;
   for (PetscInt a = 0; a < P->n; a++) {
-    MomentumSum s = {.ph = ph, .P = P, .x = x, .v = v, .rho = rho, .p = p, .m = m, .h = h, .vw = vw, .fv = fv, .nrm = nrm, .fl = &ph->fl, .ra = rho[a], .pa = p[a] / (rho[a] * rho[a]), .ha = h[a]};
+    MomentumSum s = {.ph = ph, .P = P, .x = x, .v = v, .rho = rho, .p = p, .m = m, .h = h, .vw = vw, .fv = fv, .nrm = nrm, .qw = qw, .fl = &ph->fl, .ra = rho[a], .pa = p[a] / (rho[a] * rho[a]), .ha = h[a]};
     if (!KindIsFluid(P->kind[a])) continue;
     SPHPairs(ph->cells, a, MomentumPair, &s, D);
     for (PetscInt i = 0; i < D; i++) acc[D * a + i] = s.ac[i] + ph->g[i];
@@ -224,6 +280,7 @@ PetscErrorCode WCSPHRates(Physics *ph)
   if (ph->open) PetscCall(OpenState(ph)); /* the buffers' densities */
   PetscCall(WCSPHPressure(ph));
   PetscCall(BoundaryWallState(ph));
+  if (ph->fl.riemann > 0) PetscCall(WallRiemann(ph));
   PetscCall(Momentum(ph));
   if (ph->open) PetscCall(OpenRates(ph)); /* buffer particles move as their boundary says */
   PetscFunctionReturn(PETSC_SUCCESS);

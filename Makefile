@@ -142,7 +142,7 @@ check: deps
 
 # Throughput, scaling, memory and the partition model (tools/bench.sh; out/bench/bench.md, ~20 min on 2 cores).
 bench: deps
-	@$(MAKE) --no-print-directory all $(BINDIR)/partition_model
+	@$(MAKE) --no-print-directory all $(BINDIR)/partition_model $(BINDIR)/roofline
 	@BINDIR=$(BINDIR) bash tools/bench.sh
 
 # Hard cases of issue 6 (tools/hard.sh; each case PASS/FAIL with why, out/hard/hard.md, ~25 min on 2
@@ -179,6 +179,11 @@ study: deps
 # The layers of the code and the calls that cross them upward (tools/layers.py; --list for each one)
 layers:
 	@python3 tools/layers.py --list
+
+# The machine's memory bandwidth and flop rate (tools/roofline.c; docs/performance.md)
+$(BINDIR)/roofline: $(BUILD)/tools/roofline.o $(LIB_A)
+	@mkdir -p $(BINDIR)
+	$(CC) $(LDFLAGS) -o $@ $^ $(LDLIBS)
 
 # Partition statistics of a scene's cell graph for many ranks (tools/partition_model.c)
 $(BINDIR)/partition_model: $(BUILD)/tools/partition_model.o $(LIB_A)

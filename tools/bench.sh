@@ -36,7 +36,7 @@ if [ -n "${BENCH_QUICK:-}" ]; then
 else
   D25=$(div 100) T03=0.3 T05=0.5 TPL=0.2 DSC=$(div 440) WST=100 IST=20 DDB=$(div 700) DGATE=1.2e-4 NPMAX=1024
 fi
-[ -x $BIN/sphfsi ] && [ -x $BIN/partition_model ] || { echo "run make bench (needs $BIN/sphfsi and $BIN/partition_model)" >&2; exit 1; }
+[ -x $BIN/sphfsi ] && [ -x $BIN/partition_model ] && [ -x $BIN/roofline ] || { echo "run make bench (needs $BIN/sphfsi, $BIN/partition_model and $BIN/roofline)" >&2; exit 1; }
 has() { [[ " $ONLY " == *" $1 "* ]]; }
 T0=$SECONDS
 
@@ -56,7 +56,9 @@ run() {
 FAILS=""
 : > $OUT/runs.txt
 DB="-options_file cases/dam_break.opts -output_interval 0"
-if has throughput; then
+if has throughput; then # the machine's limits first (tools/roofline.c; docs/performance.md), 1 and 2 ranks
+  { $MPI -n 1 $BIN/roofline; $MPI -n 2 $BIN/roofline; } 2>&1 | grep '^roofline:' | grep -v checksum > $OUT/roofline.txt || FAILS="$FAILS roofline"
+
   for rep in "" _r2; do # twice, alternating: the report takes the faster of each (the machine's speed drifts)
     run wcsph_25k_np1$rep 1 $DB -dx $D25 -t_end 0.01 -probe_interval 0.001
     run wcsph_25k_np2$rep 2 $DB -dx $D25 -t_end 0.01 -probe_interval 0.001

@@ -103,6 +103,8 @@ md = ["## Benchmark (`make bench`)", "", f"Machine: {machine()}; bench wall time
 md.append("Load average before → after each run is in the runs table: the machine is shared, so the wall times are only as good as the load allowed. "
           "The WCSPH throughput runs and the 1- and 2-rank runs at ~400k particles ran twice, alternately (`_r2`); the goals take the faster run of each, "
           "because the machine's speed drifts by 10–20 % within minutes.\n")
+if os.path.exists(f"{out}/roofline.txt"):
+    md += ["The machine's limits (`bin/roofline`: STREAM triad, fused multiply-adds vectorised and scalar):", "", "```"] + open(f"{out}/roofline.txt").read().splitlines() + ["```", ""]
 md.append("| goal | target | measured | vs anchor | status |")
 md.append("|---|---|---|---|---|")
 md += rows

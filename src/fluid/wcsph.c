@@ -49,7 +49,7 @@ PetscErrorCode WCSPHSetUp(Physics *ph)
   PetscCall(ParticlesEnableField(ph->P, FIELD_VWALL, PETSC_FALSE)); /* ghosts: refreshed by BoundaryWallState */
   if (fl->xsph > 0 || fl->shift > 0) PetscCall(ParticlesEnableField(ph->P, FIELD_XSPH, PETSC_FALSE));
   if (fl->shift > 0 && !ph->confined) PetscCall(ParticlesEnableField(ph->P, FIELD_FS, PETSC_TRUE)); /* ghosts: at the rebuild */
-  if (fl->riemann > 0) PetscCall(ParticlesEnableField(ph->P, FIELD_QWALL, PETSC_FALSE)); /* ghosts: by WallRiemann */
+  if (fl->riemann > 0) PetscCall(ParticlesEnableField(ph->P, FIELD_QWALL, PETSC_FALSE)); /* ghosts: by WallRiemann, where solids read them */
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -207,7 +207,9 @@ SPH_INLINE PetscErrorCode WallRiemannD(Physics *ph, const PetscInt D)
     for (PetscInt i = 0; i < D; i++) du += 2.0 * (v[D * a + i] - s.vw[i] / s.w) * s.g[i] / gn; /* g points at the wall */
     q[a] = RiemannDissipation(ph->fl.riemann, ph->fl.c0, 1.0, du);
   }
-  PetscCall(HaloRefresh(ph->halo, P, 1, field));
+  /* the momentum loop and the bodies' forces read owned particles' values; a solid's load also its
+   * fluid ghosts' (boundary_load.h) */
+  if (ph->has_solid) PetscCall(HaloRefresh(ph->halo, P, 1, field));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

@@ -10,6 +10,7 @@
  *   -wall_box_K x0,y0,x1,y1            K = 1..8: an obstacle of wall particles at -dx; its rows
  *   -wall_box_K_faces left,right,...   within dx of the faces given (default all) are walls, the
  *                                      others dummies
+ *   -wall_box_K_measured 0             not part of -body_force's body (a channel's walls)
  *   -outflow                           water leaving the domain is removed
  *   -domain x0,y0,x1,y1                the computational box (default: the tanks with their walls,
  *                                      open to twice the walls' height)
@@ -36,6 +37,7 @@ typedef struct {
   PetscReal b[6], s; /* box: its low corner, then its high corner (2D x0,y0,x1,y1); lattice spacing (tanks: walls' spacing) */
   PetscInt  rows;    /* tanks: wall rows */
   PetscBool left, right, face[6];
+  PetscBool measured; /* wall boxes: part of -body_force's body */
 } Box;
 
 typedef struct {
@@ -145,6 +147,7 @@ static PetscErrorCode ReadBoxes(Sim sim, PetscOptionItems *PetscOptionsObject, c
     B->s = n == nb + 1 ? v[nb] : SimSpacing(sim);
     PetscCheck(B->s > 0, SimComm(sim), PETSC_ERR_ARG_OUTOFRANGE, "%s: the spacing %g must be > 0", name, (double)B->s);
     for (PetscInt i = 0; i < nb; i++) B->face[i] = PETSC_TRUE;
+    B->measured = PETSC_TRUE;
     if (faces) {
       char list[64] = "";
       PetscCall(PetscSNPrintf(name, sizeof(name), "-%s_%d_faces", prefix, (int)k));
@@ -153,6 +156,8 @@ static PetscErrorCode ReadBoxes(Sim sim, PetscOptionItems *PetscOptionsObject, c
         const char *fn2[4] = {"left", "bottom", "right", "top"}, *fn3[6] = {"left", "front", "bottom", "right", "back", "top"};
         for (PetscInt i = 0; i < nb; i++) B->face[i] = (PetscBool)(strstr(list, D == 3 ? fn3[i] : fn2[i]) != NULL);
       }
+      PetscCall(PetscSNPrintf(name, sizeof(name), "-%s_%d_measured", prefix, (int)k));
+      PetscCall(PetscOptionsBool(name, "Whether -body_force counts the fluid's force on this obstacle (0 for a channel's walls, whose friction is not the body's drag)", "", B->measured, &B->measured, NULL));
     }
   }
   PetscFunctionReturn(PETSC_SUCCESS);
@@ -384,7 +389,7 @@ static PetscErrorCode Populate(Sim sim)
   Boxes *c = (Boxes *)SimSceneContext(sim);
   PetscFunctionBeginUser;
   const PetscInt D = SimDim(sim), up = D - 1;
-  PetscInt       first_body;
+  PetscInt       first_body, unmeasured[NBOX][2]; /* ids of the wall boxes left out of -body_force's body */
   for (PetscInt i = 0; i < c->nfluid; i++) { /* at rest: hydrostatic below the lattice's top */
     const Box *F     = &c->fluid[i];
     PetscInt   first, n;
@@ -402,7 +407,11 @@ static PetscErrorCode Populate(Sim sim)
   first_body = SimNextId(sim); /* the obstacles: what follows the tanks */
   for (PetscInt i = 0; i < c->nsolid; i++) PetscCall(SceneAddBox(sim, KIND_SOLID, c->solid[i].b, SimSpacing(sim), SimSolidMaterial(sim)->rho0));
   for (PetscInt i = 0; i < c->nclamp; i++) PetscCall(SceneAddBox(sim, KIND_CLAMP, c->clamp[i].b, SimSpacing(sim), SimSolidMaterial(sim)->rho0));
-  for (PetscInt i = 0; i < c->nwall; i++) PetscCall(SceneAddWallBox(sim, c->wall[i].b, SimSpacing(sim), c->wall[i].face));
+  for (PetscInt i = 0; i < c->nwall; i++) {
+    unmeasured[i][0] = SimNextId(sim);
+    PetscCall(SceneAddWallBox(sim, c->wall[i].b, SimSpacing(sim), c->wall[i].face));
+    unmeasured[i][1] = c->wall[i].measured ? unmeasured[i][0] : SimNextId(sim); /* the ids [0, 1) are left out of the body */
+  }
   if (D == 3 && ShapesCount(c->shapes)) { /* an STL obstacle's faces resting on these walls are dry */
     PetscReal dry[6 * SHAPES_MAX][6];
     PetscInt  n = 0;
@@ -412,7 +421,7 @@ static PetscErrorCode Populate(Sim sim)
     PetscCall(ShapesSetDry(sim, c->shapes, n, (const PetscReal(*)[6])dry));
   }
   PetscCall(ShapesPopulate(sim, c->shapes));
-  if (c->body_force) { /* body 1: every wall or solid particle made after the tanks */
+  if (c->body_force) { /* body 1: every wall or solid particle made after the tanks, but the wall boxes with -wall_box_K_measured 0 */
     const PetscInt *id, *kind;
     PetscReal      *body;
     PetscInt        np;
@@ -420,7 +429,12 @@ static PetscErrorCode Populate(Sim sim)
     PetscCall(SimGetField(sim, "id", NULL, &id));
     PetscCall(SimGetField(sim, "kind", NULL, &kind));
     PetscCall(SimGetField(sim, "body", NULL, &body));
-    for (PetscInt a = 0; a < np; a++) body[a] = id[a] >= first_body && !KindIsFluid(kind[a]) ? 1 : 0;
+    for (PetscInt a = 0; a < np; a++) {
+      PetscBool in = (PetscBool)(id[a] >= first_body && !KindIsFluid(kind[a]));
+      for (PetscInt i = 0; i < c->nwall; i++)
+        if (id[a] >= unmeasured[i][0] && id[a] < unmeasured[i][1]) in = PETSC_FALSE;
+      body[a] = in ? 1 : 0;
+    }
     PetscCall(SimRestoreField(sim, "id", NULL, &id));
     PetscCall(SimRestoreField(sim, "kind", NULL, &kind));
     PetscCall(SimRestoreField(sim, "body", NULL, &body));

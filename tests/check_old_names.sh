@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The option names before the modules' prefixes (version 0.9.0, docs/options.md: -alpha is now
+# The option names before the modules' prefixes (version 0.9.0, docs/history/options.md: -alpha is now
 # -wcsph_alpha, -c0 -fluid_c0, ...): an old name works on with PETSc's one-line deprecation note, one
 # per old name used, and gives the run of its new name bit for bit (probes.csv); given both names the
 # new one wins; an ISPH run accepts WCSPH's old -alpha as it does -wcsph_alpha; a checkpoint that

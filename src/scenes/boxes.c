@@ -389,7 +389,7 @@ static PetscErrorCode Populate(Sim sim)
   Boxes *c = (Boxes *)SimSceneContext(sim);
   PetscFunctionBeginUser;
   const PetscInt D = SimDim(sim), up = D - 1;
-  PetscInt       first_body, unmeasured[NBOX][2]; /* ids of the wall boxes left out of -body_force's body */
+  PetscInt       first_body, wall_ids[NBOX][2]; /* each wall box's ids [first, end) */
   for (PetscInt i = 0; i < c->nfluid; i++) { /* at rest: hydrostatic below the lattice's top */
     const Box *F     = &c->fluid[i];
     PetscInt   first, n;
@@ -408,9 +408,9 @@ static PetscErrorCode Populate(Sim sim)
   for (PetscInt i = 0; i < c->nsolid; i++) PetscCall(SceneAddBox(sim, KIND_SOLID, c->solid[i].b, SimSpacing(sim), SimSolidMaterial(sim)->rho0));
   for (PetscInt i = 0; i < c->nclamp; i++) PetscCall(SceneAddBox(sim, KIND_CLAMP, c->clamp[i].b, SimSpacing(sim), SimSolidMaterial(sim)->rho0));
   for (PetscInt i = 0; i < c->nwall; i++) {
-    unmeasured[i][0] = SimNextId(sim);
+    wall_ids[i][0] = SimNextId(sim);
     PetscCall(SceneAddWallBox(sim, c->wall[i].b, SimSpacing(sim), c->wall[i].face));
-    unmeasured[i][1] = c->wall[i].measured ? unmeasured[i][0] : SimNextId(sim); /* the ids [0, 1) are left out of the body */
+    wall_ids[i][1] = SimNextId(sim);
   }
   if (D == 3 && ShapesCount(c->shapes)) { /* an STL obstacle's faces resting on these walls are dry */
     PetscReal dry[6 * SHAPES_MAX][6];
@@ -432,7 +432,7 @@ static PetscErrorCode Populate(Sim sim)
     for (PetscInt a = 0; a < np; a++) {
       PetscBool in = (PetscBool)(id[a] >= first_body && !KindIsFluid(kind[a]));
       for (PetscInt i = 0; i < c->nwall; i++)
-        if (id[a] >= unmeasured[i][0] && id[a] < unmeasured[i][1]) in = PETSC_FALSE;
+        if (!c->wall[i].measured && id[a] >= wall_ids[i][0] && id[a] < wall_ids[i][1]) in = PETSC_FALSE;
       body[a] = in ? 1 : 0;
     }
     PetscCall(SimRestoreField(sim, "id", NULL, &id));

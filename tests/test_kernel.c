@@ -20,6 +20,46 @@ static PetscErrorCode CheckLattice(const SPHKernel *K)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* KernelShiftCeiling against a direct measurement: the lattice's particles displaced by a mode,
+ * eps cos(k . x_b) along each axis in turn, grad C of the particle at the origin from the kernel
+ * itself (no Hessian) over eps gives the mode's matrix; the largest eigenvalue over the same k
+ * (a cheaper grid of pi/8 in 3D) is 1 / the ceiling to the finite difference's error (and, in 3D,
+ * the coarser grid's: the ceiling may then be lower, by less than 1 %). */
+static PetscErrorCode CheckShiftCeiling(const SPHKernel *K)
+{
+  const PetscReal h = K->h_factor, eps = 1e-6, dmax = KernelShiftCeiling(K);
+  const PetscInt  n = (PetscInt)PetscCeilReal(2.0 * h), D = K->dim, nz = D == 3 ? n : 0, s = D == 3 ? 9 : 17, nk = D == 3 ? s * s * s : s * s;
+  const PetscReal dk = PETSC_PI / (s - 1);
+  PetscReal       lmax = 0, ratio;
+  PetscFunctionBeginUser;
+  for (PetscInt m = 1; m < nk; m++) {
+    PetscReal kv[3] = {dk * (m % s), dk * ((m / s) % s), dk * (m / (s * s))}, M[3][3] = {{0}}, S[6], lo, hi;
+    for (PetscInt e = 0; e < D; e++) /* a displaced along axis e by eps, b by eps cos(k . x_b) */
+      for (PetscInt c = -nz; c <= nz; c++)
+        for (PetscInt j = -n; j <= n; j++)
+          for (PetscInt i = -n; i <= n; i++) {
+            PetscReal xb[3] = {(PetscReal)i, (PetscReal)j, (PetscReal)c}, d[3], r, F;
+            if (!i && !j && !c) continue;
+            for (PetscInt q = 0; q < 3; q++) d[q] = -xb[q];
+            d[e] += eps * (1 - PetscCosReal(VDot(kv, xb, D)));
+            r = PetscSqrtReal(VDot(d, d, D));
+            F = KernelF(K, r, h);
+            for (PetscInt q = 0; q < D; q++) M[q][e] += F * d[q] / eps; /* V_b = 1 */
+          }
+    if (D == 2) hi = 0.5 * (M[0][0] + M[1][1]) + PetscSqrtReal(0.25 * (M[0][0] - M[1][1]) * (M[0][0] - M[1][1]) + 0.25 * (M[0][1] + M[1][0]) * (M[0][1] + M[1][0]));
+    else {
+      S[0] = M[0][0]; S[1] = 0.5 * (M[0][1] + M[1][0]); S[2] = 0.5 * (M[0][2] + M[2][0]);
+      S[3] = M[1][1]; S[4] = 0.5 * (M[1][2] + M[2][1]); S[5] = M[2][2];
+      Sym3EigenRange(S, &lo, &hi);
+    }
+    lmax = PetscMax(lmax, hi);
+  }
+  ratio = dmax * lmax * h * h;
+  PetscCall(PetscPrintf(PETSC_COMM_WORLD, "kernel %s %dD at h = %g dx: shifting's ceiling %.4f h^2, measured modes' %.4f h^2\n", KernelTypes[K->type], (int)D, (double)h, (double)dmax, (double)(1 / (lmax * h * h))));
+  PetscCheck(ratio < 1 + 1e-4 && ratio > (D == 3 ? 0.99 : 1 - 1e-4), PETSC_COMM_SELF, PETSC_ERR_PLIB, "Shifting's ceiling %g h^2 against the measured modes' %g h^2", (double)dmax, (double)(1 / (lmax * h * h)));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 /* KernelShape (the terms') and KernelShapeList (the neighbour list's, without branches) group the
  * products differently (kernel.h): at the same R they may differ in the last bits, by at most 8 eps
  * relative (measured: 2.1 for the cubic spline, 2.5-3.4 for the Wendland kernels). */
@@ -259,6 +299,8 @@ int main(int argc, char **argv)
       KernelInit(&K3, (KernelType)t, 3, k ? 2.0 : SPH_H_FACTOR);
       PetscCall(CheckKernel(&K));
       PetscCall(CheckLattice(&K3));
+      PetscCall(CheckShiftCeiling(&K));
+      PetscCall(CheckShiftCeiling(&K3));
       if (!k) {
         PetscCall(CheckForms(&K));
         PetscCall(CheckForms(&K3));

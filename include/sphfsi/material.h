@@ -20,6 +20,7 @@ typedef struct {
   PetscReal xsph;          /* XSPH epsilon, Eq. 44, 0 = off */
   PetscReal shift;         /* WCSPH Fickian shifting coefficient A, 0 = off */
   PetscBool shift_correct; /* both schemes: a shifted particle's velocity corrected to its new place */
+  PetscReal shift_dmax;    /* both schemes: the ceiling of shifting's A h |v| dt over h^2 (-fluid_shift_ceiling); 0 = none */
   PetscReal lat_divr;      /* WCSPH with shifting: bulk value of -sum V F r^2, normalises div r */
   PetscBool wall_clip;     /* WCSPH: the Adami wall pressure clipped at 0, so that a wall never pulls fluid */
 } FluidMaterial;

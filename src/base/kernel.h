@@ -160,5 +160,42 @@ static inline PetscReal KernelLatticeSum(const SPHKernel *K, LatticeSum which, P
   return s;
 }
 
+/* The largest diffusion coefficient D (in units of h^2) that Fickian shifting, dr = -D grad C with
+ * grad C = sum_b V_b grad_a W_ab, can take without reversing any displacement mode of the lattice:
+ * linearised, a mode of wave vector k changes by (I - D M(k)) each step, with
+ * M(k) = sum_b V_b grad grad W(r_b) (1 - cos k . r_b); this returns 1 / (h^2 times the largest
+ * eigenvalue of M over k in [0, pi]^dim, on a grid of pi/16).  Past it the modes near the largest
+ * overshoot each step (a particle-scale oscillation that alternates from step to step), past twice
+ * it they grow.  The largest is a mode of about 5 dx, not the checkerboard (which the cubic spline at
+ * 1.3 dx hardly sees).  Cubic spline at 1.3 dx: 0.427 h^2 in 2D; test_kernel checks it against the
+ * modes' response measured on the displaced lattice.  grad grad W = F I + r dF/dr n n, dF/dr by a
+ * central difference (once, at set-up). */
+static inline PetscReal KernelShiftCeiling(const SPHKernel *K)
+{
+  const PetscReal h = K->h_factor, dr = 1e-6 * h, dk = PETSC_PI / 16;
+  const PetscInt  n = (PetscInt)PetscCeilReal(2.0 * h), D = K->dim, nz = D == 3 ? n : 0, nk = D == 3 ? 17 * 17 * 17 : 17 * 17;
+  PetscReal       lmax = 0;
+  for (PetscInt m = 1; m < nk; m++) { /* k = dk (m mod 17, m/17 mod 17, m/289): every mode but k = 0 */
+    PetscReal kv[3] = {dk * (m % 17), dk * ((m / 17) % 17), dk * (m / 289)}, M[6] = {0, 0, 0, 0, 0, 0}, lo, hi;
+    for (PetscInt c = -nz; c <= nz; c++)
+      for (PetscInt j = -n; j <= n; j++)
+        for (PetscInt i = -n; i <= n; i++) {
+          PetscReal x[3] = {(PetscReal)i, (PetscReal)j, (PetscReal)c}, r = PetscSqrtReal(VDot(x, x, D)), F, dF, wgt;
+          if (r == 0 || r >= 2.0 * h) continue;
+          F   = KernelF(K, r, h);
+          dF  = (KernelF(K, r + dr, h) - KernelF(K, r - dr, h)) / (2.0 * dr);
+          wgt = 1.0 - PetscCosReal(VDot(kv, x, D));
+          SymOuterSubtract(M, -wgt * dF / r, x, D); /* + wgt (dF / r) x (x) x */
+          M[0] += wgt * F;
+          if (D == 2) M[2] += wgt * F;
+          else { M[3] += wgt * F; M[5] += wgt * F; }
+        }
+    if (D == 2) hi = 0.5 * (M[0] + M[2]) + PetscSqrtReal(0.25 * (M[0] - M[2]) * (M[0] - M[2]) + M[1] * M[1]);
+    else Sym3EigenRange(M, &lo, &hi);
+    lmax = PetscMax(lmax, hi);
+  }
+  return lmax > 0 ? 1.0 / (lmax * h * h) : PETSC_MAX_REAL;
+}
+
 /* Rows of wall particles that cover the kernel's support from the wall's face: ceil(2 h / dx) */
 static inline PetscInt KernelSupportRows(const SPHKernel *K) { return (PetscInt)PetscCeilReal(2.0 * K->h_factor - 1e-9); }

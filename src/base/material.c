@@ -3,7 +3,7 @@
 
 PetscErrorCode FluidMaterialSetFromOptions(MPI_Comm comm, const SPHKernel *kernel, PetscInt dim, PetscReal v_ref, FluidMaterial *fl, PetscReal *start_jitter)
 {
-  PetscBool norm = PETSC_TRUE;
+  PetscBool norm = PETSC_TRUE, ceiling = PETSC_FALSE;
   PetscFunctionBeginUser;
   if (fl->c0 <= 0) fl->c0 = 10.0 * v_ref;
   PetscOptionsBegin(comm, "fluid_", "Fluid material (both schemes)", "Fluid");
@@ -23,10 +23,12 @@ PetscErrorCode FluidMaterialSetFromOptions(MPI_Comm comm, const SPHKernel *kerne
   PetscCall(OptReal("-xsph", "XSPH epsilon, Eq. 44; 0 = off", "", fl->xsph, &fl->xsph, NULL));
   PetscCall(OptReal("-start_jitter", "Displace each particle of the fluid's start lattice at random by up to this fraction of dx in x and y (by its id: the same on any number of ranks); a perfect lattice gives way all at once where the flow squeezes it (Taylor-Green's stagnation points); 0 = the lattice", "", *start_jitter, start_jitter, NULL));
   PetscCall(OptBool("-shift_correct", "With particle shifting (-wcsph_shift, -isph_shift): correct a shifted particle's velocity to its new place, v += dr . grad v", "", fl->shift_correct, &fl->shift_correct, NULL));
+  PetscCall(OptBool("-shift_ceiling", "With particle shifting: its coefficient A h |v| dt at most the kernel's monotone limit (0.43 h^2 for the cubic spline at 1.3 dx), past which the shift overshoots the particles' short modes each step (ISPH at A > 1.7 and CFL 0.25: an oscillation from step to step in the forces on a body)", "", ceiling, &ceiling, NULL));
   PetscOptionsEnd();
   PetscCheck(fl->rho0 > 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-fluid_rho0 %g must be > 0", (double)fl->rho0);
   PetscCheck(fl->mu >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-fluid_mu %g must be >= 0", (double)fl->mu);
   PetscCheck(fl->eta > 0 && fl->eta <= 1, comm, PETSC_ERR_ARG_OUTOFRANGE, "-fluid_eta %g must be in (0, 1] (eta / h; the paper 0.1)", (double)fl->eta);
+  fl->shift_dmax = ceiling ? KernelShiftCeiling(kernel) : 0;
   fl->lap_kappa = norm ? (PetscReal)dim / KernelLatticeSum(kernel, LATTICE_LAPLACIAN, fl->eta) : 1.0;
   PetscCheck(fl->c0 > 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-fluid_c0 %g must be > 0", (double)fl->c0);
   PetscCheck(*start_jitter >= 0 && *start_jitter <= 0.25, comm, PETSC_ERR_ARG_OUTOFRANGE, "-fluid_start_jitter %g must be in [0, 0.25] (a fraction of dx)", (double)*start_jitter);

@@ -230,13 +230,14 @@ static PetscErrorCode Reset(PPE ppe, Physics *ph)
 
 /* Row of a solid particle that moves (ISPH + solid, -fsi_implicit): Adami's extrapolation with the
  * particle's acceleration a_s, sum_f c (P_f - P_s) + rho0 (g - a_s) . sum_f c r_sf = 0, where
- * a_s = a_last + A(P) - A(P_last): the particle's mean acceleration over the last fluid step,
- * changed by what the change of the fluid's pressure does to it (A: the reverse of the fluid's pair
- * pressure forces over its mass, solid.c; linear in P_f and P_s, taken implicitly).  A Robin
- * condition in the manner of Fernandez et al. 2013: the pressure knows that the solid gives way,
- * so the fluid's added mass enters the solve.  A solid held at rest during the solve (as a wall)
- * makes the staggered coupling amplify by M_added / m_solid each step, which blows up for the
- * rubber gate (about 10); in equilibrium both agree.  Returns the right-hand side; fills cols/vals. */
+ * a_s = a_last + A(P) - A(P_last): the particle's mean acceleration over the last fluid step
+ * (none with -fsi_mean_acc 0), changed by what the change of the fluid's pressure does to it (A:
+ * the reverse of the fluid's pair pressure forces over its mass, solid.c; linear in P_f and P_s,
+ * taken implicitly).  A Robin condition in the manner of Fernandez et al. 2013: the pressure knows
+ * that the solid gives way, so the fluid's added mass enters the solve.  A solid held at rest
+ * during the solve (as a wall) makes the staggered coupling amplify by M_added / m_solid each step,
+ * which blows up for the rubber gate (about 10); in equilibrium both agree.  Returns the
+ * right-hand side; fills cols/vals. */
 SPH_INLINE PetscReal MovingSolidRow(PPE ppe, Physics *ph, PetscInt a, PetscReal va, PetscInt *nc, const PetscInt D)
 {
   Particles        P = ph->P;
@@ -278,7 +279,7 @@ SPH_INLINE PetscReal MovingSolidRow(PPE ppe, Physics *ph, PetscInt a, PetscReal 
   rhs_last += ediag * pa / (ra * ra); /* -rho0 R . A(P_last) */
   ppe->vals[0] = diag != 0 ? va * (-diag + ediag / (ra * ra)) : va / (rho0 * h[a] * h[a]);
   *nc          = n;
-  VSub(ph->g, am + D * a, gam, D);
+  for (PetscInt i = 0; i < D; i++) gam[i] = ph->g[i] - (am ? am[D * a + i] : 0); /* -fsi_mean_acc 0: no field */
   return -va * (rho0 * VDot(gam, R, D) - rhs_last);
 }
 

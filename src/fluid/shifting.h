@@ -1,8 +1,10 @@
 /* Fickian particle shifting shared by the ISPH and WCSPH schemes: dr = -A h |v| dt grad C
- * (Skillen et al. 2013), at most 0.1 h per step, none on the free surface and next to it (a fluid
- * neighbour on it).  grad C = sum_b V_b grad_a W_ab is the concentration gradient.  Lind et al.
- * (2012) keep the tangential part next to the surface; with the normal taken from the particle's
- * own grad C, as here, that part is zero. */
+ * (Skillen et al. 2013), with -fluid_shift_ceiling A h |v| dt at most dmax h^2 (KernelShiftCeiling:
+ * beyond it the shift overshoots the lattice's short modes each step, an oscillation from step to
+ * step that ISPH's forces on a body carry at A = 5 and CFL 0.25), at most 0.1 h per step, none on
+ * the free surface and next to it (a fluid neighbour on it).  grad C = sum_b V_b grad_a W_ab is
+ * the concentration gradient.  Lind et al. (2012) keep the tangential part next to the surface;
+ * with the normal taken from the particle's own grad C, as here, that part is zero. */
 #pragma once
 #include "base/kernel.h"
 #include "base/dim.h"
@@ -15,11 +17,13 @@ typedef enum { SHIFT_BULK, SHIFT_NEAR_SURFACE, SHIFT_SURFACE } ShiftZone;
 #define SHIFT_DIVR_SURFACE 1.5
 
 /* The shifting velocity dr/dt of a particle with smoothing length h, velocity v and concentration
- * gradient c over a step dt, in dim dimensions; adds it to xs. */
-static inline void ShiftVelocity(PetscReal A, ShiftZone zone, PetscReal h, const PetscReal v[], PetscReal dt, const PetscReal c[], PetscReal xs[], const PetscInt dim)
+ * gradient c over a step dt, in dim dimensions, the coefficient at most dmax h^2 (dmax 0: no
+ * ceiling); adds it to xs. */
+static inline void ShiftVelocity(PetscReal A, PetscReal dmax, ShiftZone zone, PetscReal h, const PetscReal v[], PetscReal dt, const PetscReal c[], PetscReal xs[], const PetscInt dim)
 {
   PetscReal speed = PetscSqrtReal(VDot(v, v, dim)), D = A * h * speed * dt, ds[3], len;
   if (A <= 0 || zone != SHIFT_BULK || dt <= 0) return;
+  if (dmax > 0) D = PetscMin(D, dmax * h * h);
   for (PetscInt i = 0; i < dim; i++) ds[i] = -D * c[i];
   len = PetscSqrtReal(VDot(ds, ds, dim));
   if (len > 0.1 * h)

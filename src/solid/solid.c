@@ -51,9 +51,11 @@ static PetscErrorCode FSISetFromOptions(Physics *ph)
   Solid s = ph->solid;
   PetscFunctionBeginUser;
   s->implicit = (PetscBool)(ph->fluid == FLUID_ISPH);
+  s->mean_acc = PETSC_TRUE;
   s->transit  = ph->fluid == FLUID_ISPH ? 0.85 : 0.0; /* K, G x 5 gate: 1.0 swings the load -138..360 N/m, 0.85 runs clean */
   PetscOptionsBegin(ph->comm, "fsi_", "Fluid-structure coupling", "Solid");
   if (ph->fluid == FLUID_ISPH) PetscCall(OptBool("-implicit", "ISPH + solid: the solid rows of the pressure equation answer the solid's acceleration under that pressure (implicit interface; off = the solid seen as a wall at rest during the solve, unstable for light solids)", "", s->implicit, &s->implicit, NULL));
+  if (ph->fluid == FLUID_ISPH) PetscCall(OptBool("-mean_acc", "ISPH, implicit interface: a solid particle's pressure row starts from its mean acceleration over the last fluid step, changed by what the new pressure does to it (Adami's moving wall); off = only that change, so that a thin solid's fast elastic oscillation, which the mean over a short fluid step keeps, stays out of the pressure (the Turek-Hron flag: docs/turek_hron.md)", "", s->mean_acc, &s->mean_acc, NULL));
   if (ph->fluid == FLUID_ISPH) PetscCall(OptReal("-dt_transit", "ISPH + solid: the fluid step is at most this many times the time an elastic wave (c0 of the solid) takes to cross the solid's largest extent, since the pressure is frozen over the solid sub-steps (0 = no limit); a gate 5x stiffer than the rubber needs it", "", s->transit, &s->transit, NULL));
   PetscCall(OptBool("-repulsion", "Repulsive force Eq. 41 between fluid and solid particles (default: on with -fluid wcsph, off with isph)", "", s->repulsion, &s->repulsion, NULL));
   PetscOptionsEnd();
@@ -144,7 +146,7 @@ PetscErrorCode SolidSetUp(Physics *ph)
     PetscCall(ParticlesEnableField(ph->P, FIELD_VWALL, PETSC_FALSE));
   }
   if (s->repulsion) PetscCall(ParticlesEnableField(ph->P, FIELD_NORMAL, PETSC_TRUE));
-  if (s->implicit) PetscCall(ParticlesEnableField(ph->P, FIELD_AMEAN, PETSC_FALSE));
+  if (s->implicit && s->mean_acc) PetscCall(ParticlesEnableField(ph->P, FIELD_AMEAN, PETSC_FALSE));
   /* ISPH: the solid's loads (after the step's last rebuild) and its PPE rows (after the predictor's)
    * read the fluid ghosts' pressure, which nothing else recomputes there */
   if (fluid && ph->fluid == FLUID_ISPH) PetscCall(ParticlesEnableField(ph->P, FIELD_P, PETSC_TRUE));

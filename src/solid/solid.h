@@ -49,6 +49,7 @@ struct _p_Solid {
   PetscBool     subcycle;  /* multi-rate: solid sub-steps inside the fluid step */
   PetscReal     cfl;       /* Courant number of the solid's step */
   PetscBool     implicit;  /* ISPH: the solid's rows of the pressure equation answer its acceleration (ppe.c) */
+  PetscBool     mean_acc;  /* ISPH, implicit: those rows start from its mean acceleration over the last fluid step */
   PetscReal     transit;   /* ISPH: fluid step <= transit * (solid extent) / c0_solid; 0 = no limit */
   PetscReal     extent;    /* largest side of the moving solids' bounding box at the start (0: not yet known) */
   PetscReal    *R;     /* artificial stress (symmetric, dim.h's order) of owned + ghost particles, Eqs. 32-34 */

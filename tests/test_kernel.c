@@ -46,12 +46,9 @@ static PetscErrorCode CheckShiftCeiling(const SPHKernel *K)
             F = KernelF(K, r, h);
             for (PetscInt q = 0; q < D; q++) M[q][e] += F * d[q] / eps; /* V_b = 1 */
           }
-    if (D == 2) hi = 0.5 * (M[0][0] + M[1][1]) + PetscSqrtReal(0.25 * (M[0][0] - M[1][1]) * (M[0][0] - M[1][1]) + 0.25 * (M[0][1] + M[1][0]) * (M[0][1] + M[1][0]));
-    else {
-      S[0] = M[0][0]; S[1] = 0.5 * (M[0][1] + M[1][0]); S[2] = 0.5 * (M[0][2] + M[2][0]);
-      S[3] = M[1][1]; S[4] = 0.5 * (M[1][2] + M[2][1]); S[5] = M[2][2];
-      Sym3EigenRange(S, &lo, &hi);
-    }
+    for (PetscInt q = 0, k = 0; q < D; q++) /* the symmetric part, dim.h's order */
+      for (PetscInt e = q; e < D; e++) S[k++] = 0.5 * (M[q][e] + M[e][q]);
+    SymEigenRange(S, &lo, &hi, D);
     lmax = PetscMax(lmax, hi);
   }
   ratio = dmax * lmax * h * h;

@@ -51,14 +51,24 @@ static inline void Sym3EigenRange(const PetscReal *M, PetscReal *lmin, PetscReal
   *lmin = q + 2.0 * p * PetscCosReal(phi + 2.0 * PETSC_PI / 3.0);
 }
 
+/* Smallest and largest eigenvalue of a symmetric D x D matrix (2D: the closed form). */
+SPH_INLINE void SymEigenRange(const PetscReal *M, PetscReal *lmin, PetscReal *lmax, const PetscInt D)
+{
+  if (D == 2) {
+    PetscReal half = 0.5 * (M[0] + M[2]), disc = PetscSqrtReal(0.25 * (M[0] - M[2]) * (M[0] - M[2]) + M[1] * M[1]);
+    *lmin = half - disc;
+    *lmax = half + disc;
+  } else Sym3EigenRange(M, lmin, lmax);
+}
+
 /* x = M^-1 b where M (symmetric, positive) is well conditioned: its smallest over its largest
  * eigenvalue above cond, and its determinant clear of round-off; returns whether it solved. */
 SPH_INLINE PetscBool SymSolveConditioned(const PetscReal *M, const PetscReal *b, PetscReal cond, PetscReal *x, const PetscInt D)
 {
   if (D == 2) {
-    PetscReal det = M[0] * M[2] - M[1] * M[1], half = 0.5 * (M[0] + M[2]);
-    PetscReal disc = PetscSqrtReal(0.25 * (M[0] - M[2]) * (M[0] - M[2]) + M[1] * M[1]);
-    if (!(half - disc > cond * (half + disc) && det > 1e-6 * (M[0] * M[0] + M[2] * M[2]))) return PETSC_FALSE;
+    PetscReal det = M[0] * M[2] - M[1] * M[1], lmin, lmax;
+    SymEigenRange(M, &lmin, &lmax, 2);
+    if (!(lmin > cond * lmax && det > 1e-6 * (M[0] * M[0] + M[2] * M[2]))) return PETSC_FALSE;
     x[0] = (M[2] * b[0] - M[1] * b[1]) / det;
     x[1] = (-M[1] * b[0] + M[0] * b[1]) / det;
     return PETSC_TRUE;

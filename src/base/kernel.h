@@ -190,8 +190,7 @@ static inline PetscReal KernelShiftCeiling(const SPHKernel *K)
           if (D == 2) M[2] += wgt * F;
           else { M[3] += wgt * F; M[5] += wgt * F; }
         }
-    if (D == 2) hi = 0.5 * (M[0] + M[2]) + PetscSqrtReal(0.25 * (M[0] - M[2]) * (M[0] - M[2]) + M[1] * M[1]);
-    else Sym3EigenRange(M, &lo, &hi);
+    SymEigenRange(M, &lo, &hi, D);
     lmax = PetscMax(lmax, hi);
   }
   return lmax > 0 ? 1.0 / (lmax * h * h) : PETSC_MAX_REAL;

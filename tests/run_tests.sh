@@ -65,6 +65,7 @@ run test_rank_agreement_wcsph_8 $MPI8 "${BINDIR:-bin}"/test_rank_agreement
 run test_rank_agreement_open $MPI "${BINDIR:-bin}"/test_rank_agreement -case open_channel -dx 0.01 -t_end 0.6 -wcsph_delta 0.1 -min_speed 0.1
 run test_rank_agreement_open_8 $MPI8 "${BINDIR:-bin}"/test_rank_agreement -case open_channel -dx 0.01 -t_end 0.6 -wcsph_delta 0.1 -min_speed 0.1
 run test_rank_agreement_open_isph $MPI "${BINDIR:-bin}"/test_rank_agreement -case open_channel -dx 0.01 -t_end 0.6 -fluid isph -isph_shift 5 -ppe_ksp_rtol 1e-10 -tol 1e-6 -min_speed 0.1
+run test_rank_agreement_open_isph_8 $MPI8 "${BINDIR:-bin}"/test_rank_agreement -case open_channel -dx 0.01 -t_end 0.6 -fluid isph -isph_shift 5 -ppe_ksp_rtol 1e-10 -tol 1e-6 -min_speed 0.1
 # No free surface (periodic): the pinned row (global row 0, another particle on another rank count)
 # kept its right-hand side out of the zero sum, and 1 and 2 ranks differed by 7e-4
 run test_rank_agreement_isph_pinned $MPI "${BINDIR:-bin}"/test_rank_agreement -case taylor_green -dx 0.0125 -t_end 0.01 -fluid isph -ppe_ksp_rtol 1e-10 -tol 1e-8

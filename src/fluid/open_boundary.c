@@ -177,22 +177,30 @@ PetscErrorCode OpenImpose(Physics *ph, PetscReal t)
 }
 
 /* What a buffer particle gathers over its pairs: a field of its fluid neighbours nearer the plane
- * (the fluid's, or the buffer's between it and the plane), Shepard-weighted */
+ * (the fluid's, or the buffer's between it and the plane), Shepard-weighted, the weight W rising
+ * to its full value over the first hundredth of a spacing nearer, min(1, (depth_a - depth_b) /
+ * (dx / 100)): a's row-mates (the buffer keeps its lattice's columns, to round-off) are not counted
+ * in or out by the round-off of their positions, which differs with the number of ranks under
+ * ISPH's solver tolerance */
 typedef struct {
   const PetscReal        *x, *f;
   const PetscInt         *kind;
   const OpenBoundarySpec *b;
   PetscInt                w_f; /* the field's width */
-  PetscReal               depth, w, fw[3];
+  PetscReal               depth, ramp, w, fw[3];
 } NearerSum;
 
 SPH_INLINE void NearerPair(void *ctx, PetscInt a, SPHPair p, const PetscInt D)
 {
   NearerSum *s = (NearerSum *)ctx;
   PetscInt   b = p.b;
-  if (!KindIsFluid(s->kind[b]) || (s->x[D * b + s->b->axis] - s->b->plane) * s->b->side >= s->depth) return;
-  s->w += p.W;
-  for (PetscInt i = 0; i < s->w_f; i++) s->fw[i] += p.W * s->f[s->w_f * b + i];
+  PetscReal  c;
+  if (!KindIsFluid(s->kind[b])) return;
+  c = (s->depth - (s->x[D * b + s->b->axis] - s->b->plane) * s->b->side) / s->ramp;
+  if (c <= 0) return;
+  c = PetscMin(c, 1.0) * p.W;
+  s->w += c;
+  for (PetscInt i = 0; i < s->w_f; i++) s->fw[i] += c * s->f[s->w_f * b + i];
 }
 
 /* A zero normal gradient in the buffers of one kind: field f (width w_f) of each of their particles
@@ -212,7 +220,7 @@ SPH_INLINE PetscErrorCode ExtrapolateD(Physics *ph, OpenBoundaryKind kind, Field
     const OpenBoundarySpec *b = zone[a] > 0 ? &ph->open->b[(PetscInt)zone[a] - 1] : NULL;
     if (!b || b->kind != kind || !KindIsFluid(P->kind[a])) continue;
     {
-      NearerSum s = {.x = x, .f = f, .kind = P->kind, .b = b, .w_f = w_f, .depth = (x[D * a + b->axis] - b->plane) * b->side};
+      NearerSum s = {.x = x, .f = f, .kind = P->kind, .b = b, .w_f = w_f, .depth = (x[D * a + b->axis] - b->plane) * b->side, .ramp = 0.01 * ph->dx};
       SPHPairsW(ph->cells, P, a, PETSC_TRUE, NearerPair, &s, D);
       if (s.w > 0)
         for (PetscInt i = 0; i < w_f; i++) fn[w_f * a + i] = s.fw[i] / s.w;

@@ -45,9 +45,10 @@ run test_hdf5_isph $MPI "${BINDIR:-bin}"/test_hdf5 -fluid isph
 run test_hdf5_wcsph_shift $MPI "${BINDIR:-bin}"/test_hdf5 -wcsph_shift 1
 # WCSPH with shifting (free-surface flags of the neighbours from the last step, through the halo): exact
 run test_rank_agreement_wcsph_shift $MPI "${BINDIR:-bin}"/test_rank_agreement -wcsph_shift 1
-# Another kernel and h / dx (-kernel, -h_factor: 4 wall rows for 2h = 4 dx) with shifting and the shifted
-# particles' velocity correction (-fluid_shift_correct): exact in WCSPH, to the solver tolerance in ISPH
-run test_rank_agreement_wendland $MPI "${BINDIR:-bin}"/test_rank_agreement -kernel wendland_c2 -h_factor 2 -wcsph_shift 1 -fluid_shift_correct
+# Another kernel and h / dx (-kernel, -h_factor: 4 wall rows for 2h = 4 dx) with shifting, the shifted
+# particles' velocity correction (-fluid_shift_correct) and, in WCSPH, their volume in the continuity
+# equation (-wcsph_shift_volume, the ghosts' shifts): exact in WCSPH, to the solver tolerance in ISPH
+run test_rank_agreement_wendland $MPI "${BINDIR:-bin}"/test_rank_agreement -kernel wendland_c2 -h_factor 2 -wcsph_shift 1 -fluid_shift_correct -wcsph_shift_volume 1
 run test_rank_agreement_wendland_isph $MPI "${BINDIR:-bin}"/test_rank_agreement -fluid isph -kernel wendland_c2 -h_factor 2 -isph_shift 5 -fluid_shift_correct -isph_wall_contact -ppe_ksp_rtol 1e-10 -tol 1e-8
 # Migration and ghosts by the sparse exchange (the default from 9 ranks on): the same answers, also
 # through the forced repartitions of test_decomp
@@ -64,6 +65,7 @@ run test_rank_agreement_wcsph_8 $MPI8 "${BINDIR:-bin}"/test_rank_agreement
 # parents' ids: 1, 2 and 8 ranks exact (WCSPH), to the solver's tolerance (ISPH)
 run test_rank_agreement_open $MPI "${BINDIR:-bin}"/test_rank_agreement -case open_channel -dx 0.01 -t_end 0.6 -wcsph_delta 0.1 -min_speed 0.1
 run test_rank_agreement_open_8 $MPI8 "${BINDIR:-bin}"/test_rank_agreement -case open_channel -dx 0.01 -t_end 0.6 -wcsph_delta 0.1 -min_speed 0.1
+run test_rank_agreement_open_shift_8 $MPI8 "${BINDIR:-bin}"/test_rank_agreement -case open_channel -dx 0.01 -t_end 0.6 -wcsph_delta 0.1 -min_speed 0.1 -wcsph_shift 1 -wcsph_shift_volume 1
 run test_rank_agreement_open_isph $MPI "${BINDIR:-bin}"/test_rank_agreement -case open_channel -dx 0.01 -t_end 0.6 -fluid isph -isph_shift 5 -ppe_ksp_rtol 1e-10 -tol 1e-6 -min_speed 0.1
 run test_rank_agreement_open_isph_8 $MPI8 "${BINDIR:-bin}"/test_rank_agreement -case open_channel -dx 0.01 -t_end 0.6 -fluid isph -isph_shift 5 -ppe_ksp_rtol 1e-10 -tol 1e-6 -min_speed 0.1
 # No free surface (periodic): the pinned row (global row 0, another particle on another rank count)
@@ -97,7 +99,7 @@ run test_restart_fsi $MPI "${BINDIR:-bin}"/test_restart -case elastic_gate -flui
 # 1e-10 to 1e-12, so not the solver; bound 1e-6.  Same ranks: exact.)
 run test_restart_fsi_isph $MPI "${BINDIR:-bin}"/test_restart -case elastic_gate -fluid isph -dx 0.00125 -t_end 0.002 -ppe_ksp_rtol 1e-10 -tol 1e-6
 run test_restart_isph $MPI "${BINDIR:-bin}"/test_restart -fluid isph -ppe_ksp_rtol 1e-10 -tol 1e-8
-run test_restart_wendland $MPI "${BINDIR:-bin}"/test_restart -kernel wendland_c2 -h_factor 2 -wcsph_shift 1 -fluid_shift_correct
+run test_restart_wendland $MPI "${BINDIR:-bin}"/test_restart -kernel wendland_c2 -h_factor 2 -wcsph_shift 1 -fluid_shift_correct -wcsph_shift_volume 1
 run test_restart_solid $MPI "${BINDIR:-bin}"/test_restart -case oscillating_plate -plate_ny 6 -t_end 0.01
 run test_restart_solid_updated $MPI "${BINDIR:-bin}"/test_restart -case oscillating_plate -plate_ny 6 -t_end 0.01 -solid_formulation updated
 run test_restart_fsi_updated $MPI "${BINDIR:-bin}"/test_restart -case elastic_gate -fluid wcsph -dx 0.00125 -t_end 0.0015 -solid_formulation updated

@@ -19,16 +19,18 @@
 # Writes out/bench/bench.md (goals, measured, ratio to the anchors), out/bench/scaling_model.md/png.
 # Environment: MPIEXEC, MPIEXEC_FLAGS, BINDIR (bin), BENCH_TIMEOUT (s per run, 1800),
 #   BENCH_QUICK=1 (smaller sizes and times: a check of the script, not numbers to quote),
-#   BENCH_ONLY (space-separated subset of: throughput t05 plate scaling model 3d).
+#   BENCH_ONLY (space-separated subset of: throughput t05 plate scaling model 3d targets).
 #   6. (3d) the three-dimensional benchmarks of tools/bench3d.sh: SPHERIC Test 2 throughput, CG
 #      iterations and memory of the 3D pressure equation up to 1.1 M particles, the 3D cell graph's
 #      partition; out/bench/bench3d.md
+#   7. (targets) issue 57's three throughput rows, alternating runs with their median and range
+#      (tools/bench_targets.sh; BENCH_BASE=other/sphfsi pairs each run with another build's)
 cd "$(dirname "$0")/.."
 MPI="${MPIEXEC:-mpiexec} ${MPIEXEC_FLAGS:-}"
 BIN=${BINDIR:-bin}
 OUT=out/bench; mkdir -p $OUT
 TMO=${BENCH_TIMEOUT:-1800}
-ONLY=${BENCH_ONLY:-throughput t05 plate scaling model 3d}
+ONLY=${BENCH_ONLY:-throughput t05 plate scaling model 3d targets}
 A=0.05715
 div() { python3 -c "print(f'{$A/$1:.7g}')"; }
 if [ -n "${BENCH_QUICK:-}" ]; then
@@ -111,8 +113,13 @@ fi
 if has 3d; then
   BINDIR=$BIN bash tools/bench3d.sh || FAILS="$FAILS 3d"
 fi
+if has targets; then
+  BINDIR=$BIN bash tools/bench_targets.sh || FAILS="$FAILS targets"
+fi
 echo "bench: $((SECONDS - T0)) s" | tee -a $OUT/runs.txt >&2
 python3 tools/scaling_model.py $OUT || { echo "scaling model failed" >&2; FAILS="$FAILS scaling_model"; }
-python3 tools/bench_report.py $OUT $((SECONDS - T0)) && cat $OUT/bench.md || FAILS="$FAILS report"
+python3 tools/bench_report.py $OUT $((SECONDS - T0)) || FAILS="$FAILS report"
+! has targets || [ ! -f $OUT/targets.md ] || { echo; cat $OUT/targets.md; } >> $OUT/bench.md
+cat $OUT/bench.md
 # a part that failed is named at the end and makes `make bench` fail (its numbers are missing)
 [ -z "$FAILS" ] || { echo "bench: failed:$FAILS (logs in $OUT)" >&2; exit 1; }

@@ -21,6 +21,7 @@ typedef struct {
   PetscReal shift;         /* WCSPH Fickian shifting coefficient A, 0 = off */
   PetscBool shift_correct; /* both schemes: a shifted particle's velocity corrected to its new place */
   PetscReal shift_dmax;    /* both schemes: the ceiling of shifting's A h |v| dt over h^2 (-fluid_shift_ceiling); 0 = none */
+  PetscBool shift_volume;  /* WCSPH with shifting: the density follows the shifted particle's volume (-wcsph_shift_volume) */
   PetscReal lat_divr;      /* WCSPH with shifting: bulk value of -sum V F r^2, normalises div r */
   PetscBool wall_clip;     /* WCSPH: the Adami wall pressure clipped at 0, so that a wall never pulls fluid */
 } FluidMaterial;

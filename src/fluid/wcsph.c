@@ -22,6 +22,7 @@ PetscErrorCode WCSPHSetFromOptions(Physics *ph)
   PetscCall(OptReal("-delta", "Density diffusion coefficient (delta-SPH); 0 = off", "", fl->delta, &fl->delta, NULL));
   PetscCall(OptReal("-riemann", "Dissipation of the acoustic Riemann solver between approaching pairs, with Zhang, Hu & Adams 2017's limiter beta = min(eta du / c0, 1): the coefficient eta (they take 3); against walls and solids along the fluid particle's wall normal, at twice its approach speed (the wall mirrors it).  Used instead of -wcsph_alpha it dissipates only where pairs approach fast; 0 = off", "", fl->riemann, &fl->riemann, NULL));
   PetscCall(OptReal("-shift", "Particle shifting coefficient A (D = A h |v| dt, Skillen et al. 2013; none on the free surface, div r < 1.5, and next to it); 0 = off", "", fl->shift, &fl->shift, NULL));
+  PetscCall(OptBool("-shift_volume", "With shifting: the continuity equation follows the shifted particle, its density changing with the divergence of the shifting velocity as with the flow's, so that the density stays that of the particles' spacing (without it Fickian shifting spreads a disordered flow's particles while their densities stay: behind the Turek-Hron cylinder 4.5 % fewer particles than the density says, docs/turek_hron.md)", "", fl->shift_volume, &fl->shift_volume, NULL));
   PetscCall(OptBool("-wall_clip", "Clip the wall pressure (Adami extrapolation) at 0: fluid in tension next to a wall is not held on it", "", fl->wall_clip, &fl->wall_clip, NULL));
   PetscCall(OptReal("-skin", "Verlet skin of the neighbour list, in particle spacings: the pairs within 2h + skin are kept and the list is rebuilt only once some particle has moved half the skin; 0 rebuilds at every step", "", skin, &skin, NULL));
   PetscOptionsEnd();
@@ -47,7 +48,7 @@ PetscErrorCode WCSPHSetUp(Physics *ph)
   PetscCall(ParticlesEnableField(ph->P, FIELD_ACC, PETSC_FALSE));
   PetscCall(ParticlesEnableField(ph->P, FIELD_DRHO, PETSC_FALSE));
   PetscCall(ParticlesEnableField(ph->P, FIELD_VWALL, PETSC_FALSE)); /* ghosts: refreshed by BoundaryWallState */
-  if (fl->xsph > 0 || fl->shift > 0) PetscCall(ParticlesEnableField(ph->P, FIELD_XSPH, PETSC_FALSE));
+  if (fl->xsph > 0 || fl->shift > 0) PetscCall(ParticlesEnableField(ph->P, FIELD_XSPH, (PetscBool)(fl->shift > 0 && fl->shift_volume))); /* ghosts: ShiftVolume */
   if (fl->shift > 0 && !ph->confined) PetscCall(ParticlesEnableField(ph->P, FIELD_FS, PETSC_TRUE)); /* ghosts: at the rebuild */
   if (fl->riemann > 0) PetscCall(ParticlesEnableField(ph->P, FIELD_QWALL, PETSC_FALSE)); /* ghosts: by WallRiemann, where solids read them */
   PetscFunctionReturn(PETSC_SUCCESS);
@@ -57,7 +58,7 @@ PetscErrorCode WCSPHView(Physics *ph, PetscViewer v)
 {
   const FluidMaterial *fl = &ph->fl;
   PetscFunctionBeginUser;
-  PetscCall(PetscViewerASCIIPrintf(v, "WCSPH: c0 %g m/s, AV alpha %g (x %g against walls), Riemann dissipation eta %g, delta-SPH %g, XSPH %g, shifting A = %g, wall pressure %s, neighbour skin %g dx\n", (double)fl->c0, (double)fl->alpha, (double)fl->wall_av, (double)fl->riemann, (double)fl->delta, (double)fl->xsph, (double)fl->shift, fl->wall_clip ? "clipped at 0" : "as extrapolated (may be < 0)", (double)(ph->nb->skin / ph->dx)));
+  PetscCall(PetscViewerASCIIPrintf(v, "WCSPH: c0 %g m/s, AV alpha %g (x %g against walls), Riemann dissipation eta %g, delta-SPH %g, XSPH %g, shifting A = %g%s, wall pressure %s, neighbour skin %g dx\n", (double)fl->c0, (double)fl->alpha, (double)fl->wall_av, (double)fl->riemann, (double)fl->delta, (double)fl->xsph, (double)fl->shift, fl->shift > 0 && fl->shift_volume ? " (its volume in the continuity equation)" : "", fl->wall_clip ? "clipped at 0" : "as extrapolated (may be < 0)", (double)(ph->nb->skin / ph->dx)));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -315,6 +316,46 @@ static void KickVelocity(Physics *ph, PetscReal dt)
   }
 }
 
+/* What the shifting's volume pass gathers over the pairs of fluid particle a (ShiftVolumeD). */
+typedef struct {
+  Particles        P;
+  const PetscReal *x, *xs, *m, *rho;
+  PetscReal        div; /* -div(dr / dt), the shift's share of Eq. 18 over rho_a */
+} ShiftVolumeSum;
+
+/* Eq. 18's pair with the shifting velocities dr / dt in place of v (walls and solids do not shift) */
+SPH_INLINE void ShiftVolumePair(void *ctx, PetscInt a, SPHPair p, const PetscInt D)
+{
+  ShiftVolumeSum *s = (ShiftVolumeSum *)ctx;
+  PetscInt        b = p.b;
+  PetscReal       d[3], dsab[3];
+  VSub(s->x + D * a, s->x + D * b, d, D);
+  for (PetscInt i = 0; i < D; i++) dsab[i] = s->xs[D * a + i] - (KindIsFluid(s->P->kind[b]) ? s->xs[D * b + i] : 0);
+  s->div += s->m[b] / s->rho[b] * p.F * VDot(dsab, d, D);
+}
+
+/* -wcsph_shift_volume: a shifted particle moves with v + dr/dt, so its density changes by
+ * -rho div(dr/dt) as well (the continuity equation along its path, as the ALE form of delta+-SPH
+ * takes it); after the buffers' shifts are cleared (OpenNoShift), with the ghosts' shifts. */
+SPH_INLINE PetscErrorCode ShiftVolumeD(Physics *ph, const PetscInt D)
+{
+  Particles        P    = ph->P;
+  const FieldId    xf[] = {FIELD_XSPH};
+  const PetscReal *x = PField(P, FIELD_X), *xs = PField(P, FIELD_XSPH), *m = PField(P, FIELD_M), *rho = PField(P, FIELD_RHO);
+  PetscReal       *drho = PField(P, FIELD_DRHO);
+  PetscFunctionBeginUser;
+  PetscCall(HaloRefresh(ph->halo, P, 1, xf));
+  for (PetscInt a = 0; a < P->n; a++) {
+    ShiftVolumeSum s = {.P = P, .x = x, .xs = xs, .m = m, .rho = rho};
+    if (!KindIsFluid(P->kind[a])) continue;
+    SPHPairs(ph->cells, a, ShiftVolumePair, &s, D);
+    drho[a] += rho[a] * s.div;
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+static PetscErrorCode ShiftVolume(Physics *ph) { return SPH_DIM_DISPATCH(ph->dim, ShiftVolumeD, ph); }
+
 /* Velocity Verlet with density as a position-like variable (symplectic for the acoustic pair):
  * v+ = v + dt/2 a;  rho' = rho + dt drho(x, v+);  x' = x + dt (v+ + xsph);  a' = a(x', rho');
  * v' = v+ + dt/2 a'. */
@@ -330,6 +371,7 @@ PetscErrorCode WCSPHStep(Physics *ph)
   PetscCall(HaloRefresh(ph->halo, P, 1, vel));
   PetscCall(Continuity(ph));
   if (ph->open) PetscCall(OpenNoShift(ph));
+  if (ph->fl.shift > 0 && ph->fl.shift_volume) PetscCall(ShiftVolume(ph));
   {
     PetscReal *x = PField(P, FIELD_X), *v = PField(P, FIELD_V), *xs = PField(P, FIELD_XSPH), *rho = PField(P, FIELD_RHO), *drho = PField(P, FIELD_DRHO);
     PetscInt   D = P->dim;

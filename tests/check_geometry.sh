@@ -8,7 +8,7 @@
 #     (+7 %, +9 %: at L/dx = 20 the circle holds 44 lattice points for its 40 dx^2).  The same
 #     cylinder across the periodic corner gives the same drag (a shape across a periodic boundary); the
 #     fluid's force on the cylinder (-body_force) balances the water's weight along x within 0.5 %
-#     with WCSPH (measured -0.044 %; ISPH's -1.4 % is printed, not bounded: docs/turek_hron.md);
+#     with WCSPH (measured -0.047 %; ISPH's -1.4 % is printed, not bounded: docs/turek_hron.md);
 #  2. still water over a half-cylinder trough (cases/boxes/still_trough.opts, ISPH, 1 s): after
 #     0.5 s no water faster than 0.01 sqrt(g H), no particle farther than 0.5 dx from its start;
 #  3. still water in a hemispherical bowl (cases/boxes/still_bowl.opts, 3D, ISPH, 1 s), the same bounds

@@ -5,7 +5,8 @@
 # cylinder and the flag (SimBodyForce) averaged over [3, 4.5] s, after the ramp, against the
 # benchmark's 14.29 and 1.119 N/m.  Bounds at this resolution: the drag within 20 % (the walls' surface
 # is known to dx/2 = R/10, and the drag of a cylinder blocking a quarter of a channel at Re 20 grows
-# about twice as fast as its radius: measured +8.1 % WCSPH, +0.8 % ISPH, docs/turek_hron.md), the lift
+# about twice as fast as its radius: measured +0.7 % WCSPH, +8.1 % without -fluid_force_gauge,
+# -1.0 % ISPH, docs/turek_hron.md), the lift
 # within 10 % of the drag of its reference (a flow nearly symmetric about the flag, the reference's
 # lift 8 % of its drag).  The forces are the same on 1 and 8 ranks to round-off (150 steps: the
 # bodies' ghosts carry their body).  ISPH runs with -fluid_shift_ceiling 1 and its drag probed every step:

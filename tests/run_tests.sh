@@ -40,11 +40,15 @@ run headers bash tests/check_headers.sh "$OUT/headers"
 for t in "${BINDIR:-bin}"/test_*; do
   run "$(basename "$t")" $MPI "$t"
 done
+# Forces on named bodies do not depend on the pressure's gauge (test_body_force above: CFD1's
+# walls); here the solid flag's view of the pressure (FSI2, 4 across)
+run test_body_force_fsi $MPI "${BINDIR:-bin}"/test_body_force -case turek_hron -turek_hron_case fsi2 -flag_ny 4
 # ISPH snapshots and WCSPH ones with shifting also hold the free-surface flag (`free_surface`)
 run test_hdf5_isph $MPI "${BINDIR:-bin}"/test_hdf5 -fluid isph
 run test_hdf5_wcsph_shift $MPI "${BINDIR:-bin}"/test_hdf5 -wcsph_shift 1
-# WCSPH with shifting (free-surface flags of the neighbours from the last step, through the halo): exact
-run test_rank_agreement_wcsph_shift $MPI "${BINDIR:-bin}"/test_rank_agreement -wcsph_shift 1
+# WCSPH with shifting (free-surface flags of the neighbours from the last step, through the halo) and
+# the acoustic damper (the ghosts' density rates): exact
+run test_rank_agreement_wcsph_shift $MPI "${BINDIR:-bin}"/test_rank_agreement -wcsph_shift 1 -wcsph_damper 1
 # Another kernel and h / dx (-kernel, -h_factor: 4 wall rows for 2h = 4 dx) with shifting, the shifted
 # particles' velocity correction (-fluid_shift_correct) and, in WCSPH, their volume in the continuity
 # equation (-wcsph_shift_volume, the ghosts' shifts): exact in WCSPH, to the solver tolerance in ISPH
@@ -90,8 +94,9 @@ run test_rank_agreement_fsi_updated $MPI "${BINDIR:-bin}"/test_rank_agreement -c
 run test_rank_agreement_fsi_isph_updated $MPI "${BINDIR:-bin}"/test_rank_agreement -case elastic_gate -fluid isph -dx 0.00125 -t_end 0.01 -ppe_ksp_rtol 1e-10 -tol 1e-8 -min_speed 0.01 -solid_formulation updated
 # Restart (issue 8): stopped halfway and restarted on the same ranks, on 1 and from 1 (test_restart
 # runs the WCSPH dam break above); same ranks exact; across ranks WCSPH and solid exact, ISPH to the
-# solver tolerance.  The WCSPH gate with the Riemann dissipation, whose wall pass the solid's load reads
-run test_restart_fsi $MPI "${BINDIR:-bin}"/test_restart -case elastic_gate -fluid wcsph -dx 0.00125 -t_end 0.0015 -wcsph_riemann 3
+# solver tolerance.  The WCSPH gate with the Riemann dissipation, whose wall pass the solid's load reads,
+# and the acoustic damper (the density rates a restart reads back)
+run test_restart_fsi $MPI "${BINDIR:-bin}"/test_restart -case elastic_gate -fluid wcsph -dx 0.00125 -t_end 0.0015 -wcsph_riemann 3 -wcsph_damper 1
 # (ISPH + the total-Lagrangian solid across rank counts: the state agrees to ~5e-11 (rank agreement
 # above, bound 1e-8), but the solid's acceleration, compared too, answers a position difference dx
 # with ~c0^2 dx / h^2, and its one-sided surface fits and clamp faces (dx/2 from the first row) are

@@ -16,6 +16,7 @@ typedef struct {
   PetscReal alpha;         /* artificial viscosity, Eq. 24 (WCSPH) */
   PetscReal wall_av;       /* Eq. 24's coefficient against walls and solids over the scheme's (-wcsph_wall_av, -isph_wall_av) */
   PetscReal delta;         /* density diffusion (delta-SPH), 0 = off */
+  PetscReal damper;        /* WCSPH: acoustic damper, Eq. 20's pressure plus damper rho0 c0 h (drho/dt) / rho; 0 = off */
   PetscReal riemann;       /* WCSPH: the acoustic Riemann solver's dissipation with its limiter (Zhang, Hu & Adams 2017), eta; 0 = off */
   PetscReal xsph;          /* XSPH epsilon, Eq. 44, 0 = off */
   PetscReal shift;         /* WCSPH Fickian shifting coefficient A, 0 = off */
@@ -24,6 +25,7 @@ typedef struct {
   PetscBool shift_volume;  /* WCSPH with shifting: the density follows the shifted particle's volume (-wcsph_shift_volume) */
   PetscReal lat_divr;      /* WCSPH with shifting: bulk value of -sum V F r^2, normalises div r */
   PetscBool wall_clip;     /* WCSPH: the Adami wall pressure clipped at 0, so that a wall never pulls fluid */
+  PetscBool force_gauge;   /* forces on named bodies free of the push a uniform pressure gives the discrete sum (-fluid_force_gauge; WCSPH's default) */
 } FluidMaterial;
 
 /* The hyper-elastic law of the total-Lagrangian solid (-solid_law; the updated solid is

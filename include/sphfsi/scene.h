@@ -103,7 +103,9 @@ const PetscReal *SimSolidSupport(Sim sim);
 /* The force of the fluid on body k > 0 (N/m in 2D, N in 3D): the walls and solids whose field "body"
  * is k (enable it in create with SimEnableField(sim, "body") and set it in populate), summed over
  * their pairs with the fluid as the momentum equation exchanges them, at the current state
- * (collective; drag and lift on a cylinder, loads on a structure). */
+ * (collective; drag and lift on a cylinder, loads on a structure); with -fluid_force_gauge (WCSPH's
+ * default) the pressure measured from its mean over those pairs, so that a uniform pressure pushes
+ * no body (docs/turek_hron.md). */
 PetscErrorCode SimBodyForce(Sim sim, PetscInt k, PetscReal force[3]);
 
 /* Open boundaries: an inlet with a prescribed velocity, an outlet at a given pressure, each a buffer

@@ -38,3 +38,20 @@ SPH_INLINE void FluidPairLoad(Physics *ph, PetscInt a, PetscInt b, PetscReal F, 
     acc[i] -= s * fb;
   }
 }
+
+/* The pressure part of m_a times FluidPairLoad's acceleration, written m_a acc = q g: g is the push a
+ * pressure of 1 Pa on both particles gives boundary particle a through the pair (with fluid particle
+ * b, F = F_ab), q = (p_a / rho_a^2 + p_b / rho_b^2) / (1 / rho_a^2 + 1 / rho_b^2) the pair's pressure.
+ * A uniform pressure c adds c to every q, so a body's sum of q g moves by c sum g, which is zero on a
+ * closed surface in the continuum but not over disordered particles (body_force.c). */
+SPH_INLINE PetscReal FluidPairPressureUnit(Physics *ph, PetscInt a, PetscInt b, PetscReal F, PetscReal *g, const PetscInt D)
+{
+  Particles        P = ph->P;
+  const PetscReal *x = PField(P, FIELD_X), *rho = PField(P, FIELD_RHO), *p = PField(P, FIELD_P), *m = PField(P, FIELD_M);
+  PetscReal        ma, ra, pa, wa, wb;
+  FluidView(PField(P, FIELD_FVIEW), P->kind[a], a, m, rho, p, &ma, &ra, &pa);
+  wa = 1 / (ra * ra);
+  wb = 1 / (rho[b] * rho[b]);
+  for (PetscInt i = 0; i < D; i++) g[i] = m[b] * ma * (wa + wb) * F * (x[D * b + i] - x[D * a + i]);
+  return (pa * wa + p[b] * wb) / (wa + wb);
+}

@@ -21,6 +21,7 @@ PetscErrorCode WCSPHSetFromOptions(Physics *ph)
   PetscCall(OptReal("-wall_av", "Artificial viscosity against walls and solids, as a factor of -wcsph_alpha: with the walls at rest it acts as a friction that slows a thin front running along a floor (the dam break's front reaches the far wall late); 0 = none, the walls hold the fluid by pressure and Eq. 16 alone", "", fl->wall_av, &fl->wall_av, NULL));
   PetscCall(OptReal("-delta", "Density diffusion coefficient (delta-SPH); 0 = off", "", fl->delta, &fl->delta, NULL));
   PetscCall(OptReal("-riemann", "Dissipation of the acoustic Riemann solver between approaching pairs, with Zhang, Hu & Adams 2017's limiter beta = min(eta du / c0, 1): the coefficient eta (they take 3); against walls and solids along the fluid particle's wall normal, at twice its approach speed (the wall mirrors it).  Used instead of -wcsph_alpha it dissipates only where pairs approach fast; 0 = off", "", fl->riemann, &fl->riemann, NULL));
+  PetscCall(OptReal("-damper", "Acoustic damper: the pressure of Eq. 20 plus damper rho0 c0 h (drho/dt) / rho, a bulk viscosity rho0 c0 h times the coefficient, as the pressure of the density a time damper h / c0 ahead; it damps the sound waves a few h long that ring after an impact and leaves shear and incompressible motion alone (docs/impact.md); 0 = off", "", fl->damper, &fl->damper, NULL));
   PetscCall(OptReal("-shift", "Particle shifting coefficient A (D = A h |v| dt, Skillen et al. 2013; none on the free surface, div r < 1.5, and next to it); 0 = off", "", fl->shift, &fl->shift, NULL));
   PetscCall(OptBool("-shift_volume", "With shifting: the continuity equation follows the shifted particle, its density changing with the divergence of the shifting velocity as with the flow's, so that the density stays that of the particles' spacing (without it Fickian shifting spreads a disordered flow's particles while their densities stay: behind the Turek-Hron cylinder 4.5 % fewer particles than the density says, docs/turek_hron.md)", "", fl->shift_volume, &fl->shift_volume, NULL));
   PetscCall(OptBool("-wall_clip", "Clip the wall pressure (Adami extrapolation) at 0: fluid in tension next to a wall is not held on it", "", fl->wall_clip, &fl->wall_clip, NULL));
@@ -29,6 +30,7 @@ PetscErrorCode WCSPHSetFromOptions(Physics *ph)
   PetscCheck(fl->alpha >= 0, ph->comm, PETSC_ERR_ARG_OUTOFRANGE, "-wcsph_alpha %g must be >= 0", (double)fl->alpha);
   PetscCheck(fl->wall_av >= 0 && fl->wall_av <= 1, ph->comm, PETSC_ERR_ARG_OUTOFRANGE, "-wcsph_wall_av %g must be in [0, 1] (a factor of -wcsph_alpha)", (double)fl->wall_av);
   PetscCheck(fl->riemann >= 0, ph->comm, PETSC_ERR_ARG_OUTOFRANGE, "-wcsph_riemann %g must be >= 0 (Zhang et al.'s limiter is 3; 0 = off)", (double)fl->riemann);
+  PetscCheck(fl->damper >= 0, ph->comm, PETSC_ERR_ARG_OUTOFRANGE, "-wcsph_damper %g must be >= 0 (0 = off)", (double)fl->damper);
   PetscCheck(fl->delta >= 0 && fl->delta <= 1, ph->comm, PETSC_ERR_ARG_OUTOFRANGE, "-wcsph_delta %g must be in [0, 1]", (double)fl->delta);
   PetscCheck(fl->shift >= 0, ph->comm, PETSC_ERR_ARG_OUTOFRANGE, "-wcsph_shift %g must be >= 0", (double)fl->shift);
   PetscCheck(skin >= 0 && skin <= 2, ph->comm, PETSC_ERR_ARG_OUTOFRANGE, "-wcsph_skin %g must be in [0, 2] particle spacings", (double)skin);
@@ -46,7 +48,7 @@ PetscErrorCode WCSPHSetUp(Physics *ph)
   if (ph->nb->skin > 0 && ph->has_solid) PetscCall(ParticlesEnableField(ph->P, FIELD_XLIST, PETSC_FALSE));
   fl->lat_divr = KernelLatticeSum(&ph->kernel, LATTICE_DIVR, 0);
   PetscCall(ParticlesEnableField(ph->P, FIELD_ACC, PETSC_FALSE));
-  PetscCall(ParticlesEnableField(ph->P, FIELD_DRHO, PETSC_FALSE));
+  PetscCall(ParticlesEnableField(ph->P, FIELD_DRHO, (PetscBool)(fl->damper > 0))); /* ghosts: WCSPHPressure's damper */
   PetscCall(ParticlesEnableField(ph->P, FIELD_VWALL, PETSC_FALSE)); /* ghosts: refreshed by BoundaryWallState */
   if (fl->xsph > 0 || fl->shift > 0) PetscCall(ParticlesEnableField(ph->P, FIELD_XSPH, (PetscBool)(fl->shift > 0 && fl->shift_volume))); /* ghosts: ShiftVolume */
   if (fl->shift > 0 && !ph->confined) PetscCall(ParticlesEnableField(ph->P, FIELD_FS, PETSC_TRUE)); /* ghosts: at the rebuild */
@@ -58,17 +60,20 @@ PetscErrorCode WCSPHView(Physics *ph, PetscViewer v)
 {
   const FluidMaterial *fl = &ph->fl;
   PetscFunctionBeginUser;
-  PetscCall(PetscViewerASCIIPrintf(v, "WCSPH: c0 %g m/s, AV alpha %g (x %g against walls), Riemann dissipation eta %g, delta-SPH %g, XSPH %g, shifting A = %g%s, wall pressure %s, neighbour skin %g dx\n", (double)fl->c0, (double)fl->alpha, (double)fl->wall_av, (double)fl->riemann, (double)fl->delta, (double)fl->xsph, (double)fl->shift, fl->shift > 0 && fl->shift_volume ? " (its volume in the continuity equation)" : "", fl->wall_clip ? "clipped at 0" : "as extrapolated (may be < 0)", (double)(ph->nb->skin / ph->dx)));
+  PetscCall(PetscViewerASCIIPrintf(v, "WCSPH: c0 %g m/s, AV alpha %g (x %g against walls), Riemann dissipation eta %g, acoustic damper %g, delta-SPH %g, XSPH %g, shifting A = %g%s, wall pressure %s, neighbour skin %g dx\n", (double)fl->c0, (double)fl->alpha, (double)fl->wall_av, (double)fl->riemann, (double)fl->damper, (double)fl->delta, (double)fl->xsph, (double)fl->shift, fl->shift > 0 && fl->shift_volume ? " (its volume in the continuity equation)" : "", fl->wall_clip ? "clipped at 0" : "as extrapolated (may be < 0)", (double)(ph->nb->skin / ph->dx)));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* Eq. 20, with -wcsph_damper the acoustic damper's bulk viscous part from the last step's density
+ * rate (the ghosts' from their owners). */
 PetscErrorCode WCSPHPressure(Physics *ph)
 {
-  Particles  P = ph->P;
-  PetscReal *rho = PField(P, FIELD_RHO), *p = PField(P, FIELD_P);
+  Particles        P = ph->P;
+  PetscReal       *rho = PField(P, FIELD_RHO), *p = PField(P, FIELD_P);
+  const PetscReal *drho = PField(P, FIELD_DRHO), *h = PField(P, FIELD_H), zeta = ph->fl.damper * ph->fl.rho0 * ph->fl.c0;
   PetscFunctionBeginUser;
   for (PetscInt a = 0; a < P->n + P->ng; a++)
-    if (KindIsFluid(P->kind[a])) p[a] = EOSPressure(&ph->fl, rho[a]);
+    if (KindIsFluid(P->kind[a])) p[a] = EOSPressure(&ph->fl, rho[a]) + (zeta > 0 ? zeta * h[a] * drho[a] / rho[a] : 0);
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

@@ -136,6 +136,10 @@ PetscErrorCode SimSetFromOptions(Sim sim)
   PetscCall(PetscOptionsString("-refdata_dir", "Reference data for the errors in summary.json (default $SPHFSI_REFDATA, else per file the first of PREFIX/share/sphfsi/refdata, EXEDIR/refdata, the build's SRCDIR/../shared/refdata, ../shared/refdata from the current directory)", "", sim->refdata.dir, sim->refdata.dir, sizeof(sim->refdata.dir), NULL));
   PetscOptionsEnd();
   sim->phys.fluid = (FluidScheme)fluid;
+  /* forces on bodies free of the gauge with WCSPH, whose sum moves with the level; ISPH's does not
+   * (its PPE's pressure answers the particles' disorder, and the mean over the pairs would take that
+   * out with the gauge: body_force.c) */
+  sim->phys.fl.force_gauge = (PetscBool)(sim->phys.fluid == FLUID_WCSPH);
   PetscCheck(hfac >= 1 && hfac <= 3, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-h_factor %g must be in [1, 3] (h / dx; 1.3 for the cubic spline, 1.5-2.5 for the Wendland kernels)", (double)hfac);
   KernelInit(&sim->phys.kernel, (KernelType)ktype, 2, hfac);
   PetscCheck(set && name[0], sim->comm, PETSC_ERR_USER_INPUT, "No scene given: use -case NAME with NAME one of: %s (or -options_file cases/NAME.opts)", names);

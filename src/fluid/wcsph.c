@@ -50,7 +50,7 @@ PetscErrorCode WCSPHSetUp(Physics *ph)
   PetscCall(ParticlesEnableField(ph->P, FIELD_ACC, PETSC_FALSE));
   PetscCall(ParticlesEnableField(ph->P, FIELD_DRHO, (PetscBool)(fl->damper > 0))); /* ghosts: WCSPHPressure's damper */
   PetscCall(ParticlesEnableField(ph->P, FIELD_VWALL, PETSC_FALSE)); /* ghosts: refreshed by BoundaryWallState */
-  if (fl->xsph > 0 || fl->shift > 0) PetscCall(ParticlesEnableField(ph->P, FIELD_XSPH, (PetscBool)(fl->shift > 0 && fl->shift_volume))); /* ghosts: ShiftVolume */
+  if (fl->xsph > 0 || fl->shift > 0) PetscCall(ParticlesEnableField(ph->P, FIELD_XSPH, PETSC_FALSE)); /* ghosts: refreshed by ShiftVolume, where it reads them */
   if (fl->shift > 0 && !ph->confined) PetscCall(ParticlesEnableField(ph->P, FIELD_FS, PETSC_TRUE)); /* ghosts: at the rebuild */
   if (fl->riemann > 0) PetscCall(ParticlesEnableField(ph->P, FIELD_QWALL, PETSC_FALSE)); /* ghosts: by WallRiemann, where solids read them */
   PetscFunctionReturn(PETSC_SUCCESS);

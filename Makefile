@@ -36,6 +36,19 @@ endif
 # compute nodes that differ from it, build on one of them or give a portable target, e.g.
 # `make clean; make MARCH=-march=x86-64-v3` (AVX2 and FMA, 2013 on) or `MARCH=` (any x86-64).
 MARCH   ?= -march=native
+# -march=native also tunes for the CPU, unless the compiler cannot name it (a virtual machine that
+# hides the model): it then tunes for a generic x86, which, among others, never uses vector gathers,
+# and the pair loops that SPHPairsSum vectorises run no faster than scalar ones (docs/performance.md).
+# Tune for the CPU that -march=native found instead (GCC; nothing changes where it names the model).
+ifeq ($(MARCH),-march=native)
+  NATIVE_ARCH := $(shell $(CC) -march=native -Q --help=target 2>/dev/null | awk '$$1 == "-march=" {print $$2; exit}')
+  NATIVE_TUNE := $(shell $(CC) -march=native -mtune=native -v -E -x c /dev/null 2>&1 | grep -o 'mtune=[a-z0-9-]*' | grep -v '=native' | head -1)
+  ifeq ($(NATIVE_TUNE),mtune=generic)
+    ifneq ($(NATIVE_ARCH),)
+      MARCH := $(MARCH) $(shell $(CC) -mtune=$(NATIVE_ARCH) -E -x c /dev/null >/dev/null 2>&1 && echo -mtune=$(NATIVE_ARCH))
+    endif
+  endif
+endif
 OPT     ?= -O3 $(MARCH) -fno-math-errno
 SAN     ?=
 ifeq ($(SAN),1)
@@ -103,6 +116,12 @@ $(BUILD)/sphfsi_build.h: FORCE
 $(BUILD)/src/base/version.o $(BUILD)/pic/src/base/version.o: $(BUILD)/sphfsi_build.h
 $(BUILD)/src/base/version.o $(BUILD)/pic/src/base/version.o: CFLAGS += -I$(BUILD)
 FORCE:
+# The files whose pair loops SPHPairsSum vectorises (src/particles/pair_loop.h): a term's branches
+# become selects only where the compiler may evaluate both sides, that is where no floating-point
+# exception traps (a division in a lane that is not selected).  The code traps none, so no result
+# changes.
+VECTOR_PAIR_SRC := src/fluid/wcsph.c
+$(VECTOR_PAIR_SRC:%.c=$(BUILD)/%.o) $(VECTOR_PAIR_SRC:%.c=$(BUILD)/pic/%.o): CFLAGS += -fno-trapping-math
 
 $(LIB_A): $(LIB_OBJ)
 	@mkdir -p $(LIBDIR)

@@ -221,40 +221,58 @@ SPH_INLINE PetscErrorCode WallRiemannD(Physics *ph, const PetscInt D)
 
 static PetscErrorCode WallRiemann(Physics *ph) { return SPH_DIM_DISPATCH(ph->dim, WallRiemannD, ph); }
 
-/* What the momentum loop gathers over the pairs of fluid particle a (MomentumD). */
+/* What the momentum pair reads of fluid particle a and its neighbours (MomentumD). */
 typedef struct {
-  Physics             *ph;
-  Particles            P;
-  const PetscReal     *x, *v, *rho, *p, *m, *h, *vw, *fv, *nrm, *qw;
+  const PetscInt      *kind;
+  const PetscReal     *x, *v, *h, *nrm;
+  const PetscReal     *mv, *rv, *pv, *vv; /* m, rho, p / rho^2 and the velocity of Eq. 16 of each particle as the fluid sees it (FluidView; walls' and solids' VWALL) */
   const FluidMaterial *fl;
-  PetscReal            ra, pa, ha; /* rho_a, p_a / rho_a^2, h_a */
-  PetscReal            ac[3];
-} MomentumSum;
+  PetscReal            ra, pa, ha, qa;  /* rho_a, p_a / rho_a^2, h_a, a's Riemann dissipation against walls (WallRiemannD) */
+  PetscReal            repulsion_scale, dt;
+  PetscBool            repulse, riemann; /* Eq. 41 (nrm), the Riemann dissipation: constants of MomentumLoop's plain variant */
+} MomentumPairs;
 
 /* Eq. 19 with Eq. 24 and the Riemann dissipation (fluid_terms.h; against walls WallRiemannD's), Eq. 16 and Eq. 41's pair */
-SPH_INLINE void MomentumPair(void *ctx, PetscInt a, SPHPair pr, const PetscInt D)
+SPH_INLINE void MomentumPair(const void *ctx, PetscInt a, SPHPair pr, PetscReal *out, const PetscInt D)
 {
-  MomentumSum         *s = (MomentumSum *)ctx;
+  const MomentumPairs *s  = (const MomentumPairs *)ctx;
   const FluidMaterial *fl = s->fl;
-  const PetscReal     *va = s->v + D * a;
-  PetscInt             b = pr.b;
+  const PetscReal     *va = s->v + D * a, *vb = s->v + D * pr.b;
+  PetscInt             b = pr.b, kind = s->kind[b];
+  PetscBool            wall = KindIsBoundary(kind);
   PetscReal            d[3], dvab[3], r2, F = pr.F;
-  PetscReal            hab = PairH(s->ha, s->h[b]), rb, mb, pb, pterm, visc;
+  PetscReal            hab = PairH(s->ha, s->h[b]), mb = s->mv[b], rb = s->rv[b], pterm, visc, rep = 0;
   VSub(s->x + D * a, s->x + D * b, d, D);
-  VSub(va, s->v + D * b, dvab, D);
-  r2 = VDot(d, d, D);
-  FluidView(s->fv, s->P->kind[b], b, s->m, s->rho, s->p, &mb, &rb, &pb);
-  pterm = s->pa + pb / (rb * rb) + ArtificialViscosity(KindIsFluid(s->P->kind[b]) ? fl->alpha : fl->alpha * fl->wall_av, fl->c0, hab, 0.5 * (s->ra + rb), VDot(dvab, d, D), r2);
+  VSub(va, vb, dvab, D);
+  r2    = VDot(d, d, D);
+  pterm = s->pa + s->pv[b] + ArtificialViscosity(KindIsFluid(kind) ? fl->alpha : fl->alpha * fl->wall_av, fl->c0, hab, 0.5 * (s->ra + rb), VDot(dvab, d, D), r2);
   visc  = LaminarViscosity(mb, fl->mu, s->ra, rb, F * r2, r2, hab, fl->eta, fl->lap_kappa);
-  if (s->nrm && KindIsSolid(s->P->kind[b])) {
-    PetscReal f = FSIRepulsion(VDot(dvab, s->nrm + D * b, D), PetscSqrtReal(r2) / (2 * hab), s->ph->dt);
-    f *= s->ph->solid->repulsion_scale; /* to the paper's 2D sum at 1.3 dx (solid.c); 1 there */
-    for (PetscInt i = 0; i < D; i++) s->ac[i] += f * s->nrm[D * b + i];
+  if (s->repulse && KindIsSolid(kind)) rep = s->repulsion_scale * FSIRepulsion(VDot(dvab, s->nrm + D * b, D), PetscSqrtReal(r2) / (2 * hab), s->dt); /* scale: to the paper's 2D sum at 1.3 dx (solid.c) */
+  VSub(va, s->vv + D * b, dvab, D); /* against walls and solids their no-slip (mirrored) velocity */
+  if (s->riemann) {
+    if (wall) pterm += s->qa * (s->ra + rb) / (s->ra * rb); /* 2 P* / (rho_a rho_b), WallRiemannD */
+    else if (r2 > 0) pterm += 2.0 * RiemannDissipation(fl->riemann, fl->c0, 0.5 * (s->ra + rb), -VDot(dvab, d, D) / PetscSqrtReal(r2)) / (s->ra * rb);
   }
-  if (KindIsBoundary(s->P->kind[b])) VSub(va, s->vw + D * b, dvab, D); /* b's mirrored velocity */
-  if (s->qw && KindIsBoundary(s->P->kind[b])) pterm += s->qw[a] * (s->ra + rb) / (s->ra * rb); /* 2 P* / (rho_a rho_b), WallRiemannD */
-  else if (fl->riemann > 0 && r2 > 0) pterm += 2.0 * RiemannDissipation(fl->riemann, fl->c0, 0.5 * (s->ra + rb), -VDot(dvab, d, D) / PetscSqrtReal(r2)) / (s->ra * rb);
-  for (PetscInt i = 0; i < D; i++) s->ac[i] += (visc * dvab[i] - mb * pterm * F * d[i]);
+  for (PetscInt i = 0; i < D; i++) out[i] = visc * dvab[i] - mb * pterm * F * d[i];
+  if (rep != 0)
+    for (PetscInt i = 0; i < D; i++) out[i] += rep * s->nrm[D * b + i];
+}
+
+/* The loop over the owned fluid (MomentumD), with repulse and riemann constants where the caller
+ * gives them, so that the pair has no branch for what is off and its loop vectorises. */
+SPH_INLINE void MomentumLoop(Physics *ph, const PetscReal *mv, const PetscReal *rv, const PetscReal *pv, const PetscReal *vv, PetscReal *scratch, PetscBool repulse, PetscBool riemann, const PetscInt D)
+{
+  Particles        P = ph->P;
+  const PetscReal *rho = PField(P, FIELD_RHO), *h = PField(P, FIELD_H);
+  const PetscReal *qw  = riemann ? PField(P, FIELD_QWALL) : NULL;
+  PetscReal       *acc = PField(P, FIELD_ACC);
+  for (PetscInt a = 0; a < P->n; a++) {
+    MomentumPairs s = {.kind = P->kind, .x = PField(P, FIELD_X), .v = PField(P, FIELD_V), .h = h, .nrm = repulse ? PField(P, FIELD_NORMAL) : NULL, .mv = mv, .rv = rv, .pv = pv, .vv = vv, .fl = &ph->fl, .ra = rho[a], .pa = pv[a], .ha = h[a], .qa = qw ? qw[a] : 0, .repulsion_scale = repulse ? ph->solid->repulsion_scale : 0, .dt = ph->dt, .repulse = repulse, .riemann = riemann};
+    PetscReal     ac[3] = {0, 0, 0};
+    if (!KindIsFluid(P->kind[a])) continue;
+    SPHPairsSum(ph->cells, a, MomentumPair, &s, D, scratch, ac, D);
+    for (PetscInt i = 0; i < D; i++) acc[D * a + i] = ac[i] + ph->g[i];
+  }
 }
 
 /* Acceleration of owned fluid: pressure Eq. 19 with artificial viscosity Eq. 24, laminar viscosity
@@ -263,19 +281,21 @@ SPH_INLINE void MomentumPair(void *ctx, PetscInt a, SPHPair pr, const PetscInt D
 SPH_INLINE PetscErrorCode MomentumD(Physics *ph, const PetscInt D)
 {
   Particles        P = ph->P;
-  const PetscReal *x = PField(P, FIELD_X), *v = PField(P, FIELD_V), *rho = PField(P, FIELD_RHO), *p = PField(P, FIELD_P);
-  const PetscReal *m = PField(P, FIELD_M), *h = PField(P, FIELD_H), *vw = PField(P, FIELD_VWALL), *fv = PField(P, FIELD_FVIEW);
-  const PetscReal *nrm = ph->solid && ph->solid->repulsion ? PField(P, FIELD_NORMAL) : NULL;
-  const PetscReal *qw  = ph->fl.riemann > 0 ? PField(P, FIELD_QWALL) : NULL;
-  PetscReal       *acc = PField(P, FIELD_ACC);
+  const PetscReal *m = PField(P, FIELD_M), *rho = PField(P, FIELD_RHO), *p = PField(P, FIELD_P), *fv = PField(P, FIELD_FVIEW);
+  const PetscBool  repulse = (PetscBool)(ph->solid && ph->solid->repulsion), riemann = (PetscBool)(ph->fl.riemann > 0);
+  const PetscReal *v = PField(P, FIELD_V), *vw = PField(P, FIELD_VWALL);
+  PetscReal       *mv, *rv, *pv, *vv, *scratch;
 
   PetscFunctionBeginUser;
-  for (PetscInt a = 0; a < P->n; a++) {
-    MomentumSum s = {.ph = ph, .P = P, .x = x, .v = v, .rho = rho, .p = p, .m = m, .h = h, .vw = vw, .fv = fv, .nrm = nrm, .qw = qw, .fl = &ph->fl, .ra = rho[a], .pa = p[a] / (rho[a] * rho[a]), .ha = h[a]};
-    if (!KindIsFluid(P->kind[a])) continue;
-    SPHPairs(ph->cells, a, MomentumPair, &s, D);
-    for (PetscInt i = 0; i < D; i++) acc[D * a + i] = s.ac[i] + ph->g[i];
+  PetscCall(PetscMalloc5(P->n + P->ng, &mv, P->n + P->ng, &rv, P->n + P->ng, &pv, D * (P->n + P->ng), &vv, D * PetscMax(ph->cells->max_nbr, 1), &scratch));
+  for (PetscInt b = 0; b < P->n + P->ng; b++) {
+    FluidView(fv, P->kind[b], b, m, rho, p, &mv[b], &rv[b], &pv[b]);
+    pv[b] /= rv[b] * rv[b];
+    for (PetscInt i = 0; i < D; i++) vv[D * b + i] = KindIsBoundary(P->kind[b]) ? vw[D * b + i] : v[D * b + i];
   }
+  if (!repulse && !riemann) MomentumLoop(ph, mv, rv, pv, vv, scratch, PETSC_FALSE, PETSC_FALSE, D);
+  else MomentumLoop(ph, mv, rv, pv, vv, scratch, repulse, riemann, D);
+  PetscCall(PetscFree5(mv, rv, pv, vv, scratch));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

@@ -8,7 +8,9 @@
  * from both ends, no a < b loop), in the order that cells.h fixes, so the sums agree whatever the
  * number of ranks.  The drivers are machinery: a term reads the pair, never the list.
  *   SPHPairs    F_ab of the pairs (any list: the main one, the solid's);
- *   SPHPairsW   F_ab and W_ab, W from CellsPairW (recomputed where the main list keeps none). */
+ *   SPHPairsW   F_ab and W_ab, W from CellsPairW (recomputed where the main list keeps none);
+ *   SPHPairsSum a term that gives each pair's contribution instead of adding it, for the hot loops:
+ *               the pairs are evaluated in a loop the compiler vectorises, then summed in order. */
 #pragma once
 #include "particles/cells.h"
 #include "base/dim.h"
@@ -48,4 +50,30 @@ SPH_INLINE void SPHPairsW(Cells C, Particles P, PetscInt a, PetscBool with_w, SP
     SPHPair p = {C->nbr[k], k, C->f[k], w[k - s]};
     term(ctx, a, p, D);
   }
+}
+
+/* A term that gives pair p's contribution to the nout sums of owned particle a in out[0 .. nout)
+ * instead of adding it (SPHPairsSum).  It reads ctx and the pair only, so the pairs are independent. */
+typedef void (*SPHPairValue)(const void *ctx, PetscInt a, SPHPair p, PetscReal *out, const PetscInt D);
+
+#define SPH_PAIR_SUM_MAX 4 /* most sums an SPHPairValue term gives */
+
+/* sum[o] += the term's out[o] over the pairs of owned particle a in list C: the same sums, in the same
+ * order, as a term adding out to them in SPHPairs.  Two loops: the pairs' values into scratch (nout
+ * rows of C->max_nbr), a loop whose iterations are independent, so the compiler vectorises it over
+ * the pairs (gathering b's fields; -fopt-info-vec), then the sums in the list's order. */
+SPH_INLINE void SPHPairsSum(Cells C, PetscInt a, SPHPairValue term, const void *ctx, const PetscInt nout, PetscReal *restrict scratch, PetscReal *sum, const PetscInt D)
+{
+  const PetscInt   k0 = C->nstart[a], nk = C->nstart[a + 1] - k0, cap = C->max_nbr;
+  const PetscInt  *nbr = C->nbr + k0;
+  const PetscReal *f   = C->f + k0;
+#pragma GCC ivdep
+  for (PetscInt j = 0; j < nk; j++) {
+    PetscReal out[SPH_PAIR_SUM_MAX];
+    SPHPair   p = {nbr[j], k0 + j, f[j], 0};
+    term(ctx, a, p, out, D);
+    for (PetscInt o = 0; o < nout; o++) scratch[o * cap + j] = out[o];
+  }
+  for (PetscInt j = 0; j < nk; j++)
+    for (PetscInt o = 0; o < nout; o++) sum[o] += scratch[o * cap + j];
 }

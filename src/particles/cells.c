@@ -273,6 +273,7 @@ SPH_INLINE PetscErrorCode NeighbourPassD(Cells bins, Particles P, PetscBool (*ke
   }
   for (PetscInt a = 1; a < ntot && uniform; a++) uniform = (PetscBool)(h[a] == h[0]);
   out->max_nbr = 0;
+  out->uniform = uniform;
   if (!keep) { /* the main list: a wall or dummy particle with no fluid in its cells' reach gets none (its
                 * list would hold no fluid, and only its fluid pairs are ever used: half the particles
                 * of a 3D tank are such walls) */
@@ -409,6 +410,12 @@ SPH_INLINE void RefreshPairsD(Cells c, Particles P, const PetscInt D)
     PetscInt   s     = cnt;
     PetscReal *wa    = c->drop_w ? c->wrow : c->w + s; /* the scratch holds the build's candidates, so any subset */
     c->nstart[a] = cnt;
+    if (c->uniform) { /* the build's branch-free filter (UniformCandidates), with a never among the candidates */
+      cnt = UniformCandidates(c->cnbr, c->cstart[a], c->cstart[a + 1], x, -1, xa, rc2a, c->nbr, wa, cnt, D);
+      OwnPairKernels(K->type, h, ha, c->nbr + s, wa, c->f + s, cnt - s, PETSC_FALSE, iha, swa, sfa);
+      c->max_nbr = PetscMax(c->max_nbr, cnt - s);
+      continue;
+    }
     for (PetscInt k = c->cstart[a]; k < c->cstart[a + 1]; k++) {
       PetscInt  b  = c->cnbr[k];
       PetscReal r2 = PairDistance2(x, xa, b, D);

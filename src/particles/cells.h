@@ -17,6 +17,7 @@ struct _p_Cells {
   PetscInt    max_nbr;
   PetscBool  *wet; PetscInt cap_wet; /* per local cell: holds a fluid particle (the main list's walls) */
   PetscReal   skin;                    /* Verlet skin of CellsBuild's list (0: none) */
+  PetscBool   uniform;                 /* the last build saw one smoothing length (owned and ghosts) */
   PetscInt   *cstart, *cnbr, cap_cstart, cap_cnbr; /* with a skin: the candidates, r < 2 h_ab + skin at the build */
   const SPHKernel *kernel; /* the run's kernel (W, F of the pairs) */
   PetscBool   drop_w;          /* the main list keeps F but not W (8 B a pair): CellsPairW recomputes W */

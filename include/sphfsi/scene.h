@@ -213,6 +213,8 @@ PetscErrorCode SceneAddZonedWater(Sim sim, PetscReal dc, PetscReal W, PetscReal 
  * the air at 0, as a transducer's face does, where Shepard's form alone would carry the wet
  * neighbours' pressure over the dry part (collective). */
 PetscErrorCode SceneProbePressure(Sim sim, const PetscReal x0[], PetscReal *p);
+/* The same at n points x0[dim * q + i] at once: one pass over the particles and one reduction (collective). */
+PetscErrorCode SceneProbePressures(Sim sim, PetscInt n, const PetscReal x0[], PetscReal p[]);
 /* Level gauges: the water depth under a point, as the volume of fluid per unit length (2D) or area
  * (3D) on the vertical line through it, sum_b V_b W_col(s), with W_col(s) = int W(sqrt(s^2 + t^2)) dt
  * the kernel integrated along the vertical and s the horizontal distance (a still layer of depth d

@@ -282,33 +282,48 @@ PetscErrorCode SceneHydrostaticDensity(Sim sim, PetscInt first, PetscReal y_surf
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode SceneProbePressure(Sim sim, const PetscReal x0[], PetscReal *pval)
+PetscErrorCode SceneProbePressures(Sim sim, PetscInt n, const PetscReal x0[], PetscReal pval[])
 {
-  Particles      P = sim->P;
-  PetscReal     *x = PField(P, FIELD_X), *p = PField(P, FIELD_P), *rho = PField(P, FIELD_RHO), *h = PField(P, FIELD_H);
-  const PetscReal *m = PField(P, FIELD_M);
-  PetscReal        s[4] = {0, 0, 0, 0}; /* sum (p_b + rho_b g.d) W, sum W, the fluid's sum V_b W, the boundary's */
-  const PetscInt   D    = P->dim;
+  Particles        P = sim->P;
+  const PetscReal *x = PField(P, FIELD_X), *p = PField(P, FIELD_P), *rho = PField(P, FIELD_RHO), *h = PField(P, FIELD_H), *m = PField(P, FIELD_M);
+  const PetscInt   D = P->dim;
+  PetscReal       *s, lo[3] = {PETSC_MAX_REAL, PETSC_MAX_REAL, PETSC_MAX_REAL}, hi[3] = {PETSC_MIN_REAL, PETSC_MIN_REAL, PETSC_MIN_REAL}, reach = 2.01 * sim->phys.h_max;
   PetscFunctionBeginUser;
+  PetscCall(PetscCalloc1(4 * n, &s)); /* per point: sum (p_b + rho_b g.d) W, sum W, the fluid's sum V_b W, the boundary's */
+  for (PetscInt q = 0; q < n; q++)
+    for (PetscInt i = 0; i < D; i++) { lo[i] = PetscMin(lo[i], x0[D * q + i]); hi[i] = PetscMax(hi[i], x0[D * q + i]); }
   for (PetscInt a = 0; a < P->n; a++) {
-    PetscReal d[3] = {0, 0, 0}, w, gd;
-    VSub(x0, x + D * a, d, D);
-    w = KernelW(&sim->phys.kernel, PetscSqrtReal(VDot(d, d, D)), h[a]);
-    if (w <= 0) continue;
-    if (!KindIsFluid(P->kind[a])) {
-      s[3] += w * m[a] / rho[a];
-      continue;
+    PetscBool near = PETSC_TRUE; /* within the support of the points' box: one pass over the particles for all of them */
+    for (PetscInt i = 0; i < D; i++) near = (PetscBool)(near && x[D * a + i] > lo[i] - reach && x[D * a + i] < hi[i] + reach);
+    if (!near) continue;
+    for (PetscInt q = 0; q < n; q++) {
+      PetscReal d[3] = {0, 0, 0}, w, gd, r2, *sq = s + 4 * q;
+      VSub(x0 + D * q, x + D * a, d, D);
+      r2 = VDot(d, d, D);
+      if (r2 > 4.01 * h[a] * h[a]) continue; /* beyond the support (W = 0), without the square root */
+      w = KernelW(&sim->phys.kernel, PetscSqrtReal(r2), h[a]);
+      if (w <= 0) continue;
+      if (!KindIsFluid(P->kind[a])) {
+        sq[3] += w * m[a] / rho[a];
+        continue;
+      }
+      gd = VDot(sim->phys.g, d, D);
+      sq[0] += w * (p[a] + SceneFluidDensity(sim, rho[a]) * gd);
+      sq[1] += w;
+      sq[2] += w * m[a] / rho[a];
     }
-    gd = VDot(sim->phys.g, d, D);
-    s[0] += w * (p[a] + SceneFluidDensity(sim, rho[a]) * gd);
-    s[1] += w;
-    s[2] += w * m[a] / rho[a];
   }
-  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, s, 4, MPIU_REAL, MPI_SUM, sim->comm));
-  *pval = s[1] > 0 ? s[0] / s[1] : 0;
-  if (s[3] < 1) *pval *= PetscMin(1.0, s[2] / (1.0 - s[3])); /* the wetted fraction of the support outside the walls */
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, s, 4 * n, MPIU_REAL, MPI_SUM, sim->comm));
+  for (PetscInt q = 0; q < n; q++) {
+    const PetscReal *sq = s + 4 * q;
+    pval[q] = sq[1] > 0 ? sq[0] / sq[1] : 0;
+    if (sq[3] < 1) pval[q] *= PetscMin(1.0, sq[2] / (1.0 - sq[3])); /* the wetted fraction of the support outside the walls */
+  }
+  PetscCall(PetscFree(s));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
+
+PetscErrorCode SceneProbePressure(Sim sim, const PetscReal x0[], PetscReal *pval) { return SceneProbePressures(sim, 1, x0, pval); }
 
 PetscErrorCode SceneMaxSpeed(Sim sim, PetscReal *vmax)
 {

@@ -109,23 +109,27 @@ static PetscErrorCode Probe(Sim sim, PetscReal *vals)
 {
   WallSensors      *c = (WallSensors *)SimSceneContext(sim);
   const Experiment *e = c->e;
-  PetscReal         lev[NGAUGE];
+  PetscReal         lev[NGAUGE], *pt, *p;
   PetscFunctionBeginUser;
   if (e->ngauge) PetscCall(SceneWaterDepth(sim, &c->col, e->ngauge, e->gauge_x, lev));
   for (PetscInt g = 0; g < e->ngauge; g++) {
     vals[g] = lev[g];
     PetscCall(SeriesAppend(&c->level[g], SimTime(sim), lev[g]));
   }
+  PetscCall(PetscMalloc2(2 * e->nsensor * c->nface, &pt, e->nsensor * c->nface, &p));
+  for (PetscInt s = 0; s < e->nsensor; s++)
+    for (PetscInt q = 0; q < c->nface; q++) {
+      pt[2 * (c->nface * s + q)]     = e->Lt;
+      pt[2 * (c->nface * s + q) + 1] = e->sensor_y[s] + c->sensor * ((q + 0.5) / c->nface - 0.5);
+    }
+  PetscCall(SceneProbePressures(sim, e->nsensor * c->nface, pt, p)); /* the faces' points at once */
   for (PetscInt s = 0; s < e->nsensor; s++) {
     PetscReal sum = 0;
-    for (PetscInt q = 0; q < c->nface; q++) {
-      PetscReal pt[2] = {e->Lt, e->sensor_y[s] + c->sensor * ((q + 0.5) / c->nface - 0.5)}, p;
-      PetscCall(SceneProbePressure(sim, pt, &p));
-      sum += p;
-    }
+    for (PetscInt q = 0; q < c->nface; q++) sum += p[c->nface * s + q];
     vals[e->ngauge + s] = sum / c->nface;
     PetscCall(SeriesAppend(&c->pres[s], SimTime(sim), vals[e->ngauge + s]));
   }
+  PetscCall(PetscFree2(pt, p));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

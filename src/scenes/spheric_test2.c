@@ -84,20 +84,24 @@ static PetscErrorCode Populate(Sim sim)
 static PetscErrorCode Probe(Sim sim, PetscReal *vals)
 {
   Spheric2 *c = (Spheric2 *)SimSceneContext(sim);
+  PetscReal pt[NSENSOR * NFACE * NFACE][3], p[NSENSOR * NFACE * NFACE];
   PetscFunctionBeginUser;
   PetscCall(SceneWaterDepth(sim, &c->col, NLEVEL, &LevelXY[0][0], vals));
   for (PetscInt g = 0; g < NLEVEL; g++) PetscCall(SeriesAppend(&c->level[g], SimTime(sim), vals[g]));
   for (PetscInt s = 0; s < NSENSOR; s++) {
-    PetscReal sum = 0;
-    PetscInt  t1 = SensorNormal[s] == 0 ? 1 : 0, t2 = 1 + (SensorNormal[s] == 0); /* the face's two tangent directions */
+    PetscInt t1 = SensorNormal[s] == 0 ? 1 : 0, t2 = 1 + (SensorNormal[s] == 0); /* the face's two tangent directions */
     for (PetscInt i = 0; i < NFACE; i++)
       for (PetscInt j = 0; j < NFACE; j++) {
-        PetscReal pt[3] = {SensorX[s][0], SensorX[s][1], SensorX[s][2]}, p;
-        pt[t1] += c->sensor * ((i + 0.5) / NFACE - 0.5);
-        pt[t2] += c->sensor * ((j + 0.5) / NFACE - 0.5);
-        PetscCall(SceneProbePressure(sim, pt, &p));
-        sum += p;
+        PetscReal *q = pt[(s * NFACE + i) * NFACE + j];
+        for (PetscInt k = 0; k < 3; k++) q[k] = SensorX[s][k];
+        q[t1] += c->sensor * ((i + 0.5) / NFACE - 0.5);
+        q[t2] += c->sensor * ((j + 0.5) / NFACE - 0.5);
       }
+  }
+  PetscCall(SceneProbePressures(sim, NSENSOR * NFACE * NFACE, &pt[0][0], p)); /* the faces' points at once */
+  for (PetscInt s = 0; s < NSENSOR; s++) {
+    PetscReal sum = 0;
+    for (PetscInt k = 0; k < NFACE * NFACE; k++) sum += p[s * NFACE * NFACE + k];
     vals[NLEVEL + s] = sum / (NFACE * NFACE);
     PetscCall(SeriesAppend(&c->pres[s], SimTime(sim), vals[NLEVEL + s]));
   }

@@ -110,7 +110,7 @@ scene() {
     SCHEMES="solid:-options_file cases/$1.opts"
     for d in $(pick "4 8 16" "4 8 16 32" "4 5"); do RES="$RES;ny$d:$(f7 0.02/$d):-flag_ny $d"; done ;;
   turek_hron_cfd1|turek_hron_cfd3|turek_hron_fsi2|turek_hron_fsi3) # Turek-Hron's channel (cases/turek_hron_*.opts), both fluids; even counts across the flag
-    SCHEMES="wcsph:-options_file cases/$1.opts;isph:-options_file cases/$1.opts -fluid isph -isph_shift 5 -isph_alpha 0"
+    SCHEMES="wcsph:-options_file cases/$1.opts;isph:-options_file cases/$1.opts -fluid isph -h_factor 1.3 -fluid_shift_correct 0 -isph_shift 5 -isph_alpha 0"
     case $1 in *fsi*) divs=$(pick "4 8 16" "4 8 16 32" "4");; *) divs=$(pick "2 4 8" "2 4 8 16" "2");; esac
     for d in $divs; do RES="$RES;ny$d:$(f7 0.02/$d):-flag_ny $d"; done ;;
   elastic_gate)

@@ -311,11 +311,80 @@ SPH_INLINE void WallNormal(Particles P, Cells C, PetscInt a, PetscReal n[], cons
     for (PetscInt i = 0; i < D; i++) n[i] /= nn;
 }
 
+/* What a wall particle gathers over its wall and dummy neighbours b: sum V_b F_ab (x_a - x_b)
+ * (V_b grad_a W_ab, towards the walls' volume) and sum V_b |F_ab| r_ab (its size on an even support);
+ * the first-row neighbour nearest to a dummy. */
+typedef struct {
+  Particles        P;
+  const PetscReal *x, *m, *wn;
+  PetscReal        rho0, g[3], gabs, r2min;
+  PetscInt         nearest;
+} WallGeometrySum;
+
+SPH_INLINE void WallGeometryPair(void *ctx, PetscInt a, SPHPair p, const PetscInt D)
+{
+  WallGeometrySum *s = (WallGeometrySum *)ctx;
+  PetscInt         b = p.b;
+  PetscReal        d[3], r2, vb = s->m[b] / s->rho0;
+  if (!KindIsWall(s->P->kind[b])) return;
+  VSub(s->x + D * a, s->x + D * b, d, D);
+  r2 = VDot(d, d, D);
+  for (PetscInt i = 0; i < D; i++) s->g[i] += vb * p.F * d[i];
+  s->gabs += vb * PetscAbsReal(p.F) * PetscSqrtReal(r2);
+  if (s->wn && s->P->kind[b] == KIND_WALL && VDot(s->wn + D * b, s->wn + D * b, D) > 0 && r2 < s->r2min) {
+    s->r2min   = r2;
+    s->nearest = b;
+  }
+}
+
+/* Each fixed wall particle's unit normal into the fluid, from the walls' geometry, into FIELD_WNORMAL
+ * for the approach term (WallApproach): a first-row particle's is the direction away from the walls'
+ * volume around it, -sum V_b grad_a W_ab over its wall and dummy neighbours (a flat wall's normal, a
+ * corner's bisector), where that sum is at least a fifth of its size on an even support and on the
+ * fluid's side; a dummy takes the nearest first-row particle's (refreshed at the ghosts).  Where
+ * neither holds (a wall one particle thick), the direction of its fluid (WallNormal).  Only the rows
+ * of the pressure equation need it.  Towards its fluid instead, a floor under a thin layer running
+ * along it took the fluid behind it for its side: the layer's speed along the floor counted as
+ * approach, and the floor's pressure rose to 3.7-6.0 rho g H under a layer 0.13 H deep (the Lobovsky
+ * dam break at H/40; docs/impact.md, tests/check_lobovsky.sh). */
+SPH_INLINE PetscErrorCode WallNormalsD(PPE ppe, Physics *ph, const PetscInt D)
+{
+  Particles        P = ph->P;
+  Cells            C = ph->cells;
+  const PetscReal *row = PField(P, FIELD_ROW), *x = PField(P, FIELD_X), *m = PField(P, FIELD_M);
+  PetscReal       *wn      = PField(P, FIELD_WNORMAL);
+  const FieldId    field[] = {FIELD_WNORMAL};
+
+  PetscFunctionBeginUser;
+  for (PetscInt pass = 0; pass < 2; pass++) {
+    for (PetscInt a = 0; a < P->n; a++) {
+      PetscReal *n = wn + D * a, nf[3], gn;
+      if (pass == 0)
+        for (PetscInt i = 0; i < D; i++) n[i] = 0;
+      if (row[a] < 0 || P->kind[a] != (pass == 0 ? KIND_WALL : KIND_DUMMY)) continue;
+      WallGeometrySum s = {.P = P, .x = x, .m = m, .wn = pass ? wn : NULL, .rho0 = ph->fl.rho0, .r2min = PETSC_MAX_REAL, .nearest = -1};
+      SPHPairs(C, a, WallGeometryPair, &s, D);
+      if (pass == 1 && s.nearest >= 0) {
+        for (PetscInt i = 0; i < D; i++) n[i] = wn[D * s.nearest + i];
+        continue;
+      }
+      WallNormal(P, C, a, nf, D);
+      gn = PetscSqrtReal(VDot(s.g, s.g, D));
+      if (pass == 0 && gn > 0.2 * s.gabs && -VDot(s.g, nf, D) > 0)
+        for (PetscInt i = 0; i < D; i++) n[i] = -s.g[i] / gn;
+      else
+        for (PetscInt i = 0; i < D; i++) n[i] = nf[i];
+    }
+    if (pass == 0) PetscCall(HaloRefresh(ph->halo, P, 1, field));
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 /* The wall's share of the projection's Neumann condition dP/dn = rho (v* - v*_wall) . n / dt for a
  * fluid neighbour f approaching wall particle w (times dt / rho0): its approach speed along the
- * wall's normal n times its distance from the wall along n, (x_f - x_w) = -d.  Walls at rest take
- * v* = dt g like the fluid, so the difference is the fluid's own velocity.  One-sided: fluid moving
- * away from a wall is not pulled back. */
+ * wall's normal n (FIELD_WNORMAL; a solid's rows take none) times its distance from the wall along
+ * n, (x_f - x_w) = -d.  Walls at rest take v* = dt g like the fluid, so the difference is the
+ * fluid's own velocity.  One-sided: fluid moving away from a wall is not pulled back. */
 SPH_INLINE PetscReal WallApproach(const PetscReal vf[], const PetscReal vw[], const PetscReal n[], const PetscReal d[], const PetscInt D)
 {
   PetscReal dv[3], un, dn;
@@ -334,7 +403,7 @@ SPH_INLINE PetscErrorCode AssembleRowsD(PPE ppe, Physics *ph, const PetscReal *s
   const PetscReal *rho = PField(P, FIELD_RHO), *m = PField(P, FIELD_M), *h = PField(P, FIELD_H), *fv = PField(P, FIELD_FVIEW);
   const PetscReal  rho0 = ph->fl.rho0;
   const PetscBool  sparse = (PetscBool)(ppe->pc_qmax > 0);
-  const PetscReal *vs = PField(P, FIELD_VSTAR);
+  const PetscReal *vs = PField(P, FIELD_VSTAR), *wn = PField(P, FIELD_WNORMAL);
 
   PetscFunctionBeginUser;
   for (PetscInt r = 0; r < ppe->nrow; r++) {
@@ -343,10 +412,9 @@ SPH_INLINE PetscErrorCode AssembleRowsD(PPE ppe, Physics *ph, const PetscReal *s
     PetscInt  ncp = 1;
     PetscBool wall = KindIsBoundary(P->kind[a]), dir = (PetscBool)(IsDirichlet(fs, a) || ga == ppe->pin);
     PetscBool approach = (PetscBool)(ppe->wall_approach && KindIsWall(P->kind[a])); /* fixed walls; a solid's rows keep rho0 g . n */
-    PetscReal nw[3] = {0, 0, 0};
+    const PetscReal *nw = approach ? wn + D * a : NULL;
     FluidView(fv, P->kind[a], a, m, rho, NULL, &ma, &ra, &pa);
     va = ma / rho0;
-    if (approach) WallNormal(P, C, a, nw, D);
     if (!ppe->symmetric && P->kind[a] == KIND_SOLID) {
       ppe->cols[0] = ga;
       ppe->hyd[r]  = 0;
@@ -400,6 +468,7 @@ PetscErrorCode PPEAssemble(PPE ppe, Physics *ph, const PetscReal *src)
   PetscFunctionBeginUser;
   ppe->pin = ppe->ndirichlet_global ? -1 : 0; /* no free surface: P = 0 at global row 0 (ppe.h) */
   PetscCall(Reset(ppe, ph));
+  if (ppe->wall_approach) PetscCall(SPH_DIM_DISPATCH(ph->dim, WallNormalsD, ppe, ph));
   PetscCall(VecGetArrayWrite(ppe->b, &bb));
   PetscCall(SPH_DIM_DISPATCH(ph->dim, AssembleRowsD, ppe, ph, src, bb));
   PetscCall(VecRestoreArrayWrite(ppe->b, &bb));

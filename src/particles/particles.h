@@ -59,7 +59,8 @@ typedef enum { XDMF_NONE = 0, XDMF_SCALAR, XDMF_VECTOR, XDMF_SYM } FieldXdmf;
                                                                                       computed (a refresh or a rebuild); the solids move after it, and a restart computes them there (checkpoint.h) */ \
   F(FIELD_OPEN,    "open_zone",          1,             9,  PETSC_TRUE,  XDMF_SCALAR) /* open boundaries: 0 the fluid, k > 0 the buffer of open boundary k (open_boundary.h) */ \
   F(FIELD_BODY,    "body",               1,            10,  PETSC_TRUE,  XDMF_SCALAR) /* walls and solids: the body k > 0 whose force a scene measures (body_force.h; 0 none) */ \
-  F(FIELD_QWALL,   "wall_riemann",       1,             0,  PETSC_TRUE,  XDMF_NONE)   /* WCSPH fluid: the Riemann dissipation against the walls, per unit density (wcsph.c) */
+  F(FIELD_QWALL,   "wall_riemann",       1,             0,  PETSC_TRUE,  XDMF_NONE)   /* WCSPH fluid: the Riemann dissipation against the walls, per unit density (wcsph.c) */ \
+  F(FIELD_WNORMAL, "wall_normal",        WIDTH_VECTOR,  0,  PETSC_FALSE, XDMF_NONE)   /* ISPH: a fixed wall particle's unit normal into the fluid, from the walls' geometry (ppe.c) */
 
 typedef enum {
 #define PARTICLE_FIELD_ID(id, ...) id,

@@ -6,7 +6,9 @@
 # particle-steps/s of the time loop on 2 ranks (summary.json).  The machine is shared and its speed
 # drifts within minutes, so each row runs BENCH_REPS times (3), the rows alternating, and the report
 # gives the median and the range.  With BENCH_BASE=path/to/other/sphfsi every run is paired with the
-# same run of that binary (A, B, A, B, ...: a change against the previous commit's build), and the
+# same run of that binary (A, B, then B, A, ...: a change against the previous commit's build; the order
+# swaps each run: in a fixed order a build whose hot loops were the same machine code came out at
+# 0.85-0.95x, which swapped pairs did not repeat), and the
 # report gives both medians and their ratio.  Writes out/bench/targets.md.
 # Environment as tools/bench.sh (MPIEXEC, MPIEXEC_FLAGS, BINDIR, BENCH_TIMEOUT).
 cd "$(dirname "$0")/.."
@@ -26,7 +28,8 @@ declare -A ROW=(
 FAILS=""
 for rep in $(seq 1 $REPS); do
   for row in wcsph3d wcsph2d isph2d; do
-    for who in A ${BASE:+B}; do
+    order="A ${BASE:+B}"; [ -n "$BASE" ] && [ $((rep % 2)) -eq 0 ] && order="B A" # the pair's order swaps each run: the host drifts within a pair
+    for who in $order; do
       bin=$BIN/sphfsi; [ $who = B ] && bin=$BASE
       dir=$OUT/${row}_${who}_$rep
       timeout $TMO $MPI -n 2 $bin ${ROW[$row]} -overwrite -progress_every 0 -output_dir $dir > $dir.log 2>&1 || FAILS="$FAILS ${row}_${who}_$rep"

@@ -7,8 +7,8 @@
 # drifts within minutes, so each row runs BENCH_REPS times (3), the rows alternating, and the report
 # gives the median and the range.  With BENCH_BASE=path/to/other/sphfsi every run is paired with the
 # same run of that binary (A, B, then B, A, ...: a change against the previous commit's build; the order
-# swaps each run: in a fixed order a build whose hot loops were the same machine code came out at
-# 0.85-0.95x, which swapped pairs did not repeat), and the
+# swaps each run, so that neither build is always first; a build whose hot loops were the same
+# machine code as the base's came out at 0.85-1.03x of it: a ratio within ~15 % of 1 is the host's), and the
 # report gives both medians and their ratio.  Writes out/bench/targets.md.
 # Environment as tools/bench.sh (MPIEXEC, MPIEXEC_FLAGS, BINDIR, BENCH_TIMEOUT).
 cd "$(dirname "$0")/.."

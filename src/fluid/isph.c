@@ -74,7 +74,7 @@ PetscErrorCode ISPHSetUp(Physics *ph)
   PetscCall(ParticlesEnableField(ph->P, FIELD_VSTAR, PETSC_TRUE)); /* read by neighbours after the predictor's rebuild */
   PetscCall(ParticlesEnableField(ph->P, FIELD_FS, PETSC_FALSE));
   PetscCall(ParticlesEnableField(ph->P, FIELD_ROW, PETSC_FALSE));
-  if (s->ppe->wall_approach) PetscCall(ParticlesEnableField(ph->P, FIELD_WNORMAL, PETSC_FALSE)); /* the walls' rows (ppe.c, WallNormals) */
+  if (s->ppe->wall_approach) PetscCall(ParticlesEnableField(ph->P, FIELD_WNORMAL, PETSC_FALSE)); /* the walls' rows (ppe.c, WallNormalsD) */
   if (ph->fl.xsph > 0 || s->shift > 0) PetscCall(ParticlesEnableField(ph->P, FIELD_XSPH, PETSC_FALSE));
   PetscFunctionReturn(PETSC_SUCCESS);
 }

@@ -283,41 +283,14 @@ SPH_INLINE PetscReal MovingSolidRow(PPE ppe, Physics *ph, PetscInt a, PetscReal 
   return -va * (rho0 * VDot(gam, R, D) - rhs_last);
 }
 
-/* sum_f W_af (x_f - x_a) over the fluid neighbours f of wall a */
-typedef struct {
-  Particles        P;
-  const PetscReal *x;
-  PetscReal        n[3];
-} WallNormalSum;
-
-SPH_INLINE void WallNormalPair(void *ctx, PetscInt a, SPHPair p, const PetscInt D)
-{
-  WallNormalSum *s = (WallNormalSum *)ctx;
-  PetscInt       b = p.b;
-  if (!KindIsFluid(s->P->kind[b])) return;
-  for (PetscInt i = 0; i < D; i++) s->n[i] += p.W * (s->x[D * b + i] - s->x[D * a + i]);
-}
-
-/* The unit normal of wall (or solid) particle a into the fluid: towards the kernel-weighted centre
- * of its fluid neighbours (a flat wall's normal; a corner's bisector). */
-SPH_INLINE void WallNormal(Particles P, Cells C, PetscInt a, PetscReal n[], const PetscInt D)
-{
-  WallNormalSum s = {.P = P, .x = PField(P, FIELD_X)};
-  PetscReal     nn;
-  SPHPairsW(C, P, a, PETSC_TRUE, WallNormalPair, &s, D);
-  for (PetscInt i = 0; i < D; i++) n[i] = s.n[i];
-  nn = PetscSqrtReal(VDot(n, n, D));
-  if (nn > 0)
-    for (PetscInt i = 0; i < D; i++) n[i] /= nn;
-}
-
-/* What a wall particle gathers over its wall and dummy neighbours b: sum V_b F_ab (x_a - x_b)
- * (V_b grad_a W_ab, towards the walls' volume) and sum V_b |F_ab| r_ab (its size on an even support);
- * the first-row neighbour nearest to a dummy. */
+/* What a wall particle gathers in one pass over its pairs: over its wall and dummy neighbours b,
+ * sum V_b F_ab (x_a - x_b) (V_b grad_a W_ab, towards the walls' volume), sum V_b |F_ab| r_ab (its size
+ * on an even support) and, for a dummy, the nearest first-row neighbour with a normal; over its
+ * fluid neighbours f, sum W_af (x_f - x_a) (towards its fluid). */
 typedef struct {
   Particles        P;
   const PetscReal *x, *m, *wn;
-  PetscReal        rho0, g[3], gabs, r2min;
+  PetscReal        rho0, g[3], gabs, r2min, nf[3];
   PetscInt         nearest;
 } WallGeometrySum;
 
@@ -326,6 +299,10 @@ SPH_INLINE void WallGeometryPair(void *ctx, PetscInt a, SPHPair p, const PetscIn
   WallGeometrySum *s = (WallGeometrySum *)ctx;
   PetscInt         b = p.b;
   PetscReal        d[3], r2, vb = s->m[b] / s->rho0;
+  if (KindIsFluid(s->P->kind[b])) {
+    for (PetscInt i = 0; i < D; i++) s->nf[i] += p.W * (s->x[D * b + i] - s->x[D * a + i]);
+    return;
+  }
   if (!KindIsWall(s->P->kind[b])) return;
   VSub(s->x + D * a, s->x + D * b, d, D);
   r2 = VDot(d, d, D);
@@ -342,38 +319,36 @@ SPH_INLINE void WallGeometryPair(void *ctx, PetscInt a, SPHPair p, const PetscIn
  * volume around it, -sum V_b grad_a W_ab over its wall and dummy neighbours (a flat wall's normal, a
  * corner's bisector), where that sum is at least a fifth of its size on an even support and on the
  * fluid's side; a dummy takes the nearest first-row particle's (refreshed at the ghosts).  Where
- * neither holds (a wall one particle thick), the direction of its fluid (WallNormal).  Only the rows
- * of the pressure equation need it.  Towards its fluid instead, a floor under a thin layer running
- * along it took the fluid behind it for its side: the layer's speed along the floor counted as
- * approach, and the floor's pressure rose to 3.7-6.0 rho g H under a layer 0.13 H deep (the Lobovsky
- * dam break at H/40; docs/impact.md, tests/check_lobovsky.sh). */
+ * neither holds (a wall one particle thick), the direction of its fluid, the kernel-weighted centre
+ * of its fluid neighbours.  Only the rows of the pressure equation need it.  With the direction of
+ * its fluid instead, a floor under a thin layer running along it took the fluid behind it for its
+ * side: the layer's speed along the floor counted as approach, and the floor's pressure rose to
+ * 3.7-6.0 rho g H under a layer 0.13 H deep (the Lobovsky dam break at H/40; docs/impact.md,
+ * tests/check_lobovsky.sh). */
 SPH_INLINE PetscErrorCode WallNormalsD(PPE ppe, Physics *ph, const PetscInt D)
 {
   Particles        P = ph->P;
-  Cells            C = ph->cells;
   const PetscReal *row = PField(P, FIELD_ROW), *x = PField(P, FIELD_X), *m = PField(P, FIELD_M);
   PetscReal       *wn      = PField(P, FIELD_WNORMAL);
   const FieldId    field[] = {FIELD_WNORMAL};
 
   PetscFunctionBeginUser;
-  for (PetscInt pass = 0; pass < 2; pass++) {
+  for (PetscInt pass = 0; pass < 2; pass++) { /* first-row particles, then (after the halo) dummies */
     for (PetscInt a = 0; a < P->n; a++) {
-      PetscReal *n = wn + D * a, nf[3], gn;
+      PetscReal *n = wn + D * a, gn, nn;
       if (pass == 0)
         for (PetscInt i = 0; i < D; i++) n[i] = 0;
       if (row[a] < 0 || P->kind[a] != (pass == 0 ? KIND_WALL : KIND_DUMMY)) continue;
       WallGeometrySum s = {.P = P, .x = x, .m = m, .wn = pass ? wn : NULL, .rho0 = ph->fl.rho0, .r2min = PETSC_MAX_REAL, .nearest = -1};
-      SPHPairs(C, a, WallGeometryPair, &s, D);
-      if (pass == 1 && s.nearest >= 0) {
-        for (PetscInt i = 0; i < D; i++) n[i] = wn[D * s.nearest + i];
-        continue;
-      }
-      WallNormal(P, C, a, nf, D);
+      SPHPairsW(ph->cells, P, a, PETSC_TRUE, WallGeometryPair, &s, D);
       gn = PetscSqrtReal(VDot(s.g, s.g, D));
-      if (pass == 0 && gn > 0.2 * s.gabs && -VDot(s.g, nf, D) > 0)
+      nn = PetscSqrtReal(VDot(s.nf, s.nf, D));
+      if (pass == 1 && s.nearest >= 0)
+        for (PetscInt i = 0; i < D; i++) n[i] = wn[D * s.nearest + i];
+      else if (pass == 0 && gn > 0.2 * s.gabs && -VDot(s.g, s.nf, D) > 0)
         for (PetscInt i = 0; i < D; i++) n[i] = -s.g[i] / gn;
-      else
-        for (PetscInt i = 0; i < D; i++) n[i] = nf[i];
+      else if (nn > 0)
+        for (PetscInt i = 0; i < D; i++) n[i] = s.nf[i] / nn;
     }
     if (pass == 0) PetscCall(HaloRefresh(ph->halo, P, 1, field));
   }

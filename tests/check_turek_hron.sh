@@ -10,6 +10,10 @@
 # 4, 8 and 16 across.  The convergence (8 and 16 across) and CSM3 run in `make study`
 # (STUDY_SCENES=turek_hron).  Also: the same material given as -solid_E 1.4e6 -solid_nu 0.4 gives
 # the same run to round-off, and its options_used repeats it (E and nu given, K and G not recorded).
+# -gravity_pulse: CSM3's gravity given as a pulse over the whole run is the run bit for bit; a pulse
+# over [0.01, 0.03) s leaves the flag at rest before it (to round-off, 1e-12 m), and by its end A has fallen less
+# than a free fall's g t^2 / 2 (the clamp only holds the flag back) but more than a tenth of it (the
+# free end falls freely until the bending waves from the clamp reach it).
 #   tests/check_turek_hron.sh "MPIEXEC -n P" OUTDIR
 set -e
 MPI=$1; OUT=$2; shift 2
@@ -20,6 +24,8 @@ run csm1 -options_file cases/turek_hron_csm1.opts -flag_ny 4
 run short_KG -case turek_hron -turek_hron_case csm3 -flag_ny 4 -t_end 0.05
 run short_Enu -case turek_hron -turek_hron_case csm3 -flag_ny 4 -t_end 0.05 -solid_E 1.4e6 -solid_nu 0.4
 run short_Enu_repeat -options_file "$OUT/short_Enu/options_used" -output_dir "$OUT/short_Enu_repeat"
+run pulse_all -case turek_hron -turek_hron_case csm3 -flag_ny 4 -t_end 0.05 -gravity 0,0 -gravity_pulse 0,-2,0,1
+run pulse -case turek_hron -turek_hron_case csm3 -flag_ny 4 -t_end 0.05 -gravity 0,0 -gravity_pulse 0,-2,0.01,0.03 -probe_interval 0.001
 python3 - "$OUT" <<'PY'
 import json, sys
 import numpy as np
@@ -38,4 +44,11 @@ d = max(np.max(np.abs(p["short_Enu"][q] - p["short_KG"][q])) for q in ["ux_A", "
 print(f"the material as -solid_E, -solid_nu against K, G: largest difference of ux_A, uy_A {d:.1e} m (bound 1e-10 m, uy_A {1e3*p['short_KG']['uy_A'][-1]:.2f} mm); its options_used repeats it")
 assert d < 1e-10, "E and nu do not give the material of K and G"
 assert open(f"{out}/short_Enu/probes.csv").read() == open(f"{out}/short_Enu_repeat/probes.csv").read(), "options_used of a run with -solid_E, -solid_nu does not repeat it"
+assert open(f"{out}/pulse_all/probes.csv").read() == open(f"{out}/short_KG/probes.csv").read(), "gravity as a pulse over the whole run is not the run with that gravity"
+q = np.genfromtxt(f"{out}/pulse/probes.csv", delimiter=",", names=True)
+before, end = q["uy_A"][q["t"] < 0.01 - 1e-9], np.interp(0.03, q["t"], q["uy_A"])
+free = 0.5 * 2 * 0.02**2
+print(f"-gravity_pulse: A at rest before the pulse (largest |uy_A| {np.max(np.abs(before)):.1e} m), uy_A {1e3*end:.3f} mm at its end against a free fall's {-1e3*free:.3f} mm")
+assert np.max(np.abs(before)) < 1e-12, "the flag moved before the pulse (beyond round-off)"
+assert -free < end < -0.1 * free, "A's fall over the pulse is not between a tenth of a free fall's and a free fall's"
 PY

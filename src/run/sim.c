@@ -252,6 +252,15 @@ static PetscErrorCode Staged(Sim sim, SimStage stage, PetscErrorCode (*phase)(Ph
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* -gravity_pulse: the gravity of the time t (a step sees that of its start). */
+static void GravityPulse(Sim sim)
+{
+  PetscBool in;
+  if (!sim->pulse.on) return;
+  in = (PetscBool)(sim->phys.t >= sim->pulse.t0 && sim->phys.t < sim->pulse.t1);
+  for (PetscInt d = 0; d < sim->phys.dim; d++) sim->phys.g[d] = sim->pulse.g_base[d] + (in ? sim->pulse.g[d] : 0);
+}
+
 /* The solid's state after the particles moved (its list, loads and rates). */
 static PetscErrorCode SolidAfterRebuild(Physics *ph)
 {
@@ -288,8 +297,22 @@ PetscErrorCode SimSetUp(Sim sim)
     PetscCheck(!set || ng == sim->phys.dim, sim->comm, PETSC_ERR_ARG_WRONG, "-gravity takes %" PetscInt_FMT " components in this %" PetscInt_FMT "D scene (%s), %" PetscInt_FMT " given", sim->phys.dim, sim->phys.dim, sim->phys.dim == 3 ? "gx,gy,gz" : "gx,gy", ng);
     if (set) PetscCall(PetscArraycpy(sim->phys.g, g, sim->phys.dim));
   }
+  {
+    PetscReal v[5] = {0, 0, 0, 0, 0};
+    PetscInt  nv = 5, D = sim->phys.dim;
+    PetscBool set;
+    PetscCall(PetscOptionsRealArray("-gravity_pulse", "gx,gy[,gz],t0,t1: gravity grows by (gx,gy[,gz]) (m/s^2) over the steps that start in t0 <= t < t1 (s): a push that starts an instability which would otherwise grow from round-off, such as the Turek-Hron flag's flutter", "", v, &nv, &set));
+    PetscCheck(!set || nv == D + 2, sim->comm, PETSC_ERR_ARG_WRONG, "-gravity_pulse takes %" PetscInt_FMT " values in this %" PetscInt_FMT "D scene (%s,t0,t1), %" PetscInt_FMT " given", D + 2, D, D == 3 ? "gx,gy,gz" : "gx,gy", nv);
+    for (PetscInt i = 0; set && i < nv; i++) PetscCheck(!PetscIsInfOrNanReal(v[i]), sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-gravity_pulse: value %" PetscInt_FMT " is not finite", i + 1);
+    PetscCheck(!set || (v[D] >= 0 && v[D + 1] > v[D]), sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-gravity_pulse: its window t0 = %g, t1 = %g needs 0 <= t0 < t1 (s)", (double)v[D], (double)v[D + 1]);
+    sim->pulse.on = set;
+    for (PetscInt d = 0; set && d < D; d++) sim->pulse.g[d] = v[d];
+    sim->pulse.t0 = v[D];
+    sim->pulse.t1 = v[D + 1];
+  }
   PetscOptionsEnd();
   for (PetscInt d = 0; d < sim->phys.dim; d++) PetscCheck(!PetscIsInfOrNanReal(sim->phys.g[d]), sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "-gravity: component %" PetscInt_FMT " is not finite", d + 1);
+  PetscCall(PetscArraycpy(sim->pulse.g_base, sim->phys.g, 3));
   KernelInit(&sim->phys.kernel, sim->phys.kernel.type, sim->phys.dim, sim->phys.kernel.h_factor); /* the normalisation of the scene's dimension */
   PetscCall(ParticlesSetDimension(sim->P, sim->phys.dim));
   if (sim->phys.has_fluid) PetscCall(FluidMaterialSetFromOptions(sim->comm, &sim->phys.kernel, sim->phys.dim, sim->phys.v_ref, &sim->phys.fl, &sim->start_jitter)); /* after the scene's defaults */
@@ -374,6 +397,7 @@ PetscErrorCode SimSetUp(Sim sim)
     PetscCall(DecompMigrate(sim->decomp, sim->P));   /* wraps and checks every particle is inside */
     PetscCall(NeighbourhoodRebuild(&sim->nbhd, sim->phys.step));
     PetscCall(SimTotalMass(sim, &sim->mass0));
+    GravityPulse(sim); /* the first rates see it too */
     if (sim->phys.has_fluid && sim->phys.fluid == FLUID_ISPH) PetscCall(Staged(sim, STAGE_PHYSICS, ISPHInitialize));
     else if (sim->phys.has_fluid) PetscCall(Staged(sim, STAGE_PHYSICS, WCSPHRates));
     if (sim->phys.has_solid) PetscCall(Staged(sim, STAGE_SOLID, SolidAfterRebuild));
@@ -421,6 +445,7 @@ static PetscErrorCode Step(Sim sim)
   PetscInt  nsub = 1;
 
   PetscFunctionBeginUser;
+  GravityPulse(sim);
   if (sim->phys.has_solid && (sim->phys.has_fluid || !sim->dt_fixed)) PetscCall(SolidTimeStep(&sim->phys, &dts)); /* with a fluid, -dt is the fluid's: the solid sub-steps in it */
   if (sim->dt_fixed > 0) sim->phys.dt = sim->dt_fixed;
   else if (sim->phys.isph) PetscCall(ISPHTimeStep(&sim->phys, &sim->phys.dt));

@@ -34,6 +34,7 @@ struct _p_Sim {
   struct { PetscInt n; PetscReal z0, dz; } extrude; /* a 3D slab built from a 2D layout (SceneExtrudeBegin) */
   /* time */
   PetscReal t_end, dt_fixed;
+  struct { PetscBool on; PetscReal g[3], t0, t1, g_base[3]; } pulse; /* -gravity_pulse: gravity g_base + g over the steps that start in [t0, t1) */
   PetscInt  max_steps;
   /* output */
   Output    out;            /* the output's state: directory, intervals, snapshots, probe rows, checkpoints (output.h) */

@@ -9,6 +9,7 @@
 #     cylinder across the periodic corner gives the same drag (a shape across a periodic boundary); the
 #     fluid's force on the cylinder (-body_force) balances the water's weight along x within 0.5 %
 #     with WCSPH (measured -0.047 %; ISPH's -1.4 % is printed, not bounded: docs/turek_hron.md);
+#     two cylinders as two bodies (-cylinder_2_body 2) get equal forces that add up to both's;
 #  2. still water over a half-cylinder trough (cases/boxes/still_trough.opts, ISPH, 1 s): after
 #     0.5 s no water faster than 0.01 sqrt(g H), no particle farther than 0.5 dx from its start;
 #  3. still water in a hemispherical bowl (cases/boxes/still_bowl.opts, 3D, ISPH, 1 s), the same bounds
@@ -50,6 +51,20 @@ print(f"geometry: the fluid's force on the cylinder {p['force_x'][-1]:.6g} N/m a
 assert not wc or (abs(p["force_x"][-1] / fb - 1) < 0.005 and abs(p["force_y"][-1]) < 1e-3 * fb), "the force on the cylinder does not balance the body force"
 PY
 done
+# two bodies (-cylinder_2_body 2): two cylinders in a cell of two periods along y see the same flow, so
+# force_x_2 equals force_x (bound 1e-9, round-off of the sums' order), and the two add up to the force
+# on both as one body (bound 1e-12)
+TWO="-options_file cases/boxes/cylinder_array.opts -dx 0.005 -domain 0,0,0.1,0.2 -fluid_box_1 0,0,0.1,0.2 -cylinder_1 0.05,0.05,0.0178412 -cylinder_2 0.05,0.15,0.0178412 -body_force -t_end 400 -probe_interval 20 -output_interval 0 -progress_every 0"
+for b in 1 2; do
+  timeout 300 $MPI $BIN $TWO -cylinder_2_body $b -output_dir "$OUT/two_$b" > "$OUT/two_$b.log" 2>&1 || { echo "geometry: two cylinders (body $b) failed"; bad=1; }
+done
+python3 - "$OUT/two_2" "$OUT/two_1" <<'PY' || bad=1
+import sys, numpy as np
+two, one = (np.genfromtxt(d + "/probes.csv", delimiter=",", names=True) for d in sys.argv[1:3])
+f1, f2, f = two["force_x"][-1], two["force_x_2"][-1], one["force_x"][-1]
+print(f"geometry: two bodies: force_x {f1:.9g}, force_x_2 {f2:.9g} N/m (relative {abs(f2 / f1 - 1):.1e}, bound 1e-9); their sum against both as body 1 {f:.9g} (relative {abs((f1 + f2) / f - 1):.1e}, bound 1e-12)")
+assert "force_x_2" not in one.dtype.names and f1 > 0 and abs(f2 / f1 - 1) < 1e-9 and abs((f1 + f2) / f - 1) < 1e-12, "the forces on two bodies"
+PY
 # the same array with its cylinder across the periodic corner (the cell shifted by half a period, whole
 # spacings): the same lattice cut, so the same drag to round-off (bound 1e-6)
 timeout 300 $MPI $BIN -options_file cases/boxes/cylinder_array.opts -dx 0.005 -cylinder_1 0,0,0.0178412 -output_interval 4000 -progress_every 0 -output_dir "$OUT/cyl_corner" > "$OUT/cyl_corner.log" 2>&1 || { echo "geometry: the cylinder across the periodic corner failed"; bad=1; }

@@ -20,9 +20,12 @@ PetscErrorCode ShapesDestroy(Shapes *S);
 /* How many shapes were read, and shape i's kind and bounding box (3 coordinates each). */
 PetscInt       ShapesCount(Shapes S);
 PetscErrorCode ShapesGetShape(Shapes S, PetscInt i, ShapeKind *kind, PetscReal lo[], PetscReal hi[]);
+/* Shape i's body (-NAME_body: whose force -body_force gives; 0: none, water's always), and, if ids is
+ * not NULL, the ids its particles were given, [ids[0], ids[1]) (empty before ShapesPopulate). */
+PetscInt       ShapesGetBody(Shapes S, PetscInt i, PetscInt ids[]);
 
 /* In the boxes' options block: -cylinder_K / -sphere_K, -polygon_K (or -polygon_K_file) with
- * _kind, _scale, _rotate, _translate; -flow_probe.  rows: the obstacles' wall rows. */
+ * _kind, _scale, _rotate, _translate, _body; -flow_probe.  rows: the obstacles' wall rows. */
 PetscErrorCode ShapesRead(Sim sim, PetscOptionItems *PetscOptionsObject, Shapes S, PetscInt rows);
 /* The boxes of the scene a shape must not share space with, each the low corner, then the high one. */
 #define SHAPES_MAX_BOXES 64

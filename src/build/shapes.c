@@ -44,7 +44,7 @@ static PetscErrorCode ReadVertexFile(Sim sim, const char *opt, const char *file,
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-/* -NAME_kind, and for a polygon (or a circle) -NAME_scale, -NAME_rotate (degrees), -NAME_translate. */
+/* -NAME_kind, -NAME_body, and for a polygon (or a circle) -NAME_scale, -NAME_rotate (degrees), -NAME_translate. */
 static PetscErrorCode ReadShapeOptions(Sim sim, PetscOptionItems *PetscOptionsObject, Shape *s)
 {
   char      opt[64];
@@ -55,6 +55,10 @@ static PetscErrorCode ReadShapeOptions(Sim sim, PetscOptionItems *PetscOptionsOb
   PetscCall(PetscSNPrintf(opt, sizeof(opt), "%s_kind", s->name));
   PetscCall(OptEList(opt, "What the shape is: wall (an obstacle: wall and dummy rows inside its surface), fluid (water at rest), solid (elastic) or clamp", "", ShapeKinds, 4, ShapeKinds[0], &kind, NULL));
   s->kind = (ShapeKind)kind;
+  s->body = s->kind == SHAPE_FLUID ? 0 : 1;
+  PetscCall(PetscSNPrintf(opt, sizeof(opt), "%s_body", s->name));
+  PetscCall(OptInt(opt, "The body (1-4) whose force -body_force gives this obstacle's share of; 0: none", "", s->body, &s->body, NULL));
+  PetscCheck(s->body >= 0 && s->body <= 4 && (s->kind != SHAPE_FLUID || s->body == 0), sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "%s %" PetscInt_FMT ": a body is numbered 1 to 4 (0: none), and water is none", opt, s->body);
   PetscCall(PetscSNPrintf(opt, sizeof(opt), "%s_scale", s->name));
   PetscCall(PetscOptionsReal(opt, "Scale of the shape about the origin (applied first)", "", scale, &scale, &set_s));
   PetscCall(PetscSNPrintf(opt, sizeof(opt), "%s_rotate", s->name));
@@ -434,6 +438,7 @@ PetscErrorCode ShapesPopulate(Sim sim, Shapes S)
       PetscInt       first = sim->P->n;
       PetscReal      top   = -PETSC_MAX_REAL; /* water: the highest point's top */
       if ((pass == 0) != (s->kind == SHAPE_FLUID)) continue;
+      S->s[i].ids[0] = SimNextId(sim);
       const PetscReal *h;
       WalkSetUp(sim, S, s, &w);
       h = s->own ? w.sp : S->h; /* the points' spacings */
@@ -448,6 +453,7 @@ PetscErrorCode ShapesPopulate(Sim sim, Shapes S)
         PetscCall(SceneAddPoint(sim, kind, p, h, sim->phys.dx, KindIsSolid(kind) ? sim->phys.sl.rho0 : sim->phys.fl.rho0));
       }
       PetscCall(PetscFree(code));
+      S->s[i].ids[1] = SimNextId(sim);
       if (s->kind == SHAPE_FLUID) {
         PetscCall(ShapesCutWater(sim, S, first, NULL, NULL, 0));
         PetscCall(SceneHydrostaticDensity(sim, first, top));
@@ -595,6 +601,15 @@ PetscErrorCode ShapesGetShape(Shapes S, PetscInt i, ShapeKind *kind, PetscReal l
     if (hi) hi[d] = S->s[i].g.hi[d];
   }
   PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscInt ShapesGetBody(Shapes S, PetscInt i, PetscInt ids[])
+{
+  if (ids) {
+    ids[0] = S->s[i].ids[0];
+    ids[1] = S->s[i].ids[1];
+  }
+  return S->s[i].body;
 }
 
 PetscErrorCode ShapesDestroy(Shapes *S)

@@ -15,6 +15,8 @@ typedef struct {
   PetscBool own;      /* -stl_K_lattice own: its bounding box's lattice at -dx (as a wall box), not the shared one */
   PetscReal period[3]; /* the domain's period in the directions in which the shape crosses a periodic boundary, else 0 */
   PetscBool wraps;     /* it crosses one: its particles beyond the boundary go to the other side */
+  PetscInt  body;      /* -NAME_body: the body whose force -body_force gives (0: none) */
+  PetscInt  ids[2];    /* the ids its particles were given, [first, end) (ShapesPopulate) */
 } Shape;
 
 struct _n_Shapes {

@@ -10,13 +10,16 @@
  *   -wall_box_K x0,y0,x1,y1            K = 1..8: an obstacle of wall particles at -dx; its rows
  *   -wall_box_K_faces left,right,...   within dx of the faces given (default all) are walls, the
  *                                      others dummies
- *   -wall_box_K_measured 0             not part of -body_force's body (a channel's walls)
+ *   -wall_box_K_body N                 the body (1..4) whose force -body_force gives; 0: none (a
+ *                                      channel's walls; also -wall_box_K_measured 0); likewise
+ *                                      -solid_box_K_body, -clamp_box_K_body and a shape's _body
  *   -outflow                           water leaving the domain is removed
  *   -domain x0,y0,x1,y1                the computational box (default: the tanks with their walls,
  *                                      open to twice the walls' height)
  *   -gauge_level_K x, -gauge_pressure_K x,y, -gauge_solid_K x0,y0,x1,y1    K = 1..4: probes
  * Probes: front_x, v_max, then level_K, pressure_K, solid_dx_K / solid_dy_K (the mean displacement
- * of the solid particles whose reference position is in the box).  No reference: summary.json's
+ * of the solid particles whose reference position is in the box); with -body_force, force_x, force_y
+ * of body 1 and force_x_N, force_y_N of each further body N.  No reference: summary.json's
  * errors are empty.  docs/options.md lists the options with their checks.
  * -dim 3: the same primitives in 3D (z up): a box is x0,y0,z0,x1,y1,z1[,s]; a tank
  * x0,x1,y0,y1,z0,z1[,s[,rows]] has its floor at z0 and walls on all four sides up to z1; obstacle
@@ -32,12 +35,13 @@
 #define NBOX 8
 #define NTANK 4
 #define NGAUGE 4
+#define NBODY 4 /* bodies whose force -body_force gives */
 
 typedef struct {
   PetscReal b[6], s; /* box: its low corner, then its high corner (2D x0,y0,x1,y1); lattice spacing (tanks: walls' spacing) */
   PetscInt  rows;    /* tanks: wall rows */
   PetscBool left, right, face[6];
-  PetscBool measured; /* wall boxes: part of -body_force's body */
+  PetscInt  body;   /* walls, solids, clamps: the body whose force -body_force gives (0: none) */
 } Box;
 
 typedef struct {
@@ -49,6 +53,7 @@ typedef struct {
   OpenBoundarySpec open[SCENE_MAX_OPEN]; /* -inlet_K, -outlet_K */
   PetscInt         nopen;
   PetscBool        body_force; /* probes of the fluid's force on the obstacles (SimBodyForce) */
+  PetscInt         nbody;      /* with it: bodies 1..nbody, each a probe of its force */
 } Boxes;
 
 extern SceneOps SceneBoxes; /* not const: Create fills in its probe names */
@@ -127,8 +132,9 @@ static PetscErrorCode BodyBoxes(const Boxes *c, PetscInt D, ShapesBoxes *B)
 }
 
 /* Boxes K = 1..NBOX of one kind (-PREFIX_K); with spacing: a 5th number, the lattice's spacing; with
- * faces: -PREFIX_K_faces, the faces that meet water (default all). */
-static PetscErrorCode ReadBoxes(Sim sim, PetscOptionItems *PetscOptionsObject, const char *prefix, const char *text, Box *list, PetscInt *count, PetscBool spacing, PetscBool faces)
+ * faces: -PREFIX_K_faces, the faces that meet water (default all), and -PREFIX_K_measured; an
+ * obstacle: -PREFIX_K_body, the body whose force -body_force gives (default 1). */
+static PetscErrorCode ReadBoxes(Sim sim, PetscOptionItems *PetscOptionsObject, const char *prefix, const char *text, Box *list, PetscInt *count, PetscBool spacing, PetscBool faces, PetscBool obstacle)
 {
   const PetscInt D = SimDim(sim), nb = 2 * D;
   char           name[40];
@@ -136,7 +142,7 @@ static PetscErrorCode ReadBoxes(Sim sim, PetscOptionItems *PetscOptionsObject, c
   for (PetscInt k = 1; k <= NBOX; k++) {
     PetscReal v[7];
     PetscInt  n = spacing ? nb + 1 : nb;
-    PetscBool set;
+    PetscBool set, measured = PETSC_TRUE;
     Box      *B;
     PetscCall(PetscSNPrintf(name, sizeof(name), "-%s_%d", prefix, (int)k));
     PetscCall(PetscOptionsRealArray(name, text, "", v, &n, &set));
@@ -147,7 +153,7 @@ static PetscErrorCode ReadBoxes(Sim sim, PetscOptionItems *PetscOptionsObject, c
     B->s = n == nb + 1 ? v[nb] : SimSpacing(sim);
     PetscCheck(B->s > 0, SimComm(sim), PETSC_ERR_ARG_OUTOFRANGE, "%s: the spacing %g must be > 0", name, (double)B->s);
     for (PetscInt i = 0; i < nb; i++) B->face[i] = PETSC_TRUE;
-    B->measured = PETSC_TRUE;
+    B->body = obstacle ? 1 : 0;
     if (faces) {
       char list[64] = "";
       PetscCall(PetscSNPrintf(name, sizeof(name), "-%s_%d_faces", prefix, (int)k));
@@ -157,7 +163,15 @@ static PetscErrorCode ReadBoxes(Sim sim, PetscOptionItems *PetscOptionsObject, c
         for (PetscInt i = 0; i < nb; i++) B->face[i] = (PetscBool)(strstr(list, D == 3 ? fn3[i] : fn2[i]) != NULL);
       }
       PetscCall(PetscSNPrintf(name, sizeof(name), "-%s_%d_measured", prefix, (int)k));
-      PetscCall(PetscOptionsBool(name, "Whether -body_force counts the fluid's force on this obstacle (0 for a channel's walls, whose friction is not the body's drag)", "", B->measured, &B->measured, NULL));
+      PetscCall(PetscOptionsBool(name, "Whether -body_force counts the fluid's force on this obstacle (0 for a channel's walls, whose friction is not the body's drag; as _body 0)", "", measured, &measured, NULL));
+    }
+    if (obstacle) {
+      PetscBool given;
+      PetscCall(PetscSNPrintf(name, sizeof(name), "-%s_%d_body", prefix, (int)k));
+      PetscCall(OptInt(name, "The body (1-4) whose force -body_force gives this obstacle's share of (probes force_x, force_y for body 1, force_x_N, force_y_N for body N); 0: none", "", B->body, &B->body, &given));
+      PetscCheck(B->body >= 0 && B->body <= NBODY, SimComm(sim), PETSC_ERR_ARG_OUTOFRANGE, "%s %" PetscInt_FMT ": a body is numbered 1 to %d (0: none)", name, B->body, NBODY);
+      PetscCheck(measured || !given || B->body == 0, SimComm(sim), PETSC_ERR_ARG_INCOMP, "%s %" PetscInt_FMT " and -%s_%d_measured 0 contradict each other: give one of them", name, B->body, prefix, (int)k);
+      if (!measured) B->body = 0;
     }
   }
   PetscFunctionReturn(PETSC_SUCCESS);
@@ -197,7 +211,7 @@ static PetscErrorCode Create(Sim sim)
   PetscCheck(SimDim(sim) == 2 || SimDim(sim) == 3, SimComm(sim), PETSC_ERR_ARG_OUTOFRANGE, "-dim %" PetscInt_FMT " must be 2 or 3", SimDim(sim));
   D = SimDim(sim); up = D - 1;
   if (D == 3) PetscCall(SimSetGravity(sim, SimGravity(sim)[0], 0, -9.81));
-  PetscCall(ReadBoxes(sim, PetscOptionsObject, "fluid_box", "Water at rest x0,y0,x1,y1[,spacing] (3D: x0,y0,z0,x1,y1,z1[,spacing]) (m)", c->fluid, &c->nfluid, PETSC_TRUE, PETSC_FALSE));
+  PetscCall(ReadBoxes(sim, PetscOptionsObject, "fluid_box", "Water at rest x0,y0,x1,y1[,spacing] (3D: x0,y0,z0,x1,y1,z1[,spacing]) (m)", c->fluid, &c->nfluid, PETSC_TRUE, PETSC_FALSE, PETSC_FALSE));
   rows = SimKernelRows(sim);
   PetscCall(OptInt("-wall_rows", "Rows of wall + dummy particles of a tank that does not give its own", "", rows, &rows, NULL));
   PetscCheck(rows >= 1, SimComm(sim), PETSC_ERR_ARG_OUTOFRANGE, "-wall_rows %" PetscInt_FMT " must be >= 1", rows);
@@ -223,13 +237,13 @@ static PetscErrorCode Create(Sim sim)
     T->left  = (PetscBool)(side == 0 || side == 1);
     T->right = (PetscBool)(side == 0 || side == 2);
   }
-  PetscCall(ReadBoxes(sim, PetscOptionsObject, "solid_box", "Elastic solid x0,y0,x1,y1 (m), at -dx", c->solid, &c->nsolid, PETSC_FALSE, PETSC_FALSE));
-  PetscCall(ReadBoxes(sim, PetscOptionsObject, "clamp_box", "Rigid clamp of a solid x0,y0,x1,y1 (m), at -dx", c->clamp, &c->nclamp, PETSC_FALSE, PETSC_FALSE));
-  PetscCall(ReadBoxes(sim, PetscOptionsObject, "wall_box", "Obstacle of wall particles x0,y0,x1,y1 (m), at -dx", c->wall, &c->nwall, PETSC_FALSE, PETSC_TRUE));
+  PetscCall(ReadBoxes(sim, PetscOptionsObject, "solid_box", "Elastic solid x0,y0,x1,y1 (m), at -dx", c->solid, &c->nsolid, PETSC_FALSE, PETSC_FALSE, PETSC_TRUE));
+  PetscCall(ReadBoxes(sim, PetscOptionsObject, "clamp_box", "Rigid clamp of a solid x0,y0,x1,y1 (m), at -dx", c->clamp, &c->nclamp, PETSC_FALSE, PETSC_FALSE, PETSC_TRUE));
+  PetscCall(ReadBoxes(sim, PetscOptionsObject, "wall_box", "Obstacle of wall particles x0,y0,x1,y1 (m), at -dx", c->wall, &c->nwall, PETSC_FALSE, PETSC_TRUE, PETSC_TRUE));
   PetscCall(ShapesCreate(&c->shapes));
   PetscCall(ShapesRead(sim, PetscOptionsObject, c->shapes, rows));
   PetscCall(SceneOpenBoundaryOptions(sim, PetscOptionsObject, c->open, &c->nopen));
-  PetscCall(OptBool("-body_force", "Probes force_x, force_y (3D also force_z): the fluid's force on the obstacles (wall boxes, shapes and solids; N/m in 2D, N in 3D), as the momentum equation exchanges it", "", c->body_force, &c->body_force, NULL));
+  PetscCall(OptBool("-body_force", "Probes force_x, force_y (3D also force_z): the fluid's force on the obstacles of body 1 (wall boxes, shapes and solids, all unless their _body says otherwise; N/m in 2D, N in 3D), as the momentum equation exchanges it; force_x_N, ... for each further body N", "", c->body_force, &c->body_force, NULL));
   outflow = SimOutflow(sim);
   PetscCall(OptBool("-outflow", "Water that leaves the domain is removed (an open boundary)", "", outflow, &outflow, NULL));
   PetscCall(SimSetOutflow(sim, outflow));
@@ -375,9 +389,16 @@ static PetscErrorCode Create(Sim sim)
   if (c->body_force) {
     PetscCheck(SimHasFluid(sim), SimComm(sim), PETSC_ERR_ARG_INCOMP, "-body_force measures the fluid's force: give a -fluid_box");
     PetscCall(SimEnableField(sim, "body"));
-    PetscCall(ProbeName(c, &n, "force_x", 0));
-    PetscCall(ProbeName(c, &n, "force_y", 0));
-    if (D == 3) PetscCall(ProbeName(c, &n, "force_z", 0));
+    c->nbody = 1;
+    for (PetscInt i = 0; i < c->nsolid; i++) c->nbody = PetscMax(c->nbody, c->solid[i].body);
+    for (PetscInt i = 0; i < c->nclamp; i++) c->nbody = PetscMax(c->nbody, c->clamp[i].body);
+    for (PetscInt i = 0; i < c->nwall; i++) c->nbody = PetscMax(c->nbody, c->wall[i].body);
+    for (PetscInt i = 0; i < ShapesCount(c->shapes); i++) c->nbody = PetscMax(c->nbody, ShapesGetBody(c->shapes, i, NULL));
+    for (PetscInt k = 1; k <= c->nbody; k++) { /* body 1: force_x, ...; body k: force_x_k, ... */
+      PetscCall(ProbeName(c, &n, "force_x", k > 1 ? k : 0));
+      PetscCall(ProbeName(c, &n, "force_y", k > 1 ? k : 0));
+      if (D == 3) PetscCall(ProbeName(c, &n, "force_z", k > 1 ? k : 0));
+    }
   }
   PetscCheck(n <= SCENE_MAX_PROBES, SimComm(sim), PETSC_ERR_ARG_OUTOFRANGE, "Scene boxes has %d probe columns (front_x, v_max and the gauges; a solid gauge counts one per dimension): at most %d", (int)n, SCENE_MAX_PROBES);
   SceneBoxes.nprobes = n;
@@ -389,7 +410,7 @@ static PetscErrorCode Populate(Sim sim)
   Boxes *c = (Boxes *)SimSceneContext(sim);
   PetscFunctionBeginUser;
   const PetscInt D = SimDim(sim), up = D - 1;
-  PetscInt       first_body, wall_ids[NBOX][2]; /* each wall box's ids [first, end) */
+  PetscInt       first_body, ids[3][NBOX][2]; /* each solid, clamp and wall box's ids [first, end) */
   for (PetscInt i = 0; i < c->nfluid; i++) { /* at rest: hydrostatic below the lattice's top */
     const Box *F     = &c->fluid[i];
     PetscInt   first, n;
@@ -405,12 +426,20 @@ static PetscErrorCode Populate(Sim sim)
     else PetscCall(SceneAddTank(sim, T->b[0], T->b[2], T->b[1], T->b[3], T->s, T->rows, T->left, T->right));
   }
   first_body = SimNextId(sim); /* the obstacles: what follows the tanks */
-  for (PetscInt i = 0; i < c->nsolid; i++) PetscCall(SceneAddBox(sim, KIND_SOLID, c->solid[i].b, SimSpacing(sim), SimSolidMaterial(sim)->rho0));
-  for (PetscInt i = 0; i < c->nclamp; i++) PetscCall(SceneAddBox(sim, KIND_CLAMP, c->clamp[i].b, SimSpacing(sim), SimSolidMaterial(sim)->rho0));
+  for (PetscInt i = 0; i < c->nsolid; i++) {
+    ids[0][i][0] = SimNextId(sim);
+    PetscCall(SceneAddBox(sim, KIND_SOLID, c->solid[i].b, SimSpacing(sim), SimSolidMaterial(sim)->rho0));
+    ids[0][i][1] = SimNextId(sim);
+  }
+  for (PetscInt i = 0; i < c->nclamp; i++) {
+    ids[1][i][0] = SimNextId(sim);
+    PetscCall(SceneAddBox(sim, KIND_CLAMP, c->clamp[i].b, SimSpacing(sim), SimSolidMaterial(sim)->rho0));
+    ids[1][i][1] = SimNextId(sim);
+  }
   for (PetscInt i = 0; i < c->nwall; i++) {
-    wall_ids[i][0] = SimNextId(sim);
+    ids[2][i][0] = SimNextId(sim);
     PetscCall(SceneAddWallBox(sim, c->wall[i].b, SimSpacing(sim), c->wall[i].face));
-    wall_ids[i][1] = SimNextId(sim);
+    ids[2][i][1] = SimNextId(sim);
   }
   if (D == 3 && ShapesCount(c->shapes)) { /* an STL obstacle's faces resting on these walls are dry */
     PetscReal dry[6 * SHAPES_MAX][6];
@@ -421,7 +450,7 @@ static PetscErrorCode Populate(Sim sim)
     PetscCall(ShapesSetDry(sim, c->shapes, n, (const PetscReal(*)[6])dry));
   }
   PetscCall(ShapesPopulate(sim, c->shapes));
-  if (c->body_force) { /* body 1: every wall or solid particle made after the tanks, but the wall boxes with -wall_box_K_measured 0 */
+  if (c->body_force) { /* every wall or solid particle made after the tanks: its box's or shape's body (default 1) */
     const PetscInt *id, *kind;
     PetscReal      *body;
     PetscInt        np;
@@ -430,10 +459,16 @@ static PetscErrorCode Populate(Sim sim)
     PetscCall(SimGetField(sim, "kind", NULL, &kind));
     PetscCall(SimGetField(sim, "body", NULL, &body));
     for (PetscInt a = 0; a < np; a++) {
-      PetscBool in = (PetscBool)(id[a] >= first_body && !KindIsFluid(kind[a]));
-      for (PetscInt i = 0; i < c->nwall; i++)
-        if (!c->wall[i].measured && id[a] >= wall_ids[i][0] && id[a] < wall_ids[i][1]) in = PETSC_FALSE;
-      body[a] = in ? 1 : 0;
+      const Box *list[3] = {c->solid, c->clamp, c->wall};
+      PetscInt   nlist[3] = {c->nsolid, c->nclamp, c->nwall}, k = id[a] >= first_body && !KindIsFluid(kind[a]) ? 1 : 0;
+      for (PetscInt j = 0; j < 3 && k; j++)
+        for (PetscInt i = 0; i < nlist[j]; i++)
+          if (id[a] >= ids[j][i][0] && id[a] < ids[j][i][1]) k = list[j][i].body;
+      for (PetscInt i = 0; i < ShapesCount(c->shapes) && k; i++) {
+        PetscInt range[2], b = ShapesGetBody(c->shapes, i, range);
+        if (id[a] >= range[0] && id[a] < range[1]) k = b;
+      }
+      body[a] = (PetscReal)k;
     }
     PetscCall(SimRestoreField(sim, "id", NULL, &id));
     PetscCall(SimRestoreField(sim, "kind", NULL, &kind));
@@ -493,9 +528,9 @@ static PetscErrorCode Probe(Sim sim, PetscReal *vals)
   }
   PetscCall(ShapesFlowProbe(sim, c->shapes, vals + n));
   n += ShapesFlowColumns(c->shapes);
-  if (c->body_force) {
+  for (PetscInt k = 1; c->body_force && k <= c->nbody; k++) {
     PetscReal f[3];
-    PetscCall(SimBodyForce(sim, 1, f));
+    PetscCall(SimBodyForce(sim, k, f));
     for (PetscInt d = 0; d < D; d++) vals[n++] = f[d];
   }
   PetscFunctionReturn(PETSC_SUCCESS);

@@ -107,6 +107,8 @@ const PetscReal *SimSolidSupport(Sim sim);
  * default) the pressure measured from its mean over those pairs, so that a uniform pressure pushes
  * no body (docs/turek_hron.md). */
 PetscErrorCode SimBodyForce(Sim sim, PetscInt k, PetscReal force[3]);
+/* The same for bodies k, ..., k + n - 1 (n <= 8) in one pass over the pairs: force[j] is body k + j's. */
+PetscErrorCode SimBodyForces(Sim sim, PetscInt k, PetscInt n, PetscReal force[][3]);
 
 /* Open boundaries: an inlet with a prescribed velocity, an outlet at a given pressure, each a buffer
  * of fluid particles `rows` deep outside a plane normal to a coordinate axis.  The scene fills the

@@ -9,6 +9,7 @@
 SPHFSI_EXTERN_C_BEGIN
 
 #define SHAPES_MAX 8 /* of each type: -cylinder_K (-sphere_K in 3D), -polygon_K, K = 1..8 */
+#define SHAPES_MAX_BODIES 4 /* -NAME_body (and -case boxes' -wall_box_K_body ...): 1..4, 0 none */
 
 typedef enum { SHAPE_WALL = 0, SHAPE_FLUID, SHAPE_SOLID, SHAPE_CLAMP } ShapeKind;
 extern const char *const ShapeKinds[];

@@ -58,7 +58,7 @@ static PetscErrorCode ReadShapeOptions(Sim sim, PetscOptionItems *PetscOptionsOb
   s->body = s->kind == SHAPE_FLUID ? 0 : 1;
   PetscCall(PetscSNPrintf(opt, sizeof(opt), "%s_body", s->name));
   PetscCall(OptInt(opt, "The body (1-4) whose force -body_force gives this obstacle's share of; 0: none", "", s->body, &s->body, NULL));
-  PetscCheck(s->body >= 0 && s->body <= 4 && (s->kind != SHAPE_FLUID || s->body == 0), sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "%s %" PetscInt_FMT ": a body is numbered 1 to 4 (0: none), and water is none", opt, s->body);
+  PetscCheck(s->body >= 0 && s->body <= SHAPES_MAX_BODIES && (s->kind != SHAPE_FLUID || s->body == 0), sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "%s %" PetscInt_FMT ": a body is numbered 1 to %d (0: none), and water is none", opt, s->body, SHAPES_MAX_BODIES);
   PetscCall(PetscSNPrintf(opt, sizeof(opt), "%s_scale", s->name));
   PetscCall(PetscOptionsReal(opt, "Scale of the shape about the origin (applied first)", "", scale, &scale, &set_s));
   PetscCall(PetscSNPrintf(opt, sizeof(opt), "%s_rotate", s->name));

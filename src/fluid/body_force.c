@@ -6,9 +6,9 @@
 typedef struct {
   Physics         *ph;
   const PetscReal *body, *m, *x, *h;
-  PetscReal        k;
-  PetscReal        f[3];
-  PetscReal        unit[3], level[2]; /* sum of g; sums of |g| q and |g| (FluidPairPressureUnit) */
+  PetscInt         k, n; /* bodies k .. k + n - 1 */
+  PetscReal        f[FLUID_MAX_BODIES][3];
+  PetscReal        unit[FLUID_MAX_BODIES][3], level[FLUID_MAX_BODIES][2]; /* sum of g; sums of |g| q and |g| (FluidPairPressureUnit) */
 } BodyForceSum;
 
 /* A body particle b's share of pair (a, b): m_b times its acceleration from fluid particle a, with
@@ -19,16 +19,17 @@ SPH_INLINE void BodyForcePair(void *ctx, PetscInt a, SPHPair p, const PetscInt D
 {
   BodyForceSum *s = (BodyForceSum *)ctx;
   PetscReal     acc[3] = {0, 0, 0}, d[3], F;
-  if (s->body[p.b] != s->k || !KindIsBoundary(s->ph->P->kind[p.b])) return;
+  PetscInt      j = (PetscInt)s->body[p.b] - s->k; /* the body's place among those measured */
+  if (j < 0 || j >= s->n || !KindIsBoundary(s->ph->P->kind[p.b])) return;
   VSub(s->x + D * a, s->x + D * p.b, d, D);
   F = KernelF(&s->ph->kernel, PetscSqrtReal(VDot(d, d, D)), PairH(s->h[a], s->h[p.b]));
   FluidPairLoad(s->ph, p.b, a, F, acc, D);
-  for (PetscInt i = 0; i < D; i++) s->f[i] += s->m[p.b] * acc[i];
+  for (PetscInt i = 0; i < D; i++) s->f[j][i] += s->m[p.b] * acc[i];
   if (s->ph->fl.force_gauge) {
     PetscReal g[3], q = FluidPairPressureUnit(s->ph, p.b, a, F, g, D), gn = PetscSqrtReal(VDot(g, g, D));
-    for (PetscInt i = 0; i < D; i++) s->unit[i] += g[i];
-    s->level[0] += gn * q;
-    s->level[1] += gn;
+    for (PetscInt i = 0; i < D; i++) s->unit[j][i] += g[i];
+    s->level[j][0] += gn * q;
+    s->level[j][1] += gn;
   }
 }
 
@@ -39,24 +40,31 @@ SPH_INLINE void BodyForcePair(void *ctx, PetscInt a, SPHPair p, const PetscInt D
  * WCSPH: the momentum exchanged is 7-8 % above the reference, a uniform pressure's push; ISPH's
  * moves by 0.04 N/m per 1000 Pa of level, and there p_mean's correlation with sum g is the
  * pressure's answer to disorder, not a gauge: docs/turek_hron.md). */
-SPH_INLINE PetscErrorCode BodyForceD(Physics *ph, PetscInt k, PetscReal force[3], const PetscInt D)
+SPH_INLINE PetscErrorCode BodyForceD(Physics *ph, PetscInt k, PetscInt n, PetscReal force[][3], const PetscInt D)
 {
   Particles    P = ph->P;
-  BodyForceSum s = {.ph = ph, .body = PField(P, FIELD_BODY), .m = PField(P, FIELD_M), .x = PField(P, FIELD_X), .h = PField(P, FIELD_H), .k = (PetscReal)k};
+  BodyForceSum s = {.ph = ph, .body = PField(P, FIELD_BODY), .m = PField(P, FIELD_M), .x = PField(P, FIELD_X), .h = PField(P, FIELD_H), .k = k, .n = n};
+  PetscReal    local[8 * FLUID_MAX_BODIES], sum[8 * FLUID_MAX_BODIES];
   PetscFunctionBeginUser;
   PetscCheck(s.body, ph->comm, PETSC_ERR_ORDER, "A body's force needs the field \"body\": enable it in the scene's create and set it in its populate");
+  PetscCheck(k > 0 && n >= 1 && n <= FLUID_MAX_BODIES, ph->comm, PETSC_ERR_ARG_OUTOFRANGE, "Bodies %" PetscInt_FMT " to %" PetscInt_FMT ": bodies are numbered from 1, at most %d at a time", k, k + n - 1, FLUID_MAX_BODIES);
   for (PetscInt a = 0; a < P->n; a++)
     if (KindIsFluid(P->kind[a])) SPHPairs(ph->cells, a, BodyForcePair, &s, D);
-  if (ph->fl.force_gauge) {
-    PetscReal local[8] = {s.f[0], s.f[1], s.f[2], s.unit[0], s.unit[1], s.unit[2], s.level[0], s.level[1]}, sum[8], mean;
-    PetscCall(MPIU_Allreduce(local, sum, 8, MPIU_REAL, MPIU_SUM, ph->comm));
-    mean = sum[7] > 0 ? sum[6] / sum[7] : 0;
-    for (PetscInt i = 0; i < 3; i++) force[i] = sum[i] - mean * sum[3 + i];
-  } else PetscCall(MPIU_Allreduce(s.f, force, 3, MPIU_REAL, MPIU_SUM, ph->comm));
+  for (PetscInt j = 0; j < n; j++) { /* per body: f, then (gauge) unit and level */
+    PetscReal *l = local + 8 * j;
+    for (PetscInt i = 0; i < 3; i++) { l[i] = s.f[j][i]; l[3 + i] = s.unit[j][i]; }
+    l[6] = s.level[j][0];
+    l[7] = s.level[j][1];
+  }
+  PetscCall(MPIU_Allreduce(local, sum, 8 * n, MPIU_REAL, MPIU_SUM, ph->comm));
+  for (PetscInt j = 0; j < n; j++) {
+    const PetscReal *t = sum + 8 * j, mean = ph->fl.force_gauge && t[7] > 0 ? t[6] / t[7] : 0;
+    for (PetscInt i = 0; i < 3; i++) force[j][i] = ph->fl.force_gauge ? t[i] - mean * t[3 + i] : t[i];
+  }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode FluidBodyForce(Physics *ph, PetscInt k, PetscReal force[3])
+PetscErrorCode FluidBodyForces(Physics *ph, PetscInt k, PetscInt n, PetscReal force[][3])
 {
-  return SPH_DIM_DISPATCH(ph->dim, BodyForceD, ph, k, force);
+  return SPH_DIM_DISPATCH(ph->dim, BodyForceD, ph, k, n, force);
 }

@@ -5,5 +5,8 @@
 #pragma once
 #include "physics/physics.h"
 
-/* The force (N, or N/m in 2D) of the fluid on body k > 0 at the current state: collective. */
-PetscErrorCode FluidBodyForce(Physics *ph, PetscInt k, PetscReal force[3]);
+#define FLUID_MAX_BODIES 8 /* bodies one pass measures */
+
+/* The forces (N, or N/m in 2D) of the fluid on bodies k, k + 1, ..., k + n - 1 (k > 0, n <= FLUID_MAX_BODIES)
+ * at the current state, in one pass over the pairs: collective. */
+PetscErrorCode FluidBodyForces(Physics *ph, PetscInt k, PetscInt n, PetscReal force[][3]);

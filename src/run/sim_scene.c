@@ -119,13 +119,20 @@ PetscErrorCode SimSolidEnergy(Sim sim, PetscReal *ekin, PetscReal *estrain)
 }
 const PetscReal *SimSolidLoad(Sim sim) { return sim->phys.solid->load_mean; }
 const PetscReal *SimSolidSupport(Sim sim) { return sim->phys.solid->support_mean; }
-PetscErrorCode   SimBodyForce(Sim sim, PetscInt k, PetscReal force[3])
+PetscErrorCode   SimBodyForces(Sim sim, PetscInt k, PetscInt n, PetscReal force[][3])
 {
   PetscFunctionBeginUser;
   PetscCheck(k > 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "Body %" PetscInt_FMT ": bodies are numbered from 1 (0 is none)", k);
   PetscCheck(sim->phys.has_fluid, sim->comm, PETSC_ERR_ARG_WRONGSTATE, "A body's force is the fluid's: this run has no fluid");
-  force[0] = force[1] = force[2] = 0;
-  PetscCall(FluidBodyForce(&sim->phys, k, force));
+  PetscCall(FluidBodyForces(&sim->phys, k, n, force));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+PetscErrorCode SimBodyForce(Sim sim, PetscInt k, PetscReal force[3])
+{
+  PetscReal f[1][3];
+  PetscFunctionBeginUser;
+  PetscCall(SimBodyForces(sim, k, 1, f));
+  for (PetscInt i = 0; i < 3; i++) force[i] = f[0][i];
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

@@ -35,7 +35,6 @@
 #define NBOX 8
 #define NTANK 4
 #define NGAUGE 4
-#define NBODY 4 /* bodies whose force -body_force gives */
 
 typedef struct {
   PetscReal b[6], s; /* box: its low corner, then its high corner (2D x0,y0,x1,y1); lattice spacing (tanks: walls' spacing) */
@@ -169,7 +168,7 @@ static PetscErrorCode ReadBoxes(Sim sim, PetscOptionItems *PetscOptionsObject, c
       PetscBool given;
       PetscCall(PetscSNPrintf(name, sizeof(name), "-%s_%d_body", prefix, (int)k));
       PetscCall(OptInt(name, "The body (1-4) whose force -body_force gives this obstacle's share of (probes force_x, force_y for body 1, force_x_N, force_y_N for body N); 0: none", "", B->body, &B->body, &given));
-      PetscCheck(B->body >= 0 && B->body <= NBODY, SimComm(sim), PETSC_ERR_ARG_OUTOFRANGE, "%s %" PetscInt_FMT ": a body is numbered 1 to %d (0: none)", name, B->body, NBODY);
+      PetscCheck(B->body >= 0 && B->body <= SHAPES_MAX_BODIES, SimComm(sim), PETSC_ERR_ARG_OUTOFRANGE, "%s %" PetscInt_FMT ": a body is numbered 1 to %d (0: none)", name, B->body, SHAPES_MAX_BODIES);
       PetscCheck(measured || !given || B->body == 0, SimComm(sim), PETSC_ERR_ARG_INCOMP, "%s %" PetscInt_FMT " and -%s_%d_measured 0 contradict each other: give one of them", name, B->body, prefix, (int)k);
       if (!measured) B->body = 0;
     }
@@ -458,16 +457,17 @@ static PetscErrorCode Populate(Sim sim)
     PetscCall(SimGetField(sim, "id", NULL, &id));
     PetscCall(SimGetField(sim, "kind", NULL, &kind));
     PetscCall(SimGetField(sim, "body", NULL, &body));
-    for (PetscInt a = 0; a < np; a++) {
-      const Box *list[3] = {c->solid, c->clamp, c->wall};
-      PetscInt   nlist[3] = {c->nsolid, c->nclamp, c->nwall}, k = id[a] >= first_body && !KindIsFluid(kind[a]) ? 1 : 0;
-      for (PetscInt j = 0; j < 3 && k; j++)
-        for (PetscInt i = 0; i < nlist[j]; i++)
-          if (id[a] >= ids[j][i][0] && id[a] < ids[j][i][1]) k = list[j][i].body;
-      for (PetscInt i = 0; i < ShapesCount(c->shapes) && k; i++) {
-        PetscInt range[2], b = ShapesGetBody(c->shapes, i, range);
-        if (id[a] >= range[0] && id[a] < range[1]) k = b;
+    const Box *list[3] = {c->solid, c->clamp, c->wall};
+    PetscInt   nlist[3] = {c->nsolid, c->nclamp, c->nwall}, range[3 * NBOX + 2 * SHAPES_MAX][3], nr = 0; /* ids [first, end), body */
+    for (PetscInt j = 0; j < 3; j++)
+      for (PetscInt i = 0; i < nlist[j]; i++, nr++) {
+        range[nr][0] = ids[j][i][0]; range[nr][1] = ids[j][i][1]; range[nr][2] = list[j][i].body;
       }
+    for (PetscInt i = 0; i < ShapesCount(c->shapes); i++, nr++) range[nr][2] = ShapesGetBody(c->shapes, i, range[nr]);
+    for (PetscInt a = 0; a < np; a++) {
+      PetscInt k = id[a] >= first_body && !KindIsFluid(kind[a]) ? 1 : 0;
+      for (PetscInt r = 0; r < nr && k; r++)
+        if (id[a] >= range[r][0] && id[a] < range[r][1]) k = range[r][2];
       body[a] = (PetscReal)k;
     }
     PetscCall(SimRestoreField(sim, "id", NULL, &id));
@@ -528,10 +528,11 @@ static PetscErrorCode Probe(Sim sim, PetscReal *vals)
   }
   PetscCall(ShapesFlowProbe(sim, c->shapes, vals + n));
   n += ShapesFlowColumns(c->shapes);
-  for (PetscInt k = 1; c->body_force && k <= c->nbody; k++) {
-    PetscReal f[3];
-    PetscCall(SimBodyForce(sim, k, f));
-    for (PetscInt d = 0; d < D; d++) vals[n++] = f[d];
+  if (c->body_force) {
+    PetscReal f[SHAPES_MAX_BODIES][3];
+    PetscCall(SimBodyForces(sim, 1, c->nbody, f));
+    for (PetscInt k = 0; k < c->nbody; k++)
+      for (PetscInt d = 0; d < D; d++) vals[n++] = f[k][d];
   }
   PetscFunctionReturn(PETSC_SUCCESS);
 }

@@ -10,9 +10,9 @@
 #    checkpoint repeats the run bit for bit.
 # 3. The elastic gate as a slab periodic in z (-case elastic_gate -dim 3, ISPH, uniform dx = t/3) must
 #    reproduce the 2D gate (FSI both ways in 3D, the implicit solid rows of the pressure equation):
-#    the tip's horizontal displacement within 0.1 mm of the 2D run's at every probe to t = 0.01 s and
-#    the water's load within 5 % at the end (measured 0.006 mm and 2.4 %; the issue's bound for the
-#    slab is 0.5 mm RMS over the run, docs/three_d.md).  The gate between side walls takes 3 steps.
+#    the tip's horizontal displacement within 0.1 mm of the 2D run's at every probe to t = 5 ms and
+#    the water's load within 5 % at the end (measured 0.006 mm and 3.7 %; to 10 ms 0.008 mm and 3.9 %,
+#    twice the time; the issue's bound for the slab is 0.5 mm RMS over the run, docs/three_d.md).  The gate between side walls takes 3 steps.
 MPI=$1; OUT=$2
 MPI1=$(echo "$MPI" | sed 's/-n [0-9]*/-n 1/')
 BIN="${BINDIR:-bin}"/sphfsi
@@ -46,7 +46,7 @@ timeout 300 $MPI $BIN $S3 -checkpoint_interval 0.005 -max_steps 200 -output_dir 
 timeout 300 $MPI $BIN $S3 -restart "$OUT/slab_restart/checkpoint.h5" -output_dir "$OUT/slab_restart" > "$OUT/slab_restart2.log" 2>&1
 r=$(python3 tests/compare_snapshots.py "$OUT/slab" "$OUT/slab_restart" 0) || { echo "3d solid: the restarted run differs: $r"; exit 1; }
 echo "3d solid restart: $r"
-G="-options_file cases/elastic_gate.opts -dx 0.0016667 -dx_coarse 0.0016667 -t_end 0.01 -output_interval 0 -progress_every 0"
+G="-options_file cases/elastic_gate.opts -dx 0.0016667 -dx_coarse 0.0016667 -t_end 0.005 -probe_interval 0.001 -output_interval 0 -progress_every 0"
 timeout 300 $MPI $BIN $G -output_dir "$OUT/gate2d" > "$OUT/gate2d.log" 2>&1
 timeout 600 $MPI $BIN $G -dim 3 -output_dir "$OUT/gate3d" > "$OUT/gate3d.log" 2>&1
 python3 - "$OUT/gate3d" "$OUT/gate2d" <<'PY'
@@ -57,7 +57,7 @@ d = max(abs(a[1] - b[1]) for a, b in zip(r3, r2)); load = abs(r3[-1][4] / r2[-1]
 s3 = json.load(open(sys.argv[1] + "/summary.json"))
 print(f"3d gate slab (ISPH, {s3['particles']} particles, {s3['steps']} steps) against the 2D gate: tip_dx {1e3*r3[-1][1]:.4f} / {1e3*r2[-1][1]:.4f} mm at t = {r3[-1][0]:.3f} s, "
       f"largest difference {1e3*d:.4f} mm (bound 0.1 mm), load {r3[-1][4]:.2f} / {r2[-1][4]:.2f} N/m ({100*load:.1f} %, bound 5 %)")
-assert len(r3) == len(r2) and r3[-1][1] > 5e-4, "the gate did not open"
+assert len(r3) == len(r2) and r3[-1][1] > 2e-4, "the gate did not open"
 assert d < 1e-4, "the 3D gate slab's tip differs from the 2D gate's"
 assert load < 0.05, "the 3D gate slab's load differs from the 2D gate's"
 PY

@@ -2,7 +2,8 @@
 # Oscillating plate (Gray et al. 2001) at a coarse resolution, PLATE_NY (10) particles across the
 # thickness, run for ~3 periods (0.8 s).  Bounds, from the issue and the physics:
 #  - the period from the zero crossings of tip_y within 15 % of the thin-plate analytic value
-#    (published SPH values are 12-13 % long at ~12 across, paper Table 1); at least 5 crossings;
+#    (published SPH values are 12-13 % long at ~12 across, paper Table 1); at least MIN_CROSSINGS
+#    (5) crossings;
 #  - the first amplitude within 15 % of the analytic V_f c0 / omega (a softer plate swings wider);
 #  - total energy (kinetic + strain) within 10 % of its start at every probe (the artificial
 #    viscosity dissipates; the artificial stress does work that it stores nowhere, which at
@@ -36,7 +37,8 @@ if os.path.exists(ref):
     assert abs(e["amplitude_over_L_analytic"] * 0.2 - Aref) / Aref < 1e-3, f"analytic amplitude differs from refdata {Aref}"
 else:
     print(f"(refdata {ref} not found: analytic values not cross-checked)")
-assert e["zero_crossings"] >= 5, "fewer than 5 zero crossings of tip_y in 0.8 s"
+ncross = int(os.environ.get("MIN_CROSSINGS", "5"))
+assert e["zero_crossings"] >= ncross, f"fewer than {ncross} zero crossings of tip_y"
 assert abs(e["period_rel_err"]) < 0.15, "period off the analytic value by more than 15 %"
 assert abs(e["amplitude_rel_err"]) < 0.15, "amplitude off the analytic value by more than 15 %"
 assert dE < 0.10, "total energy drifted by more than 10 %"

@@ -24,14 +24,18 @@ static int LauncherRank(void)
   return 0;
 }
 
-/* PETSc cannot report a missing options file before it is initialised: say it here (once). */
+/* PETSc cannot report a missing options file before it is initialised: say it here, on the first
+ * rank only.  The others go on into MPI_Init, which waits for the first; that one exits with its
+ * line written, and the launcher then ends them (had they exited at once, the launcher could end
+ * the first before it wrote: with Open MPI's -mca odls_base_sigkill_timeout 0, it did). */
 static int CheckOptionsFiles(int argc, char **argv)
 {
+  if (LauncherRank() != 0) return 0;
   for (int k = 1; k < argc - 1; k++) {
     FILE *f;
     if (strcmp(argv[k], "-options_file") && strcmp(argv[k], "-options_file_yaml")) continue;
     if (!(f = fopen(argv[k + 1], "r"))) {
-      if (LauncherRank() == 0) fprintf(stderr, "sphfsi: error: cannot open the options file given by -options_file: %s (run from the source directory, or give its full path)\n", argv[k + 1]);
+      fprintf(stderr, "sphfsi: error: cannot open the options file given by -options_file: %s (run from the source directory, or give its full path)\n", argv[k + 1]);
       return SIM_EXIT_BAD_INPUT;
     }
     fclose(f);

@@ -25,5 +25,12 @@ grep -q "^sphfsi [0-9]" "$OUT/version.log" && grep -q "^Petsc" "$OUT/version.log
 timeout 60 $MPI $BIN -options_file cases/dam_break.opts -fluid isph -t_end 0.001 -ksp_rtol 1e-4 -output_dir "$OUT/unprefixed" > "$OUT/unprefixed.log" 2>&1
 rc=$?
 [ $rc -eq 2 ] && grep -q "^sphfsi: error: .*-ksp_rtol 1e-4.*prefix -ppe_" "$OUT/unprefixed.log" || fail "unprefixed -ksp_rtol: status $rc, $(grep 'error' "$OUT/unprefixed.log" | head -1)"
-[ $bad -eq 0 ] && echo "user_path: the case file runs quietly in both schemes, options_used lists the defaults and repeats the ISPH run bit for bit, -version, -ksp_rtol rejected with the -ppe_ hint"
+# BoomerAMG's settings are defaults (ppe.c): a case file without them gets them (options_used), an
+# option given keeps its value, and another preconditioner runs without a word about them
+timeout 60 $MPI $BIN -case hydrostatic -fluid isph -dx 0.01 -max_steps 2 -output_interval 0 -progress_every 0 -ppe_pc_hypre_boomeramg_coarsen_type PMIS -output_dir "$OUT/amg" > "$OUT/amg.log" 2>&1 || fail "ISPH with -ppe_pc_hypre_boomeramg_coarsen_type PMIS: status $?"
+for want in "^-ppe_pc_hypre_boomeramg_coarsen_type PMIS$" "^-ppe_pc_hypre_boomeramg_interp_type ext+i$" "^-ppe_pc_hypre_boomeramg_agg_nl 1$"; do grep -q -- "$want" "$OUT/amg/options_used" || fail "options_used lacks $want"; done
+timeout 60 $MPI $BIN -case hydrostatic -fluid isph -dx 0.01 -max_steps 2 -output_interval 0 -progress_every 0 -ppe_pc_type gamg -output_dir "$OUT/gamg" > "$OUT/gamg.log" 2>&1 || fail "ISPH with -ppe_pc_type gamg: status $?"
+grep -qi "warning\|boomeramg" "$OUT/gamg.log" && fail "-ppe_pc_type gamg: $(grep -i 'warning\|boomeramg' "$OUT/gamg.log" | head -1)"
+grep -q "boomeramg" "$OUT/gamg/options_used" && fail "-ppe_pc_type gamg: options_used lists BoomerAMG options"
+[ $bad -eq 0 ] && echo "user_path: the case file runs quietly in both schemes, options_used lists the defaults and repeats the ISPH run bit for bit, -version, -ksp_rtol rejected with the -ppe_ hint, BoomerAMG's defaults yield to options"
 exit $bad

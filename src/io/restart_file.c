@@ -75,9 +75,12 @@ static int CheckFile(const char *path, char *why, size_t len)
     if (H5Aexists(f, "format") <= 0) snprintf(why, len, "is not an sphfsi checkpoint (snapshots particles_*.h5 cannot be restarted from; use checkpoint.h5 or last_good.h5 of a run)");
     else if (H5Literate(f, H5_INDEX_NAME, H5_ITER_NATIVE, NULL, ReadDataset, &c) != 0 && !why[0]) snprintf(why, len, "is damaged: its datasets cannot be read");
     if (why[0] && strncmp(why, "is ", 3)) { /* "dataset x cannot be ...": say what it means */
-      char what[256];
-      snprintf(what, sizeof(what), "%s", why);
-      snprintf(why, len, "is damaged (truncated or corrupt): %s", what);
+      const char *pre = "is damaged (truncated or corrupt): ";
+      size_t      np = strlen(pre), n = strlen(why);
+      if (np + n + 1 > len) n = len > np + 1 ? len - np - 1 : 0; /* the message shifted right in place, cut to fit */
+      memmove(why + np, why, n);
+      memcpy(why, pre, np < len ? np : len - 1);
+      why[np + n < len ? np + n : len - 1] = 0;
     }
     H5Fclose(f);
   }

@@ -56,9 +56,9 @@ step=$(intact "$OUT/slow") || fail "slow stop: $step"
 timeout 120 $MPI bin/sphfsi -restart "$OUT/slow/checkpoint.h5" > "$OUT/slow_restart.log" 2>&1 || fail "slow stop: the restart from the checkpoint alone: status $?: $(grep error "$OUT/slow_restart.log")"
 cmp -s "$OUT/ref/probes.csv" "$OUT/slow/probes.csv" || fail "slow stop: after the restart probes.csv differs from the uninterrupted run's"
 
-# 7 tries at random moments
-RANDOM=$$; last=-1; killed=0; handled=0
-for try in $(seq 1 7); do
+# TRIES tries at random moments
+TRIES=7; RANDOM=$$; last=-1; killed=0; handled=0
+for try in $(seq 1 $TRIES); do
   if grep -q '"status": "completed"' "$OUT/chain/summary.json" 2>/dev/null; then rm -f "$OUT/chain/checkpoint.h5"; last=-1; fi # done: a new chain
   sigs=(INT TERM USR1); sig=${sigs[$((RANDOM % 3))]}; target=$((RANDOM % 2)); kill9=$((RANDOM % 3 == 0))
   delay=$(python3 -c "import random; print(round(random.uniform(0.2, 1.5), 2))")
@@ -91,5 +91,5 @@ done
 if [ -f "$OUT/chain/checkpoint.h5" ] && ! grep -q '"status": "completed"' "$OUT/chain/summary.json" 2>/dev/null; then
   timeout 120 $MPI bin/sphfsi -restart "$OUT/chain/checkpoint.h5" > "$OUT/chain_end.log" 2>&1 || fail "the chain's last restart: status $?"
 fi
-cmp -s "$OUT/ref/probes.csv" "$OUT/chain/probes.csv" || fail "the chain of 10 interrupted tries gives another probes.csv than the uninterrupted run"
-echo "stop: a stop slower than mpiexec's 1 s kill leaves summary.json (stopped) and the previous checkpoint, which restarts; 7 random tries ($handled stopped by the handler, $killed SIGKILLed) never lost a checkpoint, and the chain equals the uninterrupted run byte for byte"
+cmp -s "$OUT/ref/probes.csv" "$OUT/chain/probes.csv" || fail "the chain of $TRIES interrupted tries gives another probes.csv than the uninterrupted run"
+echo "stop: a stop slower than mpiexec's 1 s kill leaves summary.json (stopped) and the previous checkpoint, which restarts; $TRIES random tries ($handled stopped by the handler, $killed SIGKILLed) never lost a checkpoint, and the chain equals the uninterrupted run byte for byte"

@@ -22,16 +22,24 @@ PetscErrorCode PPECreate(MPI_Comm comm, PPE *ppe)
  * set-up for more iterations), Gauss-Seidel forward on the way down and backward on the way up (a
  * symmetric V-cycle at half the smoothing), each level's transpose kept.  hypre's defaults (Falgout,
  * classical) cost 1.7x the run: Taylor-Green ISPH at L/100 (Wendland, 2 h = 4 dx), 2 ranks, 20.7 s
- * against 12.5 s with the same errors to 2 digits.  Called once the PC is known to be BoomerAMG, so
- * that no option is left unread under another preconditioner. */
+ * against 12.5 s with the same errors to 2 digits.  Only once the PC is known to be BoomerAMG, so that
+ * no option is left unread under another preconditioner. */
 static PetscErrorCode PPEBoomerAMGDefaults(PC pc)
 {
-  const char *prefix, *defaults[][2] = {
+#if defined(PETSC_HAVE_HYPRE)
+  const char *prefix, *type, *defaults[][2] = {
     {"coarsen_type", "HMIS"}, {"interp_type", "ext+i"}, {"P_max", "4"}, {"agg_nl", "1"}, {"relax_type_down", "SOR/Jacobi"}, {"relax_type_up", "backward-SOR/Jacobi"}, {"keeptranspose", "1"},
   };
-  PetscBool given, all, any = PETSC_FALSE;
+  PetscBool hypre, boomeramg, given, all, any = PETSC_FALSE;
   char      name[128];
+#endif
   PetscFunctionBeginUser;
+#if defined(PETSC_HAVE_HYPRE)
+  PetscCall(PetscObjectTypeCompare((PetscObject)pc, PCHYPRE, &hypre));
+  if (!hypre) PetscFunctionReturn(PETSC_SUCCESS);
+  PetscCall(PCHYPREGetType(pc, &type));
+  PetscCall(PetscStrcmp(type, "boomeramg", &boomeramg));
+  if (!boomeramg) PetscFunctionReturn(PETSC_SUCCESS);
   PetscCall(PCGetOptionsPrefix(pc, &prefix));
   PetscCall(PetscSNPrintf(name, sizeof(name), "-%spc_hypre_boomeramg_relax_type_all", prefix ? prefix : ""));
   PetscCall(PetscOptionsHasName(NULL, NULL, name, &all)); /* a smoother for all sweeps: none set down and up */
@@ -43,6 +51,7 @@ static PetscErrorCode PPEBoomerAMGDefaults(PC pc)
     any = PETSC_TRUE;
   }
   if (any) PetscCall(PCSetFromOptions(pc));
+#endif
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -72,6 +81,7 @@ PetscErrorCode PPESetFromOptions(PPE ppe, PetscBool symmetric)
   PetscOptionsEnd();
   PetscCheck(ppe->pc_qmax >= 0, ppe->comm, PETSC_ERR_ARG_OUTOFRANGE, "-ppe_pc_qmax %g must be >= 0 (0: the preconditioner sees the whole matrix)", (double)ppe->pc_qmax);
   PetscCall(KSPSetFromOptions(ppe->ksp));
+  PetscCall(PPEBoomerAMGDefaults(pc));
   { /* a direct solve (-ppe_ksp_type preonly -ppe_pc_type lu) takes no initial guess */
     PetscBool preonly;
     PetscCall(PetscObjectTypeCompare((PetscObject)ppe->ksp, KSPPREONLY, &preonly));
@@ -80,15 +90,6 @@ PetscErrorCode PPESetFromOptions(PPE ppe, PetscBool symmetric)
   { /* -ppe_mat_hypre applies to a hypre preconditioner where hypre can share our arrays */
     PetscBool hypre;
     PetscCall(PetscObjectTypeCompare((PetscObject)pc, PCHYPRE, &hypre));
-#if defined(PETSC_HAVE_HYPRE)
-    if (hypre) {
-      const char *type;
-      PetscBool   boomeramg;
-      PetscCall(PCHYPREGetType(pc, &type));
-      PetscCall(PetscStrcmp(type, "boomeramg", &boomeramg));
-      if (boomeramg) PetscCall(PPEBoomerAMGDefaults(pc));
-    }
-#endif
     ppe->mat_hypre = (PetscBool)(ppe->mat_hypre && hypre && SplitCSRSharesWithHypre());
   }
   PetscFunctionReturn(PETSC_SUCCESS);

@@ -75,12 +75,11 @@ static int CheckFile(const char *path, char *why, size_t len)
     if (H5Aexists(f, "format") <= 0) snprintf(why, len, "is not an sphfsi checkpoint (snapshots particles_*.h5 cannot be restarted from; use checkpoint.h5 or last_good.h5 of a run)");
     else if (H5Literate(f, H5_INDEX_NAME, H5_ITER_NATIVE, NULL, ReadDataset, &c) != 0 && !why[0]) snprintf(why, len, "is damaged: its datasets cannot be read");
     if (why[0] && strncmp(why, "is ", 3)) { /* "dataset x cannot be ...": say what it means */
-      const char *pre = "is damaged (truncated or corrupt): ";
-      size_t      np = strlen(pre), n = strlen(why);
-      if (np + n + 1 > len) n = len > np + 1 ? len - np - 1 : 0; /* the message shifted right in place, cut to fit */
-      memmove(why + np, why, n);
-      memcpy(why, pre, np < len ? np : len - 1);
-      why[np + n < len ? np + n : len - 1] = 0;
+      const char *pre = "is damaged (truncated or corrupt): "; /* shorter than the callers' len (512) */
+      size_t      np = strlen(pre), n = PetscMin(strlen(why), len - np - 1);
+      memmove(why + np, why, n); /* the message shifted right in place, cut to fit */
+      memcpy(why, pre, np);
+      why[np + n] = 0;
     }
     H5Fclose(f);
   }

@@ -122,7 +122,6 @@ const PetscReal *SimSolidSupport(Sim sim) { return sim->phys.solid->support_mean
 PetscErrorCode   SimBodyForces(Sim sim, PetscInt k, PetscInt n, PetscReal force[][3])
 {
   PetscFunctionBeginUser;
-  PetscCheck(k > 0, sim->comm, PETSC_ERR_ARG_OUTOFRANGE, "Body %" PetscInt_FMT ": bodies are numbered from 1 (0 is none)", k);
   PetscCheck(sim->phys.has_fluid, sim->comm, PETSC_ERR_ARG_WRONGSTATE, "A body's force is the fluid's: this run has no fluid");
   PetscCall(FluidBodyForces(&sim->phys, k, n, force));
   PetscFunctionReturn(PETSC_SUCCESS);

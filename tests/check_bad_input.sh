@@ -69,6 +69,7 @@ check "-clamp_columns"        -case oscillating_plate -clamp_columns 1
 check "-block_motion"         -case solid_block -block_motion spin
 check "-solid_cfl"            -case oscillating_plate -solid_cfl 0.4
 check "-solid_order"          -case oscillating_plate -solid_order 3
+check "-solid_h_factor"       -case oscillating_plate -h_factor 1.3 -solid_h_factor 1.5
 check "-solid_formulation"    -case oscillating_plate -solid_formulation eulerian
 # the solid's law and its moduli as K, G or E, nu (one pair)
 check "-solid_law"            -case oscillating_plate -solid_law mooney_rivlin

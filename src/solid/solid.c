@@ -89,6 +89,9 @@ PetscErrorCode SolidSetFromOptions(Physics *ph)
   if (s->order != 2) s->quadrature = PETSC_FALSE;
   if (s->order != 2) s->clamp_face = PETSC_FALSE; /* with the first-order fit the face points, dx/2 from the first column, made the root unstable (the cantilever at 5 across lost pairs at t = 0.08 s) */
   if (s->formulation == SOLID_TOTAL && s->order == 2) PetscCall(OptBool("-clamp_face", "Total-Lagrangian, order 2: a clamp is a boundary, its particles next to the body stand for the face midway to it in the fits, and it stores no energy (off: the clamp is material held still)", "", s->clamp_face, &s->clamp_face, NULL));
+  s->h_factor = ph->kernel.h_factor;
+  if (s->formulation == SOLID_TOTAL) PetscCall(OptReal("-h_factor", "Total-Lagrangian: h / dx of the solid's own pairs, its reference fit and elastic forces (at most -h_factor; the fluid and the fluid-solid pairs keep -h_factor).  A plate a few particles thick is softer in bending at a wide kernel: the Turek-Hron flag 4 across has its second mode 1.6 % lower at 2 dx than at 1.4 dx (default: -h_factor)", "", s->h_factor, &s->h_factor, NULL));
+  s->h_ratio = s->h_factor / ph->kernel.h_factor; /* exactly 1 unless given */
   if (s->formulation == SOLID_TOTAL) PetscCall(OptReal("-hourglass", "Total-Lagrangian: hourglass-control coefficient zeta, the energy zeta G / 2 of the bonds' deviation from the affine fit (solid_terms.h); 0 = off", "", s->hourglass, &s->hourglass, NULL));
   PetscCall(OptReal("-rho", "Solid reference density (kg/m^3)", "", m->rho0, &m->rho0, NULL));
   PetscCall(SolidModuliFromOptions(PetscOptionsObject, ph->comm, m));
@@ -110,6 +113,8 @@ PetscErrorCode SolidSetFromOptions(Physics *ph)
   if (fluid) PetscCall(FSISetFromOptions(ph));
   PetscCheck(s->damping >= 0, ph->comm, PETSC_ERR_ARG_OUTOFRANGE, "-solid_damping %g must be >= 0", (double)s->damping);
   PetscCheck(s->order == 1 || s->order == 2, ph->comm, PETSC_ERR_ARG_OUTOFRANGE, "-solid_order %" PetscInt_FMT " must be 1 or 2", s->order);
+  /* the solid's pairs come from the one neighbour search, which reaches 2 h of the run's -h_factor */
+  PetscCheck(s->h_factor >= 1 && s->h_factor <= ph->kernel.h_factor, ph->comm, PETSC_ERR_ARG_OUTOFRANGE, "-solid_h_factor %g must be in [1, %g] (h / dx of the solid's pairs; at most the run's -h_factor, whose neighbour search finds them)", (double)s->h_factor, (double)ph->kernel.h_factor);
   PetscCheck(s->hourglass >= 0, ph->comm, PETSC_ERR_ARG_OUTOFRANGE, "-solid_hourglass %g must be >= 0", (double)s->hourglass);
   PetscCheck(s->skin >= 0 && s->skin <= 2, ph->comm, PETSC_ERR_ARG_OUTOFRANGE, "-solid_skin %g must be in [0, 2] particle spacings", (double)s->skin);
   PetscCheck(s->cfl > 0 && s->cfl <= 1, ph->comm, PETSC_ERR_ARG_OUTOFRANGE, "-solid_cfl %g must be in (0, 1]", (double)s->cfl);
@@ -330,7 +335,7 @@ PetscErrorCode SolidTimeStep(Physics *ph, PetscReal *dt)
    * stiffest mode.  -solid_cfl is calibrated at h = 1.3 dx (the paper's); at larger h / dx the step
    * stays that of h = 1.3 dx (at 2 dx it would be 1.54x longer: the elastic gate blew up in its
    * first fluid step with the Wendland kernel at 2 dx). */
-  const PetscReal  hlen = PetscMin(1.0, SPH_H_FACTOR / ph->kernel.h_factor);
+  const PetscReal  hlen = PetscMin(1.0, SPH_H_FACTOR / ph->solid->h_factor) * ph->solid->h_ratio; /* of the particle's h */
   PetscReal        lim  = PETSC_MAX_REAL;
 
   PetscFunctionBeginUser;
@@ -430,7 +435,9 @@ PetscErrorCode SolidView(Physics *ph, PetscViewer v)
   const SolidMaterial *m = &ph->sl;
   PetscFunctionBeginUser;
   if (ph->solid->formulation == SOLID_TOTAL) {
-    PetscCall(PetscViewerASCIIPrintf(v, "Solid: total-Lagrangian %s, rho0 %g, K %g Pa, G %g Pa (lambda %g, mu %g Pa), c0 %g m/s; artificial viscosity alpha %g; hourglass control %g%s\n", m->law == SOLID_LAW_ST_VENANT_KIRCHHOFF ? "St Venant-Kirchhoff" : "neo-Hookean", (double)m->rho0, (double)m->K, (double)m->G, (double)(m->K - 2 * m->G / 3), (double)m->G, (double)m->c0, (double)m->alpha, (double)ph->solid->hourglass, m->eps > 0 ? "; -solid_art_stress not used" : ""));
+    char own[64] = "";
+    if (ph->solid->h_ratio != 1) PetscCall(PetscSNPrintf(own, sizeof(own), "; its own pairs at h = %g dx", (double)ph->solid->h_factor));
+    PetscCall(PetscViewerASCIIPrintf(v, "Solid: total-Lagrangian %s, rho0 %g, K %g Pa, G %g Pa (lambda %g, mu %g Pa), c0 %g m/s; artificial viscosity alpha %g; hourglass control %g%s%s\n", m->law == SOLID_LAW_ST_VENANT_KIRCHHOFF ? "St Venant-Kirchhoff" : "neo-Hookean", (double)m->rho0, (double)m->K, (double)m->G, (double)(m->K - 2 * m->G / 3), (double)m->G, (double)m->c0, (double)m->alpha, (double)ph->solid->hourglass, own, m->eps > 0 ? "; -solid_art_stress not used" : ""));
     PetscFunctionReturn(PETSC_SUCCESS);
   }
   PetscCall(PetscViewerASCIIPrintf(v, "Solid: rho0 %g, K %g Pa, G %g Pa, c0 %g m/s; artificial viscosity alpha %g; artificial stress e %g n %g%s; velocity gradient %s\n", (double)m->rho0, (double)m->K, (double)m->G, (double)m->c0, (double)m->alpha, (double)m->eps, (double)m->n, m->eps > 0 ? "" : " (off)", SolidGradients[ph->solid->gradient]));

@@ -25,6 +25,8 @@ struct _p_Solid {
   PetscBool     quadrature; /* total, order 2: second-order quadrature of each particle's cell (solid_terms.h) */
   PetscInt      order;     /* total: polynomial order the reference gradient reproduces (1 or 2) */
   PetscReal     hourglass; /* total: hourglass-control coefficient alpha (Ganzenmueller 2015); 0 = off */
+  PetscReal     h_factor;  /* total: h / dx of the solid's own pairs (-solid_h_factor; default the run's -h_factor) */
+  PetscReal     h_ratio;   /* total: h_factor / the run's: scales each particle's h in the reference fit (exactly 1 by default) */
   PetscReal    *f0;        /* total: (dW/dr)/r of each pair of nl in the reference configuration (0: not neighbours there) */
   PetscInt      cap_ref;
   /* total: arrays over the solid particles only (solid_total.c), not particle fields, which every

@@ -122,12 +122,16 @@ SPH_INLINE PetscErrorCode ClampFacesD(Physics *ph, const PetscInt D)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* The smoothing length of the solid's own pair (a, b): the pair's h scaled by -solid_h_factor's
+ * ratio to the run's (exactly 1 by default) */
+SPH_INLINE PetscReal SolidPairH(Solid s, const PetscReal *h, PetscInt a, PetscInt b) { return PairH(h[a], h[b]) * s->h_ratio; }
+
 /* A clamp face point c pairs with solid a while the clamp particle itself is within the support
  * of a: the neighbour search, which runs at the particles' positions, then always holds the pair. */
 SPH_INLINE PetscBool FaceInSupport(Physics *ph, PetscInt a, PetscInt c, const PetscInt D)
 {
   const PetscReal *x = PField(ph->P, FIELD_X), *X = PField(ph->P, FIELD_X0), *h = PField(ph->P, FIELD_H);
-  PetscReal        d[3], r = 2 * PairH(h[a], h[c]) * ph->solid->h_ratio;
+  PetscReal        d[3], r = 2 * SolidPairH(ph->solid, h, a, c);
   VSub(x + D * c, X + D * a, d, D);
   return (PetscBool)(VDot(d, d, D) < r * r);
 }
@@ -192,7 +196,7 @@ SPH_INLINE void FacePair(void *ctx, PetscInt a, SPHPair p, const PetscInt D)
   PetscReal     d[3];
   if (r->P->kind[b] != KIND_SOLID || !FaceInSupport(r->ph, b, a, D)) return;
   VSub(r->X + D * b, r->X + D * a, d, D);
-  r->s->f0[p.k] = KernelF(&r->ph->kernel, PetscSqrtReal(VDot(d, d, D)), PairH(r->h[a], r->h[b]) * r->s->h_ratio);
+  r->s->f0[p.k] = KernelF(&r->ph->kernel, PetscSqrtReal(VDot(d, d, D)), SolidPairH(r->s, r->h, a, b));
   if (r->s->f0[p.k] != 0) r->npair++;
 }
 
@@ -205,7 +209,7 @@ SPH_INLINE void FitMomentPair(void *ctx, PetscInt a, SPHPair pr, const PetscInt 
   PetscReal     d[3], w, p[9];
   if (!InFit(s, r->P, a, b) || (r->P->kind[b] == KIND_CLAMP && !FaceInSupport(r->ph, a, b, D))) return;
   VSub(r->X + D * b, r->X + D * a, d, D);
-  s->f0[k] = KernelF(&r->ph->kernel, PetscSqrtReal(VDot(d, d, D)), PairH(r->h[a], r->h[b]) * r->s->h_ratio);
+  s->f0[k] = KernelF(&r->ph->kernel, PetscSqrtReal(VDot(d, d, D)), SolidPairH(s, r->h, a, b));
   if (s->f0[k] == 0) return;
   r->npair++;
   w = -r->m[b] / r->rho0 * s->f0[k];

@@ -28,7 +28,7 @@ w = (t >= 0.4) & (t <= 0.7)
 lift, drag = np.max(np.abs(d["lift"][w])), np.mean(d["drag"][w])
 U = 0.5 * (1 - np.cos(np.pi * 0.7 / 2))          # the benchmark's ramp of the mean inflow 1 m/s over 2 s
 v = np.sqrt(2 * np.max(d["e_kin"][w]) / (10000 * 0.35 * 0.02))
-print(f"turek_hron fsi2 ISPH to 0.7 s: |lift| <= {lift:.2f} N/m against a mean drag of {drag:.1f} N/m over [0.4, 0.7] s (bound a quarter); "
+print(f"turek_hron fsi2 isph: to 0.7 s, |lift| <= {lift:.2f} N/m against a mean drag of {drag:.1f} N/m over [0.4, 0.7] s (bound a quarter); "
       f"the flag's RMS speed <= {1e3*v:.2f} mm/s against the mean inflow {1e3*U:.0f} mm/s (bound a tenth); uy_A {1e3*d['uy_A'][-1]:.3f} mm")
 assert drag > 0, "the water does not drag the flag downstream"
 assert lift < 0.25 * drag, "the lift in the steady, nearly symmetric flow of the ramp is above a quarter of the drag"

@@ -42,6 +42,8 @@ run() { # name, command...
 run layers ${PY} tools/layers.py
 # The public interface (include/): each header alone as C99 and C++, -pedantic -Werror
 run headers bash tests/check_headers.sh "$OUT/headers"
+# Every shell and Python script of tools/ and tests/ parses (make study's branches run hours in)
+run scripts bash tests/check_scripts.sh
 # Unit and parallel-machinery tests (C programs)
 for t in "${BINDIR:-bin}"/test_*; do
   run "$(basename "$t")" $MPI "$t"

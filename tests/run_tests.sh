@@ -149,8 +149,9 @@ if [ "${1:-}" != "--unit-only" ]; then
   run turek_hron_csm1 bash tests/check_turek_hron.sh "$MPI" "$OUT/turek_hron_csm1"
   # Turek-Hron CFD1 coarse: drag and lift on the rigid flag and cylinder in the open channel, both fluids
   run turek_hron_cfd1 bash tests/check_turek_hron_cfd1.sh "$MPI" "$OUT/turek_hron_cfd1" "$MPI8"
-  # Turek-Hron FSI2 with ISPH, the ramp's first 0.7 s: the elastic flag stable and quasi-static
-  run turek_hron_fsi2_isph bash tests/check_turek_hron_fsi2_isph.sh "$MPI" "$OUT/turek_hron_fsi2_isph"
+  # Turek-Hron FSI2 and FSI3 with ISPH, the ramp's first 0.7 / 0.4 s: the elastic flag stable and quasi-static
+  run turek_hron_fsi2_isph bash tests/check_turek_hron_fsi_isph.sh "$MPI" "$OUT/turek_hron_fsi2_isph" fsi2
+  run turek_hron_fsi3_isph bash tests/check_turek_hron_fsi_isph.sh "$MPI" "$OUT/turek_hron_fsi3_isph" fsi3
   run elastic_gate_isph bash tests/check_elastic_gate.sh "$MPI" "$OUT/elastic_gate_isph" -fluid isph
   run elastic_gate_wcsph bash tests/check_elastic_gate.sh "$MPI" "$OUT/elastic_gate_wcsph" -fluid wcsph
   run elastic_gate_isph_updated bash tests/check_elastic_gate.sh "$MPI" "$OUT/elastic_gate_isph_updated" -fluid isph -solid_formulation updated -solid_cfl 0.4

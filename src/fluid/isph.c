@@ -69,6 +69,7 @@ PetscErrorCode ISPHSetUp(Physics *ph)
   s->lat_divr = KernelLatticeSum(&ph->kernel, LATTICE_DIVR, 0);
   PetscCall(PPECreate(ph->comm, &s->ppe));
   PetscCall(PPESetFromOptions(s->ppe, (PetscBool)!(ph->solid && ph->solid->implicit)));
+  s->ppe->row_stiffness = ph->solid ? ph->solid->row_stiffness : 1;
   PetscCall(ParticlesEnableField(ph->P, FIELD_ACC, PETSC_FALSE));
   PetscCall(ParticlesEnableField(ph->P, FIELD_VWALL, PETSC_FALSE));
   PetscCall(ParticlesEnableField(ph->P, FIELD_VSTAR, PETSC_TRUE)); /* read by neighbours after the predictor's rebuild */

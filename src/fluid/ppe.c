@@ -292,11 +292,18 @@ SPH_INLINE PetscReal MovingSolidRow(PPE ppe, Physics *ph, PetscInt a, PetscReal 
   { /* the fluid's pair forces scale with its view of the mass; the response with the particle's
      * effective mass over the step, m + dt^2 k / 4 (Newmark's, with k ~ (K + 4G/3) dx the stiffness
      * of its bonds): a free particle when the step is short, held by the solid when it is long
-     * against the solid's own waves (a stiff plate under water barely moves in a step) */
+     * against the solid's own waves (a stiff plate under water barely moves in a step).  With
+     * -fsi_row_stiffness w the bonds enter as w dt^2 k / 4.  A row's inertia m_e well above the
+     * solid's real one m_s makes the staggered coupling amplify (one mass under an added mass M_a,
+     * with the last acceleration in the row: a factor M_a (m_s - m_e) / (m_s (m_e + M_a)) a step,
+     * below -1 once m_e > 2 m_s at a large M_a).  A flag as dense as the water (Turek-Hron FSI3,
+     * 3 ms steps) had m_e = 6.4 m against its column's share of 2 m: its lift changed sign every step,
+     * growing 1.2x a step (measured); at m_e = 2 m and m it stayed calm.  w = 0 (m_e = m) cannot
+     * exceed the real inertia. */
     const SolidMaterial *sm = &ph->sl;
     PetscReal            k = (sm->K + 4.0 * sm->G / 3.0) * h[a] / ph->kernel.h_factor;
     if (D == 3) k *= h[a] / ph->kernel.h_factor; /* the 2D k is per unit depth and was measured so; a 3D particle is a layer dx deep (a slab repeats the 2D run) */
-    kappa = ma / (m[a] + 0.25 * ph->dt * ph->dt * k);
+    kappa = ma / (m[a] + ppe->row_stiffness * 0.25 * ph->dt * ph->dt * k);
   }
   for (PetscInt pass = 0; pass < 2; pass++)
     for (PetscInt k = C->nstart[a]; k < C->nstart[a + 1]; k++) {

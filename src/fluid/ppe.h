@@ -41,6 +41,7 @@ struct _p_PPE {
   PetscReal    pc_qmax;                         /* Ap leaves out pairs with r / h_ab > pc_qmax (0: Ap = A) */
   PetscReal   *hyd;                             /* per local wall row: hydrostatic part of its P, L_a(rho0 g . r) / sum_b c_ab */
   PetscBool    symmetric;                       /* no implicit solid rows (ppe.c): CG applies */
+  PetscReal    row_stiffness;                   /* implicit solid rows: weight of the bonds in a row's inertia (-fsi_row_stiffness, MovingSolidRow) */
   PetscBool    wall_approach;                   /* wall rows also stop approaching fluid (ppe.c, WallApproach) */
   PetscBool    wall_clip;                       /* clip the walls' pressure above the water line and flag them dry in FIELD_FS (PPESolve) */
   PetscBool    mat_hypre;                       /* the matrix the preconditioner reads built in hypre's format (csr.h): -ppe_mat_hypre with a hypre PC that can share our arrays */

@@ -52,14 +52,17 @@ static PetscErrorCode FSISetFromOptions(Physics *ph)
   PetscFunctionBeginUser;
   s->implicit = (PetscBool)(ph->fluid == FLUID_ISPH);
   s->mean_acc = PETSC_TRUE;
+  s->row_stiffness = 1;
   s->transit  = ph->fluid == FLUID_ISPH ? 0.85 : 0.0; /* K, G x 5 gate: 1.0 swings the load -138..360 N/m, 0.85 runs clean */
   PetscOptionsBegin(ph->comm, "fsi_", "Fluid-structure coupling", "Solid");
   if (ph->fluid == FLUID_ISPH) PetscCall(OptBool("-implicit", "ISPH + solid: the solid rows of the pressure equation answer the solid's acceleration under that pressure (implicit interface; off = the solid seen as a wall at rest during the solve, unstable for light solids)", "", s->implicit, &s->implicit, NULL));
   if (ph->fluid == FLUID_ISPH) PetscCall(OptBool("-mean_acc", "ISPH, implicit interface: a solid particle's pressure row starts from its mean acceleration over the last fluid step, changed by what the new pressure does to it (Adami's moving wall); off = only that change, so that a thin solid's fast elastic oscillation, which the mean over a short fluid step keeps, stays out of the pressure (the Turek-Hron flag: docs/turek_hron.md)", "", s->mean_acc, &s->mean_acc, NULL));
+  if (ph->fluid == FLUID_ISPH && s->implicit) PetscCall(OptReal("-row_stiffness", "ISPH, implicit interface: weight w of the solid's bonds in the inertia m + w dt^2 k / 4 that a solid particle's pressure row gives it (k: its bonds' stiffness).  The staggered coupling amplifies when that inertia is above twice the solid's real one, which for a thin flag in bending is the particle's share of its column; 0 = the particle's own mass, which is never above it (the Turek-Hron FSI3 flag, as dense as the water: docs/turek_hron_fsi2.md)", "", s->row_stiffness, &s->row_stiffness, NULL));
   if (ph->fluid == FLUID_ISPH) PetscCall(OptReal("-dt_transit", "ISPH + solid: the fluid step is at most this many times the time an elastic wave (c0 of the solid) takes to cross the solid's largest extent, since the pressure is frozen over the solid sub-steps (0 = no limit); a gate 5x stiffer than the rubber needs it", "", s->transit, &s->transit, NULL));
   PetscCall(OptBool("-repulsion", "Repulsive force Eq. 41 between fluid and solid particles, a one-sided push against each fluid particle's approach speed: it damps a structure's motion across the flow (the Turek-Hron flag: docs/turek_hron_fsi2.md) (default: on with -fluid wcsph, off with isph)", "", s->repulsion, &s->repulsion, NULL));
   PetscOptionsEnd();
   PetscCheck(s->transit >= 0, ph->comm, PETSC_ERR_ARG_OUTOFRANGE, "-fsi_dt_transit %g must be >= 0", (double)s->transit);
+  PetscCheck(s->row_stiffness >= 0, ph->comm, PETSC_ERR_ARG_OUTOFRANGE, "-fsi_row_stiffness %g must be >= 0", (double)s->row_stiffness);
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

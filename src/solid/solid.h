@@ -53,6 +53,7 @@ struct _p_Solid {
   PetscBool     implicit;  /* ISPH: the solid's rows of the pressure equation answer its acceleration (ppe.c) */
   PetscBool     mean_acc;  /* ISPH, implicit: those rows start from its mean acceleration over the last fluid step */
   PetscReal     transit;   /* ISPH: fluid step <= transit * (solid extent) / c0_solid; 0 = no limit */
+  PetscReal     row_stiffness; /* ISPH, implicit: weight of the bonds' stiffness in a solid row's mass, m + w dt^2 k / 4 (ppe.c) */
   PetscReal     extent;    /* largest side of the moving solids' bounding box at the start (0: not yet known) */
   PetscReal    *R;     /* artificial stress (symmetric, dim.h's order) of owned + ghost particles, Eqs. 32-34 */
   PetscInt      cap_R;

@@ -135,6 +135,7 @@ if [ "${1:-}" != "--unit-only" ]; then
   run poiseuille_isph bash tests/check_poiseuille.sh "$MPI" "$OUT/poiseuille_isph" -fluid isph
   run taylor_green_isph bash tests/check_taylor_green.sh "$MPI" "$OUT/taylor_green_isph" -dx 0.01
   run taylor_green_wcsph bash tests/check_taylor_green.sh "$MPI" "$OUT/taylor_green_wcsph" -fluid wcsph
+  run pressure_level bash tests/check_pressure_level.sh "$MPI" "$OUT/pressure_level"
   run sluice_gate_wcsph bash tests/check_sluice_gate.sh "$MPI" "$OUT/sluice_gate_wcsph"
   # mixed sizes (issue 3): 2.5 mm at the gate and in the channel, 5 mm away from it (the bound uses the fine dx)
   run sluice_gate_wcsph_zones bash tests/check_sluice_gate.sh "$MPI" "$OUT/sluice_gate_wcsph_zones" -dx 0.0025 -dx_coarse 0.005

@@ -24,6 +24,7 @@ typedef struct {
   PetscReal shift_dmax;    /* both schemes: the ceiling of shifting's A h |v| dt over h^2 (-fluid_shift_ceiling); 0 = none */
   PetscBool shift_volume;  /* WCSPH with shifting: the density follows the shifted particle's volume (-wcsph_shift_volume) */
   PetscReal lat_divr;      /* WCSPH with shifting: bulk value of -sum V F r^2, normalises div r */
+  PetscBool tic;           /* WCSPH: tensile instability control (-wcsph_tic): a fluid particle in tension takes p_b - p_a from the fluid */
   PetscBool wall_clip;     /* WCSPH: the Adami wall pressure clipped at 0, so that a wall never pulls fluid */
   PetscBool force_gauge;   /* forces on named bodies free of the push a uniform pressure gives the discrete sum (-fluid_force_gauge; WCSPH's default) */
 } FluidMaterial;

@@ -24,6 +24,7 @@ PetscErrorCode WCSPHSetFromOptions(Physics *ph)
   PetscCall(OptReal("-damper", "Acoustic damper: the pressure of Eq. 20 plus damper rho0 c0 h (drho/dt) / rho, a bulk viscosity rho0 c0 h times the coefficient, as the pressure of the density a time damper h / c0 ahead; it damps the sound waves a few h long that ring after an impact and leaves shear and incompressible motion alone (docs/impact.md); 0 = off", "", fl->damper, &fl->damper, NULL));
   PetscCall(OptReal("-shift", "Particle shifting coefficient A (D = A h |v| dt, Skillen et al. 2013; none on the free surface, div r < 1.5, and next to it); 0 = off", "", fl->shift, &fl->shift, NULL));
   PetscCall(OptBool("-shift_volume", "With shifting: the continuity equation follows the shifted particle, its density changing with the divergence of the shifting velocity as with the flow's, so that the density stays that of the particles' spacing (without it Fickian shifting spreads a disordered flow's particles while their densities stay: behind the Turek-Hron cylinder 4.5 % fewer particles than the density says, docs/turek_hron.md)", "", fl->shift_volume, &fl->shift_volume, NULL));
+  PetscCall(OptBool("-tic", "Tensile instability control (Sun et al. 2017's delta+-SPH): a fluid particle whose pressure is negative takes the pressure difference p_b - p_a from its fluid neighbours instead of Eq. 19's sum, which pulls particles in tension together; the level of the pressure then no longer acts on it.  For confined flows: it is not kept off the free surface", "", fl->tic, &fl->tic, NULL));
   PetscCall(OptBool("-wall_clip", "Clip the wall pressure (Adami extrapolation) at 0: fluid in tension next to a wall is not held on it", "", fl->wall_clip, &fl->wall_clip, NULL));
   PetscCall(OptReal("-skin", "Verlet skin of the neighbour list, in particle spacings: the pairs within 2h + skin are kept and the list is rebuilt only once some particle has moved half the skin; 0 rebuilds at every step", "", skin, &skin, NULL));
   PetscOptionsEnd();
@@ -229,7 +230,7 @@ typedef struct {
   const FluidMaterial *fl;
   PetscReal            ra, pa, ha, qa;  /* rho_a, p_a / rho_a^2, h_a, a's Riemann dissipation against walls (WallRiemannD) */
   PetscReal            repulsion_scale, dt;
-  PetscBool            repulse, riemann; /* Eq. 41 (nrm), the Riemann dissipation: constants of MomentumLoop's plain variant */
+  PetscBool            repulse, riemann, tic; /* Eq. 41 (nrm), the Riemann dissipation, the tensile instability control: constants of MomentumLoop's plain variant */
 } MomentumPairs;
 
 /* Eq. 19 with Eq. 24 and the Riemann dissipation (fluid_terms.h; against walls WallRiemannD's), Eq. 16 and Eq. 41's pair */
@@ -245,7 +246,7 @@ SPH_INLINE void MomentumPair(const void *ctx, PetscInt a, SPHPair pr, PetscReal 
   VSub(s->x + D * a, s->x + D * b, d, D);
   VSub(va, vb, dvab, D);
   r2    = VDot(d, d, D);
-  pterm = s->pa + s->pv[b] + ArtificialViscosity(KindIsFluid(kind) ? fl->alpha : fl->alpha * fl->wall_av, fl->c0, hab, 0.5 * (s->ra + rb), VDot(dvab, d, D), r2);
+  pterm = (s->tic && s->pa < 0 && KindIsFluid(kind) ? s->pv[b] * rb / s->ra - s->pa * s->ra / rb : s->pa + s->pv[b]) + ArtificialViscosity(KindIsFluid(kind) ? fl->alpha : fl->alpha * fl->wall_av, fl->c0, hab, 0.5 * (s->ra + rb), VDot(dvab, d, D), r2);
   visc  = LaminarViscosity(mb, fl->mu, s->ra, rb, F * r2, r2, hab, fl->eta, fl->lap_kappa);
   if (s->repulse && KindIsSolid(kind)) rep = s->repulsion_scale * FSIRepulsion(VDot(dvab, s->nrm + D * b, D), PetscSqrtReal(r2) / (2 * hab), s->dt); /* scale: to the paper's 2D sum at 1.3 dx (solid.c) */
   VSub(va, s->vv + D * b, dvab, D); /* against walls and solids their no-slip (mirrored) velocity */
@@ -260,14 +261,14 @@ SPH_INLINE void MomentumPair(const void *ctx, PetscInt a, SPHPair pr, PetscReal 
 
 /* The loop over the owned fluid (MomentumD), with repulse and riemann constants where the caller
  * gives them, so that the pair has no branch for what is off and its loop vectorises. */
-SPH_INLINE void MomentumLoop(Physics *ph, const PetscReal *mv, const PetscReal *rv, const PetscReal *pv, const PetscReal *vv, PetscReal *scratch, PetscBool repulse, PetscBool riemann, const PetscInt D)
+SPH_INLINE void MomentumLoop(Physics *ph, const PetscReal *mv, const PetscReal *rv, const PetscReal *pv, const PetscReal *vv, PetscReal *scratch, PetscBool repulse, PetscBool riemann, PetscBool tic, const PetscInt D)
 {
   Particles        P = ph->P;
   const PetscReal *rho = PField(P, FIELD_RHO), *h = PField(P, FIELD_H);
   const PetscReal *qw  = riemann ? PField(P, FIELD_QWALL) : NULL;
   PetscReal       *acc = PField(P, FIELD_ACC);
   for (PetscInt a = 0; a < P->n; a++) {
-    MomentumPairs s = {.kind = P->kind, .x = PField(P, FIELD_X), .v = PField(P, FIELD_V), .h = h, .nrm = repulse ? PField(P, FIELD_NORMAL) : NULL, .mv = mv, .rv = rv, .pv = pv, .vv = vv, .fl = &ph->fl, .ra = rho[a], .pa = pv[a], .ha = h[a], .qa = qw ? qw[a] : 0, .repulsion_scale = repulse ? ph->solid->repulsion_scale : 0, .dt = ph->dt, .repulse = repulse, .riemann = riemann};
+    MomentumPairs s = {.kind = P->kind, .x = PField(P, FIELD_X), .v = PField(P, FIELD_V), .h = h, .nrm = repulse ? PField(P, FIELD_NORMAL) : NULL, .mv = mv, .rv = rv, .pv = pv, .vv = vv, .fl = &ph->fl, .ra = rho[a], .pa = pv[a], .ha = h[a], .qa = qw ? qw[a] : 0, .repulsion_scale = repulse ? ph->solid->repulsion_scale : 0, .dt = ph->dt, .repulse = repulse, .riemann = riemann, .tic = tic};
     PetscReal     ac[3] = {0, 0, 0};
     if (!KindIsFluid(P->kind[a])) continue;
     SPHPairsSum(ph->cells, a, MomentumPair, &s, D, scratch, ac, D);
@@ -282,7 +283,7 @@ SPH_INLINE PetscErrorCode MomentumD(Physics *ph, const PetscInt D)
 {
   Particles        P = ph->P;
   const PetscReal *m = PField(P, FIELD_M), *rho = PField(P, FIELD_RHO), *p = PField(P, FIELD_P), *fv = PField(P, FIELD_FVIEW);
-  const PetscBool  repulse = (PetscBool)(ph->solid && ph->solid->repulsion), riemann = (PetscBool)(ph->fl.riemann > 0);
+  const PetscBool  repulse = (PetscBool)(ph->solid && ph->solid->repulsion), riemann = (PetscBool)(ph->fl.riemann > 0), tic = ph->fl.tic;
   const PetscReal *v = PField(P, FIELD_V), *vw = PField(P, FIELD_VWALL);
   PetscReal       *mv, *rv, *pv, *vv, *scratch;
 
@@ -293,8 +294,8 @@ SPH_INLINE PetscErrorCode MomentumD(Physics *ph, const PetscInt D)
     pv[b] /= rv[b] * rv[b];
     for (PetscInt i = 0; i < D; i++) vv[D * b + i] = KindIsBoundary(P->kind[b]) ? vw[D * b + i] : v[D * b + i];
   }
-  if (!repulse && !riemann) MomentumLoop(ph, mv, rv, pv, vv, scratch, PETSC_FALSE, PETSC_FALSE, D);
-  else MomentumLoop(ph, mv, rv, pv, vv, scratch, repulse, riemann, D);
+  if (!repulse && !riemann && !tic) MomentumLoop(ph, mv, rv, pv, vv, scratch, PETSC_FALSE, PETSC_FALSE, PETSC_FALSE, D);
+  else MomentumLoop(ph, mv, rv, pv, vv, scratch, repulse, riemann, tic, D);
   PetscCall(PetscFree5(mv, rv, pv, vv, scratch));
   PetscFunctionReturn(PETSC_SUCCESS);
 }

@@ -10,6 +10,7 @@
 
 typedef struct {
   PetscReal L, U, Re;
+  PetscReal p0;     /* a uniform pressure added to the exact field (the continuum's flow ignores it) */
   PetscReal E0;     /* kinetic energy of the initial particle state */
   PetscReal e_last; /* last probed kinetic energy and velocity error, and their time */
   PetscReal l2_last, t_last;
@@ -28,6 +29,7 @@ static PetscErrorCode Create(Sim sim)
   c->L = 1.0; c->U = 1.0; c->Re = 100;
   PetscOptionsBegin(SimComm(sim), NULL, "Scene taylor_green: decaying vortices in a periodic unit square (L = 1 m, U = 1 m/s)", "");
   PetscCall(OptReal("-re", "Reynolds number U L / nu; sets mu = rho0 U L / Re (a later -fluid_mu overrides)", "", c->Re, &c->Re, NULL));
+  PetscCall(OptReal("-taylor_green_p0", "A uniform pressure (Pa) added to the initial field: the continuum ignores it, SPH's pressure term does not (its effect measures the particles' disorder)", "", c->p0, &c->p0, NULL));
   {
     PetscInt dim = SimDim(sim);
     PetscCall(OptInt("-dim", "Dimension: 2, or 3 for the same vortices in a periodic cube (uniform in z)", "", dim, &dim, NULL));
@@ -68,8 +70,9 @@ static PetscErrorCode Populate(Sim sim)
   PetscReal   *x, *v, *p, *rho, *m, dx = SimSpacing(sim), k = 2 * PETSC_PI / c->L, E = 0;
   PetscInt     n = RoundToInt(c->L / dx), D = SimDim(sim), np;
   PetscFunctionBeginUser;
-  if (D == 3) PetscCall(SceneAddBlock(sim, KIND_FLUID, (PetscReal[]){0.5 * dx, 0.5 * dx, 0.5 * dx}, (PetscInt[]){n, n, n}, dx, SimFluidMaterial(sim)->rho0));
-  else PetscCall(SceneAddLattice(sim, KIND_FLUID, 0.5 * dx, 0.5 * dx, n, n, dx, SimFluidMaterial(sim)->rho0));
+  const PetscReal rho_level = c->p0 != 0 ? EOSDensity(SimFluidMaterial(sim), c->p0) : SimFluidMaterial(sim)->rho0; /* the particles' masses: the lattice at the level's density */
+  if (D == 3) PetscCall(SceneAddBlock(sim, KIND_FLUID, (PetscReal[]){0.5 * dx, 0.5 * dx, 0.5 * dx}, (PetscInt[]){n, n, n}, dx, rho_level));
+  else PetscCall(SceneAddLattice(sim, KIND_FLUID, 0.5 * dx, 0.5 * dx, n, n, dx, rho_level));
   PetscCall(SimGetLocalSize(sim, &np));
   PetscCall(SimGetField(sim, "x", NULL, &x));
   PetscCall(SimGetField(sim, "v", NULL, &v));
@@ -79,7 +82,7 @@ static PetscErrorCode Populate(Sim sim)
   for (PetscInt a = 0; a < np; a++) {
     Exact(c, 0, 0, &x[D * a], &v[D * a]); /* w = 0 in 3D */
     /* exact pressure at t = 0, density through the EOS (Eq. 20) */
-    p[a]   = 0.25 * SimFluidMaterial(sim)->rho0 * c->U * c->U * (PetscCosReal(2 * k * x[D * a]) + PetscCosReal(2 * k * x[D * a + 1]));
+    p[a]   = 0.25 * SimFluidMaterial(sim)->rho0 * c->U * c->U * (PetscCosReal(2 * k * x[D * a]) + PetscCosReal(2 * k * x[D * a + 1])) + c->p0;
     rho[a] = EOSDensity(SimFluidMaterial(sim), p[a]);
     E += 0.5 * m[a] * (v[D * a] * v[D * a] + v[D * a + 1] * v[D * a + 1]);
   }

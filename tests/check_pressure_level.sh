@@ -5,7 +5,7 @@
 # (Sun et al. 2017), so that the level drops out there.  Taylor-Green at L/50 (WCSPH, Re 100, t = 1 s)
 # at the level 0 and at -rho U^2 (all the fluid in tension, -1.5 rho U^2 at the least) with the control:
 # the L2 velocity errors agree within 20 % (the sum's: +56 %, measured 2026-12-02; a level of +rho U^2
-# costs +79 % with or without the control, docs/turek_hron_fsi2.md).
+# costs +79 % with or without the control, docs/pressure_level.md).
 #   tests/check_pressure_level.sh "MPIEXEC -n P" OUTDIR
 set -e
 MPI=$1; OUT=$2

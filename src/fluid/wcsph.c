@@ -24,7 +24,7 @@ PetscErrorCode WCSPHSetFromOptions(Physics *ph)
   PetscCall(OptReal("-damper", "Acoustic damper: the pressure of Eq. 20 plus damper rho0 c0 h (drho/dt) / rho, a bulk viscosity rho0 c0 h times the coefficient, as the pressure of the density a time damper h / c0 ahead; it damps the sound waves a few h long that ring after an impact and leaves shear and incompressible motion alone (docs/impact.md); 0 = off", "", fl->damper, &fl->damper, NULL));
   PetscCall(OptReal("-shift", "Particle shifting coefficient A (D = A h |v| dt, Skillen et al. 2013; none on the free surface, div r < 1.5, and next to it); 0 = off", "", fl->shift, &fl->shift, NULL));
   PetscCall(OptBool("-shift_volume", "With shifting: the continuity equation follows the shifted particle, its density changing with the divergence of the shifting velocity as with the flow's, so that the density stays that of the particles' spacing (without it Fickian shifting spreads a disordered flow's particles while their densities stay: behind the Turek-Hron cylinder 4.5 % fewer particles than the density says, docs/turek_hron.md)", "", fl->shift_volume, &fl->shift_volume, NULL));
-  PetscCall(OptBool("-tic", "Tensile instability control (Sun et al. 2017's delta+-SPH): a fluid particle whose pressure is negative takes the pressure difference p_b - p_a from its fluid neighbours instead of Eq. 19's sum, which pulls particles in tension together; the level of the pressure then no longer acts on it.  For confined flows: it is not kept off the free surface", "", fl->tic, &fl->tic, NULL));
+  PetscCall(OptBool("-tic", "Tensile instability control (Sun et al. 2017's delta+-SPH): a fluid particle whose pressure is negative takes the pressure difference p_b - p_a from its fluid neighbours instead of Eq. 19's sum, which pulls particles in tension together; the level of the pressure then no longer acts on it.  Confined flows only (no free surface)", "", fl->tic, &fl->tic, NULL));
   PetscCall(OptBool("-wall_clip", "Clip the wall pressure (Adami extrapolation) at 0: fluid in tension next to a wall is not held on it", "", fl->wall_clip, &fl->wall_clip, NULL));
   PetscCall(OptReal("-skin", "Verlet skin of the neighbour list, in particle spacings: the pairs within 2h + skin are kept and the list is rebuilt only once some particle has moved half the skin; 0 rebuilds at every step", "", skin, &skin, NULL));
   PetscOptionsEnd();
@@ -52,6 +52,8 @@ PetscErrorCode WCSPHSetUp(Physics *ph)
   PetscCall(ParticlesEnableField(ph->P, FIELD_DRHO, (PetscBool)(fl->damper > 0))); /* ghosts: WCSPHPressure's damper */
   PetscCall(ParticlesEnableField(ph->P, FIELD_VWALL, PETSC_FALSE)); /* ghosts: refreshed by BoundaryWallState */
   if (fl->xsph > 0 || fl->shift > 0) PetscCall(ParticlesEnableField(ph->P, FIELD_XSPH, PETSC_FALSE)); /* ghosts: refreshed by ShiftVolume, where it reads them */
+  /* the control has no free-surface region: a surface particle in tension would take p_b - p_a and the surface tear */
+  PetscCheck(!fl->tic || ph->confined, ph->comm, PETSC_ERR_ARG_INCOMP, "-wcsph_tic is for confined flows (no free surface): this scene has one, where it tears the surface apart; leave it off");
   if (fl->shift > 0 && !ph->confined) PetscCall(ParticlesEnableField(ph->P, FIELD_FS, PETSC_TRUE)); /* ghosts: at the rebuild */
   if (fl->riemann > 0) PetscCall(ParticlesEnableField(ph->P, FIELD_QWALL, PETSC_FALSE)); /* ghosts: by WallRiemann, where solids read them */
   PetscFunctionReturn(PETSC_SUCCESS);

@@ -44,6 +44,7 @@ check "-wcsph_delta"          -case dam_break -wcsph_delta 2
 check "-wcsph_delta"          -case dam_break -delta 2  # its name before 0.9.0: works on, the error names the new one
 check "-wcsph_skin"           -case dam_break -wcsph_skin 3
 check "-wcsph_tic is for confined flows" -case dam_break -fluid wcsph -wcsph_tic  # a free surface
+check "-fluid_shift_speed"   -case dam_break -fluid wcsph -fluid_shift_speed -1
 check "-wcsph_wall_av"        -case dam_break -wcsph_wall_av 2
 check "-isph_wall_av"         -case dam_break -fluid isph -isph_wall_av -1
 check "-wcsph_riemann"        -case dam_break -wcsph_riemann -3

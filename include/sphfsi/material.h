@@ -22,6 +22,7 @@ typedef struct {
   PetscReal shift;         /* WCSPH Fickian shifting coefficient A, 0 = off */
   PetscBool shift_correct; /* both schemes: a shifted particle's velocity corrected to its new place */
   PetscReal shift_dmax;    /* both schemes: the ceiling of shifting's A h |v| dt over h^2 (-fluid_shift_ceiling); 0 = none */
+  PetscReal shift_vmin;    /* both schemes: shifting's speed at least this (-fluid_shift_speed); 0 = the particle's own */
   PetscBool shift_volume;  /* WCSPH with shifting: the density follows the shifted particle's volume (-wcsph_shift_volume) */
   PetscReal lat_divr;      /* WCSPH with shifting: bulk value of -sum V F r^2, normalises div r */
   PetscBool tic;           /* WCSPH: tensile instability control (-wcsph_tic): a fluid particle in tension takes p_b - p_a from the fluid */

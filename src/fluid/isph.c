@@ -441,7 +441,7 @@ SPH_INLINE PetscErrorCode DriftD(Physics *ph, const PetscInt D)
     DriftSum sum = {.P = P, .x = x, .v = v, .m = m, .rho = rho, .fs = fs, .rho0 = rho0, .xsph = (PetscBool)(eps != 0), .grad = (PetscBool)!!dv};
     SPHPairsW(ph->cells, P, a, sum.xsph, DriftPair, &sum, D); /* W only for XSPH */
     for (PetscInt i = 0; i < D; i++) xs[D * a + i] = eps * sum.sx[i];
-    ShiftVelocity(s->shift, ph->fl.shift_dmax, fs[a] > 0 ? SHIFT_SURFACE : sum.near ? SHIFT_NEAR_SURFACE : SHIFT_BULK, h[a], v + D * a, dt, sum.c, xs + D * a, D);
+    ShiftVelocity(s->shift, ph->fl.shift_dmax, ph->fl.shift_vmin, fs[a] > 0 ? SHIFT_SURFACE : sum.near ? SHIFT_NEAR_SURFACE : SHIFT_BULK, h[a], v + D * a, dt, sum.c, xs + D * a, D);
     if (dv) {
       PetscReal dr[3];
       for (PetscInt i = 0; i < D; i++) dr[i] = dt * (xs[D * a + i] - eps * sum.sx[i]);

@@ -17,11 +17,11 @@ typedef enum { SHIFT_BULK, SHIFT_NEAR_SURFACE, SHIFT_SURFACE } ShiftZone;
 #define SHIFT_DIVR_SURFACE 1.5
 
 /* The shifting velocity dr/dt of a particle with smoothing length h, velocity v and concentration
- * gradient c over a step dt, in dim dimensions, the coefficient at most dmax h^2 (dmax 0: no
- * ceiling); adds it to xs. */
-static inline void ShiftVelocity(PetscReal A, PetscReal dmax, ShiftZone zone, PetscReal h, const PetscReal v[], PetscReal dt, const PetscReal c[], PetscReal xs[], const PetscInt dim)
+ * gradient c over a step dt, in dim dimensions, its speed taken at least vmin (-fluid_shift_speed),
+ * the coefficient at most dmax h^2 (dmax 0: no ceiling); adds it to xs. */
+static inline void ShiftVelocity(PetscReal A, PetscReal dmax, PetscReal vmin, ShiftZone zone, PetscReal h, const PetscReal v[], PetscReal dt, const PetscReal c[], PetscReal xs[], const PetscInt dim)
 {
-  PetscReal speed = PetscSqrtReal(VDot(v, v, dim)), D = A * h * speed * dt, ds[3], len;
+  PetscReal speed = PetscMax(PetscSqrtReal(VDot(v, v, dim)), vmin), D = A * h * speed * dt, ds[3], len;
   if (A <= 0 || zone != SHIFT_BULK || dt <= 0) return;
   if (dmax > 0) D = PetscMin(D, dmax * h * h);
   for (PetscInt i = 0; i < dim; i++) ds[i] = -D * c[i];

@@ -153,7 +153,7 @@ SPH_INLINE PetscErrorCode ContinuityD(Physics *ph, const PetscInt D)
     if (shift) {
       PetscReal s0[3], dr[3];
       for (PetscInt i = 0; i < D; i++) s0[i] = xs[D * a + i];
-      ShiftVelocity(fl->shift, fl->shift_dmax, surf && surface[a] ? SHIFT_SURFACE : s.near ? SHIFT_NEAR_SURFACE : SHIFT_BULK, h[a], v + D * a, ph->dt, s.c, xs + D * a, D);
+      ShiftVelocity(fl->shift, fl->shift_dmax, fl->shift_vmin, surf && surface[a] ? SHIFT_SURFACE : s.near ? SHIFT_NEAR_SURFACE : SHIFT_BULK, h[a], v + D * a, ph->dt, s.c, xs + D * a, D);
       for (PetscInt i = 0; i < D; i++) dr[i] = ph->dt * (xs[D * a + i] - s0[i]);
       if (dv) ShiftCorrectVelocity(&s.sg, dr, dv + D * a, D);
     }
